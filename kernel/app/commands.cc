@@ -1,0 +1,114 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "commands.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <numbers>
+
+#include "install_paths.h"
+#include "kernel.h"
+#include "text_file.h"
+#include "unimouse/errors.h"
+
+namespace unimouse {
+namespace {
+
+PluginRegistry LoadRegistry(const std::string& plugin_path) {
+  PluginRegistry registry;
+  registry.AddSearchPath(PluginSearchPath(plugin_path));
+  return registry;
+}
+
+std::unique_ptr<Maze> LoadMazeOption(const std::string& maze) {
+  if (maze == "none") return nullptr;
+  return std::make_unique<Maze>(LoadMaze(ResolveDataFile(maze, "mazes/", ".txt")));
+}
+
+void WriteResult(const std::string& out_dir, const nlohmann::json& result) {
+  std::filesystem::create_directories(out_dir);
+  WriteTextFile((std::filesystem::path(out_dir) / "result.json").string(), result.dump(2) + "\n");
+}
+
+}  // namespace
+
+int RunCommand(const RunOptions& options) {
+  UNIMOUSE_THROW_UNLESS(options.duration_s > 0 && std::isfinite(options.duration_s),
+                        "--duration must be a positive number of seconds");
+  const std::string robot_file = ResolveDataFile(options.robot, "robots/", ".yaml");
+  const RobotSpec robot = LoadRobotSpec(robot_file);
+  const std::unique_ptr<Maze> maze = LoadMazeOption(options.maze);
+  const PluginRegistry registry = LoadRegistry(options.plugin_path);
+  std::unique_ptr<Kernel> kernel = Kernel::Create(robot, maze.get(), registry, options.seed);
+
+  nlohmann::json result;
+  result["robot"] = robot_file;
+  result["maze"] = maze ? nlohmann::json(ResolveDataFile(options.maze, "mazes/", ".txt")) : nullptr;
+  result["seed"] = options.seed;
+  result["duration_s"] = options.duration_s;
+
+  const int64_t steps = std::llround(options.duration_s / kernel->timestep_s());
+  const auto start = std::chrono::steady_clock::now();
+  std::string fault;
+  try {
+    while (kernel->state().step() < steps) kernel->Step();
+  } catch (const RuntimeFault& e) {
+    fault = e.what();
+  }
+  const double wall_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+  // the run's record is written whatever happened to the run
+  const mjData& d = kernel->state().data();
+  const Pose2D pose = kernel->world().RobotPose(d);
+  result["status"] = fault.empty() ? "completed" : "fault";
+  if (!fault.empty()) result["error"] = fault;
+  result["sim_time_s"] = d.time;
+  result["steps"] = kernel->state().step();
+  result["wall_time_s"] = wall_s;
+  result["real_time_factor"] = wall_s > 0 ? d.time / wall_s : 0.0;
+  result["robot_pose"] = {{"x_m", pose.x_m}, {"y_m", pose.y_m}, {"yaw_rad", pose.yaw_rad}};
+  result["collision_proxy_overflows"] = kernel->world().proxy_overflows();
+  WriteResult(options.out_dir, result);
+
+  std::printf("unimouse run: robot '%s' %s, seed %llu\n", robot.name.c_str(),
+              maze ? ("in maze " + options.maze + " (" + std::to_string(maze->width()) + "x" +
+                      std::to_string(maze->height()) + ")")
+                         .c_str()
+                   : "on an open floor",
+              static_cast<unsigned long long>(options.seed));
+  std::printf("  simulated %.3f s in %lld steps, %.2f s wall time, %.0fx real time\n", d.time,
+              static_cast<long long>(kernel->state().step()), wall_s,
+              result["real_time_factor"].get<double>());
+  std::printf("  robot at (%.3f, %.3f) m heading %.1f deg\n", pose.x_m, pose.y_m,
+              pose.yaw_rad * 180 / std::numbers::pi);
+  std::printf("  result: %s\n",
+              (std::filesystem::path(options.out_dir) / "result.json").string().c_str());
+  if (!fault.empty()) {
+    std::fprintf(stderr, "unimouse: error: %s\n", fault.c_str());
+    return kExitRuntimeFault;
+  }
+  return kExitPassed;
+}
+
+int CheckCommand(const std::string& robot_name, const std::string& plugin_path) {
+  const std::string robot_file = ResolveDataFile(robot_name, "robots/", ".yaml");
+  const RobotSpec robot = LoadRobotSpec(robot_file);
+  const PluginRegistry registry = LoadRegistry(plugin_path);
+  const std::unique_ptr<Kernel> kernel = Kernel::Create(robot, nullptr, registry, 1);
+  const mjModel& m = kernel->model();
+  std::printf("%s: ok: robot '%s', %d bodies, %d joints, %d actuators, %zu components\n",
+              robot_file.c_str(), robot.name.c_str(), m.nbody - 1, m.njnt, m.nu,
+              kernel->components().size());
+  return kExitPassed;
+}
+
+int PluginsCommand(const std::string& plugin_path) {
+  std::cout << DescribePlugins(LoadRegistry(plugin_path));
+  return kExitPassed;
+}
+
+}  // namespace unimouse

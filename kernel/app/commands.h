@@ -1,0 +1,29 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The subcommands of the `unimouse` program.
+#ifndef UNIMOUSE_APP_COMMANDS_H_
+#define UNIMOUSE_APP_COMMANDS_H_
+
+#include <cstdint>
+#include <string>
+
+namespace unimouse {
+
+struct RunOptions {
+  std::string robot = "unimouse";
+  std::string maze = "japan2018";  ///< "none" for an open floor
+  double duration_s = 10;
+  uint64_t seed = 1;
+  std::string out_dir = "out";
+  std::string plugin_path;
+};
+
+/// Runs a simulation headless and writes out_dir/result.json; returns the exit code.
+int RunCommand(const RunOptions& options);
+/// Validates a robot file without running it; returns the exit code.
+int CheckCommand(const std::string& robot, const std::string& plugin_path);
+/// Lists every component type found and its parameters; returns the exit code.
+int PluginsCommand(const std::string& plugin_path);
+
+}  // namespace unimouse
+
+#endif  // UNIMOUSE_APP_COMMANDS_H_

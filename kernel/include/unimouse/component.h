@@ -1,0 +1,243 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The C++ face of the plugin ABI. A component is a class with a Params struct, constructed from
+// validated parameters, bound once to the MuJoCo model, and const ever after: what evolves lives
+// in its state slice, owned by the kernel.
+//
+//   class DcMotor final : public unimouse::Component {
+//    public:
+//     static constexpr const char* kTypeName = "unimouse.dc_motor";
+//     static constexpr const char* kSummary = "brushed DC motor, eq. 3.15";
+//     static constexpr double kDefaultPeriod_s = 0;
+//     using Params = DcMotorParams;
+//     explicit DcMotor(Params params);
+//     void Bind(unimouse::BindContext& ctx) override;
+//     void Actuate(const unimouse::ActuateContext& ctx) const override;
+//   };
+//
+//   UNIMOUSE_EXPORT_PLUGIN(DcMotor)  // in the plugin's own plugin.cc only
+#ifndef UNIMOUSE_COMPONENT_H_
+#define UNIMOUSE_COMPONENT_H_
+
+#include <cstring>
+#include <exception>
+#include <span>
+#include <string>
+#include <string_view>
+#include <utility>
+
+#include "unimouse/errors.h"
+#include "unimouse/params.h"
+#include "unimouse/plugin_abi.h"
+
+namespace unimouse {
+
+/// Index of a named scalar signal shared between components.
+struct SignalId {
+  int index = -1;
+};
+
+/// Index of a named, seeded random stream.
+struct RngId {
+  int index = -1;
+};
+
+/// Resolves names once, at bind time. A failed lookup stops Bind; the kernel reports it with the
+/// component's YAML location.
+class BindContext {
+ public:
+  explicit BindContext(const unimouse_bind& b) : b_(b) {}
+
+  const mjModel& model() const { return *b_.model; }
+  double timestep_s() const { return b_.timestep_s; }
+  int JointId(const std::string& name) const { return Check(b_.joint(b_.ctx, name.c_str())); }
+  int ActuatorId(const std::string& name) const {
+    return Check(b_.actuator(b_.ctx, name.c_str()));
+  }
+  int SiteId(const std::string& name) const { return Check(b_.site(b_.ctx, name.c_str())); }
+  int BodyId(const std::string& name) const { return Check(b_.body(b_.ctx, name.c_str())); }
+  SignalId ReadSignal(const std::string& name) const {
+    return {Check(b_.signal_read(b_.ctx, name.c_str()))};
+  }
+  SignalId WriteSignal(const std::string& name) const {
+    return {Check(b_.signal_write(b_.ctx, name.c_str()))};
+  }
+  RngId Rng(const std::string& name) const { return {Check(b_.rng_stream(b_.ctx, name.c_str()))}; }
+  void SetStateSize(int nstate) const { b_.set_state_size(b_.ctx, nstate); }
+
+ private:
+  // the kernel has already recorded why; an empty message tells the adapter to use that
+  static int Check(int id) {
+    if (id < 0) {
+      throw InputError("");
+    }
+    return id;
+  }
+
+  const unimouse_bind& b_;
+};
+
+/// What every hook sees: the world, this component's state slice, signals and services.
+class TickContext {
+ public:
+  explicit TickContext(const unimouse_tick& t) : t_(t) {}
+
+  const mjModel& model() const { return *t_.model; }
+  const mjData& data() const { return *t_.data; }
+  std::span<double> state() const { return {t_.state, static_cast<size_t>(t_.nstate)}; }
+  double Read(SignalId id) const { return t_.signals[id.index]; }
+  void Write(SignalId id, double value) const { t_.signals[id.index] = value; }
+  double Uniform(RngId id) const { return t_.rng_uniform(t_.ctx, id.index); }
+  double Normal(RngId id) const { return t_.rng_normal(t_.ctx, id.index); }
+  /// Returns the distance to the first non-robot surface along a unit direction, or -1.
+  double CastRay(const double origin[3], const double direction[3], double max_m) const {
+    return t_.ray_cast(t_.ctx, origin, direction, max_m);
+  }
+  int64_t step() const { return t_.step; }
+  double time_s() const { return t_.time_s; }
+  void Log(const std::string& message) const { t_.log(t_.ctx, UNIMOUSE_LOG_INFO, message.c_str()); }
+  void Warn(const std::string& message) const {
+    t_.log(t_.ctx, UNIMOUSE_LOG_WARNING, message.c_str());
+  }
+  /// Stops the run with exit code 3 once the hook returns.
+  void Fail(const std::string& message) const {
+    t_.log(t_.ctx, UNIMOUSE_LOG_ERROR, message.c_str());
+  }
+
+ protected:
+  const unimouse_tick& t_;
+};
+
+/// Sense runs after mj_step1: kinematics are current and mjData is read-only.
+class SenseContext : public TickContext {
+ public:
+  using TickContext::TickContext;
+};
+
+/// Actuate runs before mj_step2 and may write controls and applied forces.
+class ActuateContext : public TickContext {
+ public:
+  using TickContext::TickContext;
+  mjData& mutable_data() const { return *t_.data; }
+};
+
+/// Reset writes the initial values of the state slice and of the signals it writes.
+using ResetContext = TickContext;
+
+/// Base class for everything a robot YAML can instantiate.
+class Component {
+ public:
+  virtual ~Component() = default;
+
+  /// Resolves names to ids, declares signals, random streams and state size.
+  virtual void Bind(BindContext& ctx) = 0;
+  /// Writes initial values into this component's state slice.
+  virtual void Reset(const ResetContext&) const {}
+  /// Samples the world after mj_step1; mjData is read-only here.
+  virtual void Sense(const SenseContext&) const {}
+  /// Writes controls or signals before mj_step2.
+  virtual void Actuate(const ActuateContext&) const {}
+};
+
+namespace internal {
+
+inline void CopyMessage(const char* what, char* err, int err_size) {
+  if (err_size > 0) {
+    std::strncpy(err, what, static_cast<size_t>(err_size) - 1);
+    err[err_size - 1] = '\0';
+  }
+}
+
+inline void ReportHookFault(const unimouse_tick* t, const char* what) {
+  t->log(t->ctx, UNIMOUSE_LOG_ERROR, what);
+}
+
+}  // namespace internal
+
+/// Returns the C type table for component class T; built once, lives for the program.
+template <class T>
+const unimouse_component_type* ComponentType() {
+  static const param::SchemaBuilder schema = [] {
+    param::SchemaBuilder builder;
+    typename T::Params defaults;
+    defaults.Visit(builder);
+    return builder;
+  }();
+  static const unimouse_component_type type = [] {
+    unimouse_component_type t{};
+    t.size = sizeof(unimouse_component_type);
+    t.name = T::kTypeName;
+    t.summary = T::kSummary;
+    t.nparam = static_cast<int>(schema.params().size());
+    t.params = schema.params().data();
+    t.default_period_s = T::kDefaultPeriod_s;
+    t.create = +[](const unimouse_config* cfg, const unimouse_host* host, char* err,
+                   int err_size) -> void* {
+      try {
+        typename T::Params params;
+        param::ConfigReader reader(cfg, host);
+        params.Visit(reader);
+        return new T(std::move(params));
+      } catch (const std::exception& e) {
+        internal::CopyMessage(e.what(), err, err_size);
+        return nullptr;
+      }
+    };
+    t.bind = +[](void* self, const unimouse_bind* b, char* err, int err_size) -> int {
+      try {
+        BindContext ctx(*b);
+        static_cast<T*>(self)->Bind(ctx);
+        return 0;
+      } catch (const std::exception& e) {
+        internal::CopyMessage(e.what(), err, err_size);
+        return 1;
+      }
+    };
+    t.reset = +[](const void* self, const unimouse_tick* tick) {
+      try {
+        static_cast<const T*>(self)->Reset(ResetContext(*tick));
+      } catch (const std::exception& e) {
+        internal::ReportHookFault(tick, e.what());
+      }
+    };
+    t.sense = +[](const void* self, const unimouse_tick* tick) {
+      try {
+        static_cast<const T*>(self)->Sense(SenseContext(*tick));
+      } catch (const std::exception& e) {
+        internal::ReportHookFault(tick, e.what());
+      }
+    };
+    t.actuate = +[](const void* self, const unimouse_tick* tick) {
+      try {
+        static_cast<const T*>(self)->Actuate(ActuateContext(*tick));
+      } catch (const std::exception& e) {
+        internal::ReportHookFault(tick, e.what());
+      }
+    };
+    t.destroy = +[](void* self) { delete static_cast<T*>(self); };
+    return t;
+  }();
+  return &type;
+}
+
+/// Returns the plugin table listing component classes T...; what unimouse_plugin_v1 returns.
+template <class... T>
+const unimouse_plugin_info* PluginInfo() {
+  static const unimouse_component_type* const types[] = {ComponentType<T>()...};
+  static const unimouse_plugin_info info = {UNIMOUSE_ABI_VERSION,
+                                            sizeof(unimouse_plugin_info),
+                                            sizeof(unimouse_component_type),
+                                            mjVERSION_HEADER,
+                                            static_cast<int>(sizeof...(T)),
+                                            types};
+  return &info;
+}
+
+}  // namespace unimouse
+
+/// Exports the listed component classes from a plugin library through unimouse_plugin_v1.
+#define UNIMOUSE_EXPORT_PLUGIN(...)                                                 \
+  extern "C" UNIMOUSE_EXPORT const unimouse_plugin_info* unimouse_plugin_v1(void) { \
+    return ::unimouse::PluginInfo<__VA_ARGS__>();                                   \
+  }
+
+#endif  // UNIMOUSE_COMPONENT_H_

@@ -1,0 +1,130 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
+/* The plugin ABI: the only contract a component library and the kernel must agree on.
+ *
+ * A plugin library exports one symbol, unimouse_plugin_v1, returning a table of component types.
+ * The loader checks the ABI version, the struct sizes and the MuJoCo version before it uses
+ * anything else. Within ABI version 1, structs only grow at the end; a NULL optional hook means
+ * "not implemented". No C++ exception may cross this boundary. C99. */
+#ifndef UNIMOUSE_PLUGIN_ABI_H_
+#define UNIMOUSE_PLUGIN_ABI_H_
+
+#include <mujoco/mujoco.h>
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define UNIMOUSE_ABI_VERSION 1
+#define UNIMOUSE_EXPORT __attribute__((visibility("default")))
+
+/* kinds of component parameters */
+typedef enum unimouse_param_kind {
+  UNIMOUSE_PARAM_NUMBER = 1,  /* finite double */
+  UNIMOUSE_PARAM_INTEGER = 2, /* whole number, stored as double */
+  UNIMOUSE_PARAM_BOOL = 3,    /* true/false, stored as 0 or 1 */
+  UNIMOUSE_PARAM_STRING = 4
+} unimouse_param_kind;
+
+/* One declared parameter of a component type. The kernel validates YAML against these before a
+ * component is created, so create() only ever sees complete, in-range values. */
+typedef struct unimouse_param {
+  const char* name;           /* snake_case with a unit suffix where it has a unit: "gear_ratio" */
+  int kind;                   /* unimouse_param_kind */
+  int required;               /* 1: no default, the YAML must give it */
+  double default_number;      /* NUMBER, INTEGER, BOOL */
+  const char* default_string; /* STRING */
+  double min, max;            /* inclusive bounds for NUMBER and INTEGER; +-inf when unbounded */
+  int min_exclusive;          /* 1: value must be strictly greater than min */
+  const char* choices;        /* STRING: '|'-separated allowed values, NULL for any */
+  const char* doc;            /* one line: what it means */
+} unimouse_param;
+
+/* validated parameter values of one component instance; opaque, read through unimouse_host */
+typedef struct unimouse_config unimouse_config;
+
+/* log levels; an error stops the run with exit code 3 once the hook returns */
+enum { UNIMOUSE_LOG_INFO = 0, UNIMOUSE_LOG_WARNING = 1, UNIMOUSE_LOG_ERROR = 2 };
+
+/* Services the kernel offers while a component is being created. */
+typedef struct unimouse_host {
+  uint32_t size; /* sizeof(unimouse_host) as the kernel saw it */
+  void* ctx;
+  double (*config_number)(const unimouse_config* cfg, const char* name);
+  const char* (*config_string)(const unimouse_config* cfg, const char* name);
+  void (*log)(void* ctx, int level, const char* message);
+} unimouse_host;
+
+/* Name resolution at bind time. Every lookup returns an id >= 0, or -1 after the kernel has
+ * recorded an error naming the component and its YAML line; bind then returns non-zero. */
+typedef struct unimouse_bind {
+  uint32_t size; /* sizeof(unimouse_bind) as the kernel saw it */
+  void* ctx;
+  const mjModel* model;
+  double timestep_s;
+  int (*joint)(void* ctx, const char* name);
+  int (*actuator)(void* ctx, const char* name);
+  int (*site)(void* ctx, const char* name);
+  int (*body)(void* ctx, const char* name);
+  int (*signal_read)(void* ctx, const char* name);  /* a signal another component writes */
+  int (*signal_write)(void* ctx, const char* name); /* a signal this component alone writes */
+  int (*rng_stream)(void* ctx, const char* name);   /* named, seeded stream: "tof.front" */
+  void (*set_state_size)(void* ctx, int nstate);    /* doubles of evolving state it needs */
+} unimouse_bind;
+
+/* Everything a hook may touch during one tick. In sense, data is read-only by contract. */
+typedef struct unimouse_tick {
+  uint32_t size; /* sizeof(unimouse_tick) as the kernel saw it */
+  void* ctx;
+  const mjModel* model;
+  mjData* data;
+  double* state;   /* this component's slice */
+  int nstate;      /* doubles in state */
+  double* signals; /* every signal, indexed by the ids from bind */
+  int64_t step;    /* physics steps taken before this tick */
+  double time_s;   /* simulated time at the start of this tick */
+  double (*rng_uniform)(void* ctx, int stream); /* [0, 1) */
+  double (*rng_normal)(void* ctx, int stream);  /* standard normal */
+  /* distance along a unit direction to the first wall, obstacle or floor within max_m that is not
+   * part of a robot; -1 when nothing is hit */
+  double (*ray_cast)(void* ctx, const double origin[3], const double direction[3], double max_m);
+  void (*log)(void* ctx, int level, const char* message);
+} unimouse_tick;
+
+/* One component type. create, bind and destroy are required; the hooks are optional. */
+typedef struct unimouse_component_type {
+  uint32_t size;       /* sizeof(unimouse_component_type) as the plugin saw it */
+  const char* name;    /* dotted, globally unique: "unimouse.dc_motor" */
+  const char* summary; /* one line for `unimouse plugins` */
+  int nparam;
+  const unimouse_param* params;
+  double default_period_s; /* 0: every physics step */
+  /* returns the instance, or NULL after writing a reason into err */
+  void* (*create)(const unimouse_config* cfg, const unimouse_host* host, char* err, int err_size);
+  int (*bind)(void* self, const unimouse_bind* bind, char* err, int err_size); /* 0 on success */
+  void (*reset)(const void* self, const unimouse_tick* tick);   /* writes initial state */
+  void (*sense)(const void* self, const unimouse_tick* tick);   /* after mj_step1 */
+  void (*actuate)(const void* self, const unimouse_tick* tick); /* before mj_step2 */
+  void (*destroy)(void* self);
+} unimouse_component_type;
+
+/* What a plugin library hands the loader. */
+typedef struct unimouse_plugin_info {
+  uint32_t abi_version;         /* UNIMOUSE_ABI_VERSION the plugin was built against */
+  uint32_t size;                /* sizeof(unimouse_plugin_info) as the plugin saw it */
+  uint32_t component_type_size; /* sizeof(unimouse_component_type) as the plugin saw it */
+  int mujoco_version;           /* mjVERSION_HEADER the plugin was built against */
+  int ntype;
+  const unimouse_component_type* const* types;
+} unimouse_plugin_info;
+
+typedef const unimouse_plugin_info* (*unimouse_plugin_entry)(void);
+
+/* the one symbol a plugin library exports */
+#define UNIMOUSE_PLUGIN_SYMBOL "unimouse_plugin_v1"
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* UNIMOUSE_PLUGIN_ABI_H_ */

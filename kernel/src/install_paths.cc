@@ -1,0 +1,40 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "install_paths.h"
+
+#include <filesystem>
+
+#include "unimouse/errors.h"
+
+namespace unimouse {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path ExecutableDirectory() {
+  std::error_code ec;
+  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+  return ec ? fs::current_path() : exe.parent_path();
+}
+
+}  // namespace
+
+std::string PluginDirectory() {
+  return (ExecutableDirectory() / UNIMOUSE_BIN_TO_PLUGINS).lexically_normal().string();
+}
+
+std::string DataDirectory() {
+  return (ExecutableDirectory() / UNIMOUSE_BIN_TO_DATA).lexically_normal().string();
+}
+
+std::string ResolveDataFile(const std::string& name, const std::string& folder,
+                            const std::string& extension) {
+  if (fs::is_regular_file(name)) return name;
+  const fs::path bundled = fs::path(DataDirectory()) / folder / (name + extension);
+  if (name.find('/') == std::string::npos && fs::is_regular_file(bundled)) {
+    return bundled.string();
+  }
+  throw InputError(name + ": no such file, and no bundled " + folder.substr(0, folder.size() - 1) +
+                   " of that name in " + (fs::path(DataDirectory()) / folder).string());
+}
+
+}  // namespace unimouse

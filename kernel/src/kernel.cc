@@ -1,0 +1,332 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "kernel.h"
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <iostream>
+#include <mutex>
+#include <sstream>
+
+#include "unimouse/errors.h"
+
+namespace unimouse {
+namespace {
+
+// MuJoCo would otherwise print to stdout, write MUJOCO_LOG.TXT into the working directory and,
+// on errors, exit(1)
+void InstallMujocoHandlers() {
+  static std::once_flag once;
+  std::call_once(once, [] {
+    mju_user_warning = [](const char* message) { std::cerr << "MuJoCo: " << message << "\n"; };
+    mju_user_error = [](const char* message) {
+      std::cerr << "MuJoCo error: " << message << "\n";
+      std::exit(kExitRuntimeFault);
+    };
+  });
+}
+
+std::string Names(const mjModel& m, mjtObj type, int count) {
+  std::string out;
+  for (int i = 0; i < count; ++i) {
+    const char* name = mj_id2name(&m, type, i);
+    if (name == nullptr || *name == '\0') continue;
+    out += (out.empty() ? "" : ", ") + std::string(name);
+  }
+  return out.empty() ? "none" : out;
+}
+
+}  // namespace
+
+// what bind-time lookups need to resolve names and to say where a failure comes from
+struct Kernel::BindSession {
+  Kernel* kernel;
+  int component;
+  std::string prefix;  // "file:line:col: component 'x' (type): "
+  std::string error;
+
+  int Lookup(mjtObj type, const char* kind, const char* name, int count) {
+    const mjModel& m = kernel->model();
+    const int id = mj_name2id(&m, type, name);
+    if (id < 0 && error.empty()) {
+      error = prefix + "no " + kind + " named '" + name + "' (the robot has: " +
+              Names(m, type, count) + ")";
+    }
+    return id;
+  }
+
+  int Signal(const char* name, bool write) {
+    Kernel& k = *kernel;
+    int id = k.FindSignal(name);
+    if (id < 0) {
+      id = static_cast<int>(k.signal_names_.size());
+      k.signal_names_.emplace_back(name);
+      k.signal_writer_.push_back(-1);
+      k.signal_first_reader_.push_back(-1);
+    }
+    if (write) {
+      const int writer = k.signal_writer_[id];
+      if (writer >= 0) {
+        if (error.empty()) {
+          error = prefix + "signal '" + name + "' is already written by component '" +
+                  k.components_[writer].name + "'; a signal has one writer";
+        }
+        return -1;
+      }
+      k.signal_writer_[id] = component;
+    } else if (k.signal_first_reader_[id] < 0) {
+      k.signal_first_reader_[id] = component;
+    }
+    return id;
+  }
+
+  int Rng(const char* name) {
+    Kernel& k = *kernel;
+    for (const auto& existing : k.rng_names_) {
+      if (existing == name) {
+        if (error.empty()) error = prefix + "random stream '" + name + "' is already in use";
+        return -1;
+      }
+    }
+    k.rng_names_.emplace_back(name);
+    return static_cast<int>(k.rng_names_.size()) - 1;
+  }
+};
+
+Kernel::~Kernel() {
+  for (auto& c : components_) {
+    if (c.self != nullptr) c.type->destroy(c.self);
+  }
+}
+
+int Kernel::FindSignal(const std::string& name) const {
+  for (size_t i = 0; i < signal_names_.size(); ++i) {
+    if (signal_names_[i] == name) return static_cast<int>(i);
+  }
+  return -1;
+}
+
+std::unique_ptr<Kernel> Kernel::Create(const RobotSpec& robot, const Maze* maze,
+                                       const PluginRegistry& registry, uint64_t seed,
+                                       std::optional<Pose2D> spawn) {
+  InstallMujocoHandlers();
+  std::unique_ptr<Kernel> k(new Kernel(seed));
+  k->world_ = World::Build(robot, maze, spawn);
+
+  // create every component from validated parameters
+  std::vector<std::string> known;
+  for (const auto& [name, entry] : registry.entries()) known.push_back(name);
+  for (const auto& spec : robot.components) {
+    const PluginRegistry::Entry* entry = registry.Find(spec.type);
+    if (entry == nullptr) {
+      const std::string near = NearestWord(spec.type, known);
+      throw InputError(spec.location.ToString() + ": component '" + spec.name +
+                       "': unknown type '" + spec.type + "'" +
+                       (near.empty() ? "" : " (did you mean '" + near + "'?)") +
+                       "; `unimouse plugins` lists the types found");
+    }
+    const unimouse_config config = ValidateParams(*entry->type, spec);
+    ComponentInstance c;
+    c.type = entry->type;
+    c.name = spec.name;
+    c.location = spec.location;
+    char error[512] = "";
+    c.self = c.type->create(&config, &ConfigHost(), error, sizeof(error));
+    if (c.self == nullptr) {
+      throw InputError(spec.location.ToString() + ": component '" + spec.name + "' (" +
+                       spec.type + "): " + error);
+    }
+    const double period_s = spec.period_s.value_or(c.type->default_period_s);
+    if (period_s > 0) {
+      const double steps = period_s / k->timestep_s();
+      c.every_n_steps = static_cast<int>(std::lround(steps));
+      if (c.every_n_steps < 1 || std::fabs(steps - c.every_n_steps) > 1e-6 * steps) {
+        k->components_.push_back(c);  // destroyed with the kernel
+        std::ostringstream why;
+        why << spec.location.ToString() << ": component '" << spec.name << "': period_s "
+            << period_s << " is not a whole number of " << k->timestep_s() << " s physics steps";
+        throw InputError(why.str());
+      }
+    }
+    k->components_.push_back(c);
+  }
+
+  for (size_t i = 0; i < k->components_.size(); ++i) k->BindComponent(static_cast<int>(i));
+
+  // every signal read must have a writer
+  for (size_t s = 0; s < k->signal_names_.size(); ++s) {
+    if (k->signal_writer_[s] < 0) {
+      const ComponentInstance& reader = k->components_[k->signal_first_reader_[s]];
+      throw InputError(reader.location.ToString() + ": component '" + reader.name +
+                       "' reads signal '" + k->signal_names_[s] + "', which no component writes");
+    }
+  }
+
+  k->state_ = std::make_unique<State>(k->model(), k->component_state_size_,
+                                      static_cast<int>(k->signal_names_.size()));
+  k->Reset();
+  return k;
+}
+
+void Kernel::BindComponent(int index) {
+  ComponentInstance& c = components_[index];
+  BindSession session{this, index,
+                      c.location.ToString() + ": component '" + c.name + "' (" + c.type->name +
+                          "): ",
+                      ""};
+  unimouse_bind b{};
+  b.size = sizeof(b);
+  b.ctx = &session;
+  b.model = &model();
+  b.timestep_s = timestep_s();
+  b.joint = [](void* ctx, const char* name) {
+    auto* s = static_cast<BindSession*>(ctx);
+    return s->Lookup(mjOBJ_JOINT, "joint", name, s->kernel->model().njnt);
+  };
+  b.actuator = [](void* ctx, const char* name) {
+    auto* s = static_cast<BindSession*>(ctx);
+    return s->Lookup(mjOBJ_ACTUATOR, "actuator", name, s->kernel->model().nu);
+  };
+  b.site = [](void* ctx, const char* name) {
+    auto* s = static_cast<BindSession*>(ctx);
+    return s->Lookup(mjOBJ_SITE, "site", name, s->kernel->model().nsite);
+  };
+  b.body = [](void* ctx, const char* name) {
+    auto* s = static_cast<BindSession*>(ctx);
+    return s->Lookup(mjOBJ_BODY, "body", name, s->kernel->model().nbody);
+  };
+  b.signal_read = [](void* ctx, const char* name) {
+    return static_cast<BindSession*>(ctx)->Signal(name, false);
+  };
+  b.signal_write = [](void* ctx, const char* name) {
+    return static_cast<BindSession*>(ctx)->Signal(name, true);
+  };
+  b.rng_stream = [](void* ctx, const char* name) { return static_cast<BindSession*>(ctx)->Rng(name); };
+  b.set_state_size = [](void* ctx, int nstate) {
+    auto* s = static_cast<BindSession*>(ctx);
+    s->kernel->components_[s->component].nstate = nstate < 0 ? 0 : nstate;
+  };
+
+  char error[512] = "";
+  const int failed = c.type->bind(c.self, &b, error, sizeof(error));
+  if (!session.error.empty()) throw InputError(session.error);
+  if (failed) throw InputError(session.prefix + error);
+  c.state_offset = component_state_size_;
+  component_state_size_ += c.nstate;
+}
+
+unimouse_tick Kernel::MakeTick(HookContext& hook, const ComponentInstance& c) {
+  unimouse_tick t{};
+  t.size = sizeof(t);
+  t.ctx = &hook;
+  t.model = &model();
+  t.data = &state_->data();
+  t.state = state_->component_state().data() + c.state_offset;
+  t.nstate = c.nstate;
+  t.signals = state_->signals().data();
+  t.step = state_->step();
+  t.time_s = state_->data().time;
+  t.rng_uniform = [](void* ctx, int stream) {
+    return static_cast<HookContext*>(ctx)->kernel->state_->rngs()[stream].Uniform();
+  };
+  t.rng_normal = [](void* ctx, int stream) {
+    return static_cast<HookContext*>(ctx)->kernel->state_->rngs()[stream].Normal();
+  };
+  t.ray_cast = [](void* ctx, const double origin[3], const double direction[3], double max_m) {
+    Kernel& k = *static_cast<HookContext*>(ctx)->kernel;
+    return k.world_->CastRay(k.state_->data(), origin, direction, max_m);
+  };
+  t.log = [](void* ctx, int level, const char* message) {
+    auto* h = static_cast<HookContext*>(ctx);
+    h->kernel->Emit(level, h->kernel->components_[h->component].name, message);
+  };
+  return t;
+}
+
+void Kernel::Emit(int level, const std::string& component, const std::string& message) {
+  if (level >= UNIMOUSE_LOG_ERROR && fault_.empty()) {
+    std::ostringstream out;
+    out << "component '" << component << "' failed at t=" << state_->data().time
+        << " s: " << message;
+    fault_ = out.str();
+  }
+  if (log_sink_) {
+    log_sink_(level, component, message);
+  } else if (level > UNIMOUSE_LOG_INFO) {
+    std::cerr << component << ": " << message << "\n";
+  }
+}
+
+void Kernel::ThrowIfFaulted() {
+  if (!fault_.empty()) {
+    const std::string fault = fault_;
+    fault_.clear();
+    throw RuntimeFault(fault);
+  }
+}
+
+void Kernel::Reset() {
+  const mjModel& m = model();
+  mjData& d = state_->data();
+  mj_resetData(&m, &d);
+  world_->PlaceRobot(d, world_->spawn());
+  world_->UpdateCollisionProxies(d);
+  mj_forward(&m, &d);
+
+  std::fill(state_->component_state().begin(), state_->component_state().end(), 0.0);
+  std::fill(state_->signals().begin(), state_->signals().end(), 0.0);
+  state_->rngs().clear();
+  for (const auto& name : rng_names_) state_->rngs().emplace_back(seed_, name);
+  state_->set_step(0);
+
+  for (size_t i = 0; i < components_.size(); ++i) {
+    const ComponentInstance& c = components_[i];
+    if (c.type->reset == nullptr) continue;
+    HookContext hook{this, static_cast<int>(i)};
+    const unimouse_tick t = MakeTick(hook, c);
+    c.type->reset(c.self, &t);
+  }
+  ThrowIfFaulted();
+}
+
+void Kernel::Step() {
+  const mjModel& m = model();
+  mjData& d = state_->data();
+  const int64_t step = state_->step();
+
+  if (boundary_hook_) boundary_hook_();
+  world_->UpdateCollisionProxies(d);
+  mj_step1(&m, &d);
+
+  for (size_t i = 0; i < components_.size(); ++i) {
+    const ComponentInstance& c = components_[i];
+    if (c.type->sense == nullptr || step % c.every_n_steps != 0) continue;
+    HookContext hook{this, static_cast<int>(i)};
+    const unimouse_tick t = MakeTick(hook, c);
+    c.type->sense(c.self, &t);
+  }
+  ThrowIfFaulted();
+  for (size_t i = 0; i < components_.size(); ++i) {
+    const ComponentInstance& c = components_[i];
+    if (c.type->actuate == nullptr || step % c.every_n_steps != 0) continue;
+    HookContext hook{this, static_cast<int>(i)};
+    const unimouse_tick t = MakeTick(hook, c);
+    c.type->actuate(c.self, &t);
+  }
+  ThrowIfFaulted();
+
+  mj_step2(&m, &d);
+  state_->set_step(step + 1);
+
+  // MuJoCo resets a diverged simulation silently apart from this warning
+  for (int w : {mjWARN_BADQACC, mjWARN_BADQVEL, mjWARN_BADQPOS}) {
+    if (d.warning[w].number > 0) {
+      std::ostringstream out;
+      out << "physics diverged at t=" << d.time << " s (MuJoCo warning " << w
+          << " for dof " << d.warning[w].lastinfo << "); check masses, timestep and controls";
+      throw RuntimeFault(out.str());
+    }
+  }
+}
+
+}  // namespace unimouse

@@ -1,0 +1,107 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The kernel: a world, the robot's components bound to it, and the one tick that advances them.
+//
+// Kernel::Step, the only place the tick order lives:
+//   1. the boundary hook (scenario scripts): may move the robot or change signals
+//   2. collision proxies follow the robot (see world.h)
+//   3. mj_step1: kinematics, contacts and velocities for the current state
+//   4. Sense of every due component, in YAML order; mjData is read-only
+//   5. Actuate of every due component, in YAML order; writes controls
+//   6. mj_step2: actuation, constraint forces, integration
+#ifndef UNIMOUSE_KERNEL_KERNEL_H_
+#define UNIMOUSE_KERNEL_KERNEL_H_
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "component_config.h"
+#include "plugin_registry.h"
+#include "robot_spec.h"
+#include "state.h"
+#include "world.h"
+
+namespace unimouse {
+
+/// One component of the robot, bound and ready; constant for the run.
+struct ComponentInstance {
+  const unimouse_component_type* type = nullptr;
+  void* self = nullptr;
+  std::string name;
+  SourceLocation location;
+  int every_n_steps = 1;
+  int state_offset = 0;
+  int nstate = 0;
+};
+
+class Kernel {
+ public:
+  /// Receives every log line: level (UNIMOUSE_LOG_*), the component's name and the message.
+  using LogSink = std::function<void(int level, const std::string& component,
+                                     const std::string& message)>;
+
+  Kernel(const Kernel&) = delete;
+  Kernel& operator=(const Kernel&) = delete;
+  ~Kernel();
+
+  /// Builds the world, validates, creates and binds every component, and resets. Throws
+  /// InputError with file:line:col.
+  static std::unique_ptr<Kernel> Create(const RobotSpec& robot, const Maze* maze,
+                                        const PluginRegistry& registry, uint64_t seed,
+                                        std::optional<Pose2D> spawn = std::nullopt);
+
+  /// Returns to time 0: the robot at its spawn pose, fresh random streams, components reset.
+  void Reset();
+  /// Advances one physics step. Throws RuntimeFault when a component fails or physics diverges.
+  void Step();
+
+  /// Runs at the start of every tick, before physics; scenario scripts live here.
+  void SetBoundaryHook(std::function<void()> hook) { boundary_hook_ = std::move(hook); }
+  void SetLogSink(LogSink sink) { log_sink_ = std::move(sink); }
+
+  const World& world() const { return *world_; }
+  World& world() { return *world_; }
+  const mjModel& model() const { return world_->model(); }
+  State& state() { return *state_; }
+  const State& state() const { return *state_; }
+  double timestep_s() const { return world_->model().opt.timestep; }
+  uint64_t seed() const { return seed_; }
+
+  const std::vector<ComponentInstance>& components() const { return components_; }
+  const std::vector<std::string>& signal_names() const { return signal_names_; }
+  /// Returns a signal's id, or -1.
+  int FindSignal(const std::string& name) const;
+
+ private:
+  struct HookContext {
+    Kernel* kernel;
+    int component;
+  };
+  struct BindSession;
+
+  explicit Kernel(uint64_t seed) : seed_(seed) {}
+  void BindComponent(int index);
+  unimouse_tick MakeTick(HookContext& hook, const ComponentInstance& c);
+  void Emit(int level, const std::string& component, const std::string& message);
+  void ThrowIfFaulted();
+
+  uint64_t seed_;
+  std::unique_ptr<World> world_;
+  std::vector<ComponentInstance> components_;
+  std::vector<std::string> signal_names_;
+  std::vector<int> signal_writer_;
+  std::vector<int> signal_first_reader_;
+  std::vector<std::string> rng_names_;
+  int component_state_size_ = 0;
+  std::unique_ptr<State> state_;
+  std::function<void()> boundary_hook_;
+  LogSink log_sink_;
+  std::string fault_;
+};
+
+}  // namespace unimouse
+
+#endif  // UNIMOUSE_KERNEL_KERNEL_H_

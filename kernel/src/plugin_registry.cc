@@ -1,0 +1,182 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "plugin_registry.h"
+
+#include <dlfcn.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <sstream>
+
+#include "install_paths.h"
+#include "unimouse/errors.h"
+
+namespace unimouse {
+namespace {
+
+std::string MujocoVersionText(int v) {
+  return std::to_string(v / 100) + "." + std::to_string(v / 10 % 10) + "." + std::to_string(v % 10);
+}
+
+void SplitInto(const std::string& list, std::vector<std::string>& out) {
+  std::stringstream in(list);
+  std::string item;
+  while (std::getline(in, item, ':')) {
+    if (!item.empty()) out.push_back(item);
+  }
+}
+
+std::string KindName(int kind) {
+  switch (kind) {
+    case UNIMOUSE_PARAM_NUMBER:
+      return "number";
+    case UNIMOUSE_PARAM_INTEGER:
+      return "integer";
+    case UNIMOUSE_PARAM_BOOL:
+      return "bool";
+    case UNIMOUSE_PARAM_STRING:
+      return "string";
+  }
+  return "?";
+}
+
+std::string NumberText(double v) {
+  std::ostringstream out;
+  out << v;
+  return out.str();
+}
+
+}  // namespace
+
+const unimouse_plugin_info* LoadPluginLibrary(const std::string& path) {
+  void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
+  if (handle == nullptr) {
+    throw InputError(path + ": cannot load plugin library: " + dlerror());
+  }
+  const auto entry =
+      reinterpret_cast<unimouse_plugin_entry>(dlsym(handle, UNIMOUSE_PLUGIN_SYMBOL));
+  const unimouse_plugin_info* info = entry ? entry() : nullptr;
+  const std::string rebuild = "; rebuild it against this unimouse";
+  if (entry == nullptr) {
+    throw InputError(path + " is not a unimouse plugin: it does not export " +
+                     UNIMOUSE_PLUGIN_SYMBOL);
+  }
+  if (info == nullptr) {
+    throw InputError(path + " is not a usable unimouse plugin: " + UNIMOUSE_PLUGIN_SYMBOL +
+                     " returned no table");
+  }
+  if (info->abi_version != UNIMOUSE_ABI_VERSION) {
+    throw InputError(path + " was built for plugin ABI version " +
+                     std::to_string(info->abi_version) + ", but this unimouse uses version " +
+                     std::to_string(UNIMOUSE_ABI_VERSION) + rebuild);
+  }
+  if (info->size < sizeof(unimouse_plugin_info) ||
+      info->component_type_size < sizeof(unimouse_component_type)) {
+    throw InputError(path + " was built with an older plugin header (its tables are " +
+                     std::to_string(info->size) + " and " +
+                     std::to_string(info->component_type_size) + " bytes, this unimouse needs " +
+                     std::to_string(sizeof(unimouse_plugin_info)) + " and " +
+                     std::to_string(sizeof(unimouse_component_type)) + ")" + rebuild);
+  }
+  if (info->mujoco_version != mj_version()) {
+    throw InputError(path + " was built against MuJoCo " +
+                     MujocoVersionText(info->mujoco_version) + ", but this unimouse runs MuJoCo " +
+                     MujocoVersionText(mj_version()) + rebuild);
+  }
+  for (int i = 0; i < info->ntype; ++i) {
+    const unimouse_component_type* t = info->types[i];
+    if (t == nullptr || t->size < sizeof(unimouse_component_type) || t->name == nullptr ||
+        t->create == nullptr || t->bind == nullptr || t->destroy == nullptr) {
+      throw InputError(path + ": component type #" + std::to_string(i) +
+                       " is incomplete (it needs a name, create, bind and destroy)" + rebuild);
+    }
+  }
+  return info;
+}
+
+std::vector<std::string> PluginSearchPath(const std::string& option_path) {
+  std::vector<std::string> dirs;
+  SplitInto(option_path, dirs);
+  if (const char* env = std::getenv("UNIMOUSE_PLUGIN_PATH")) SplitInto(env, dirs);
+  dirs.push_back(PluginDirectory());
+  return dirs;
+}
+
+void PluginRegistry::Add(const unimouse_component_type* type, const std::string& library) {
+  auto [it, fresh] = entries_.emplace(type->name, Entry{type, library});
+  if (!fresh && it->second.type != type) {
+    throw InputError(library + ": component type '" + type->name + "' is already provided by " +
+                     it->second.library);
+  }
+}
+
+void PluginRegistry::AddStatic(const unimouse_component_type* type) { Add(type, "built-in"); }
+
+void PluginRegistry::AddLibrary(const std::string& path) {
+  const unimouse_plugin_info* info = LoadPluginLibrary(path);
+  for (int i = 0; i < info->ntype; ++i) Add(info->types[i], path);
+}
+
+void PluginRegistry::AddSearchPath(const std::vector<std::string>& directories) {
+  namespace fs = std::filesystem;
+  for (const auto& dir : directories) {
+    std::error_code ec;
+    if (!fs::is_directory(dir, ec)) continue;
+    std::vector<std::string> libraries;
+    for (const auto& file : fs::directory_iterator(dir, ec)) {
+      const std::string name = file.path().filename().string();
+      if (name.starts_with("libunimouse_") && name.ends_with(".so")) {
+        libraries.push_back(file.path().string());
+      }
+    }
+    std::sort(libraries.begin(), libraries.end());
+    for (const auto& library : libraries) {
+      // the first directory that provides a library name wins, as with PATH
+      const std::string base = fs::path(library).filename().string();
+      const bool shadowed = std::any_of(entries_.begin(), entries_.end(), [&](const auto& e) {
+        return fs::path(e.second.library).filename().string() == base;
+      });
+      if (!shadowed) AddLibrary(library);
+    }
+  }
+}
+
+const PluginRegistry::Entry* PluginRegistry::Find(const std::string& name) const {
+  const auto it = entries_.find(name);
+  return it == entries_.end() ? nullptr : &it->second;
+}
+
+std::string DescribePlugins(const PluginRegistry& registry) {
+  std::ostringstream out;
+  if (registry.entries().empty()) out << "no component types found\n";
+  for (const auto& [name, entry] : registry.entries()) {
+    const unimouse_component_type& t = *entry.type;
+    out << name << "  (" << entry.library << ")\n  " << (t.summary ? t.summary : "") << "\n";
+    out << "  period: "
+        << (t.default_period_s > 0 ? NumberText(t.default_period_s) + " s" : "every step")
+        << " unless period_s is given\n";
+    for (int i = 0; i < t.nparam; ++i) {
+      const unimouse_param& p = t.params[i];
+      out << "  - " << p.name << " (" << KindName(p.kind) << ")";
+      if (p.required) {
+        out << ", required";
+      } else if (p.kind == UNIMOUSE_PARAM_STRING) {
+        out << ", default '" << (p.default_string ? p.default_string : "") << "'";
+      } else if (p.kind == UNIMOUSE_PARAM_BOOL) {
+        out << ", default " << (p.default_number != 0 ? "true" : "false");
+      } else {
+        out << ", default " << NumberText(p.default_number);
+      }
+      if (std::isfinite(p.min) || std::isfinite(p.max)) {
+        out << ", " << (p.min_exclusive ? "(" : "[") << NumberText(p.min) << ", "
+            << NumberText(p.max) << "]";
+      }
+      if (p.choices) out << ", one of " << p.choices;
+      out << ": " << (p.doc ? p.doc : "") << "\n";
+    }
+  }
+  return out.str();
+}
+
+}  // namespace unimouse

@@ -1,0 +1,228 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "robot_spec.h"
+
+#include <cmath>
+#include <map>
+#include <set>
+
+#include "text_file.h"
+#include "unimouse/errors.h"
+
+namespace unimouse {
+namespace {
+
+// names must be unique per kind across the whole robot
+class NameBook {
+ public:
+  void Add(const std::string& kind, const std::string& name, const YamlNode& where) {
+    if (name.empty()) return;
+    auto [it, fresh] = seen_[kind].emplace(name, where.location.line);
+    if (!fresh) {
+      where.Fail(kind + " name '" + name + "' is already used at line " +
+                 std::to_string(it->second));
+    }
+  }
+  bool Has(const std::string& kind, const std::string& name) const {
+    const auto it = seen_.find(kind);
+    return it != seen_.end() && it->second.count(name) > 0;
+  }
+
+ private:
+  std::map<std::string, std::map<std::string, int>> seen_;
+};
+
+double PositiveNumber(const YamlNode& node, std::string_view what) {
+  const double v = node.AsNumber(what);
+  if (!(v > 0)) node.Fail(std::string(what) + " must be greater than 0");
+  return v;
+}
+
+double NonNegativeNumber(const YamlNode& node, std::string_view what) {
+  const double v = node.AsNumber(what);
+  if (v < 0) node.Fail(std::string(what) + " must not be negative");
+  return v;
+}
+
+Vec3 Vector(MapReader& r, std::string_view key, Vec3 fallback) {
+  const YamlNode* n = r.Optional(key);
+  return n ? n->AsNumbers<3>(key) : fallback;
+}
+
+GeomSpec ParseGeom(const YamlNode& node, NameBook& names) {
+  MapReader r(node, "geom");
+  GeomSpec g;
+  g.location = node.location;
+  g.name = r.String("name", "");
+  names.Add("geom", g.name, node);
+  const YamlNode& type = r.Required("type");
+  g.type = type.AsString("type");
+  if (g.type == "box") {
+    const YamlNode& size = r.Required("size_m");
+    g.size_m = size.AsNumbers<3>("size_m");
+    for (double s : g.size_m) {
+      if (!(s > 0)) size.Fail("size_m entries must be greater than 0");
+    }
+  } else if (g.type == "sphere" || g.type == "cylinder" || g.type == "capsule") {
+    g.radius_m = PositiveNumber(r.Required("radius_m"), "radius_m");
+    if (g.type != "sphere") g.length_m = PositiveNumber(r.Required("length_m"), "length_m");
+  } else {
+    type.Fail("geom type must be box, sphere, cylinder or capsule, not '" + g.type + "'");
+  }
+  g.pos_m = Vector(r, "pos_m", {0, 0, 0});
+  g.euler_deg = Vector(r, "euler_deg", {0, 0, 0});
+  if (const YamlNode* mass = r.Optional("mass_kg")) g.mass_kg = NonNegativeNumber(*mass, "mass_kg");
+  if (const YamlNode* f = r.Optional("friction")) g.friction = NonNegativeNumber(*f, "friction");
+  if (const YamlNode* c = r.Optional("contact")) g.contact = c->AsBool("contact");
+  if (const YamlNode* c = r.Optional("rgba")) {
+    const auto rgba = c->AsNumbers<4>("rgba");
+    for (double v : rgba) {
+      if (v < 0 || v > 1) c->Fail("rgba entries must be within [0, 1]");
+    }
+    g.rgba = rgba;
+  }
+  r.Finish();
+  return g;
+}
+
+SiteSpec ParseSite(const YamlNode& node, NameBook& names) {
+  MapReader r(node, "site");
+  SiteSpec s;
+  s.location = node.location;
+  s.name = r.Required("name").AsString("name");
+  names.Add("site", s.name, node);
+  s.pos_m = Vector(r, "pos_m", {0, 0, 0});
+  s.euler_deg = Vector(r, "euler_deg", {0, 0, 0});
+  r.Finish();
+  return s;
+}
+
+JointSpec ParseJoint(const YamlNode& node, NameBook& names) {
+  MapReader r(node, "joint");
+  JointSpec j;
+  j.location = node.location;
+  j.name = r.Required("name").AsString("name");
+  names.Add("joint", j.name, node);
+  const YamlNode& type = r.Required("type");
+  j.type = type.AsString("type");
+  if (j.type != "hinge" && j.type != "ball") {
+    type.Fail("joint type must be hinge or ball, not '" + j.type + "'");
+  }
+  if (j.type == "hinge") {
+    const YamlNode& axis = r.Required("axis");
+    j.axis = axis.AsNumbers<3>("axis");
+    if (std::hypot(j.axis[0], j.axis[1], j.axis[2]) < 1e-9) axis.Fail("axis must not be zero");
+  }
+  if (const YamlNode* d = r.Optional("damping_nm_s")) {
+    j.damping_nm_s = NonNegativeNumber(*d, "damping_nm_s");
+  }
+  if (const YamlNode* a = r.Optional("armature_kg_m2")) {
+    j.armature_kg_m2 = NonNegativeNumber(*a, "armature_kg_m2");
+  }
+  r.Finish();
+  return j;
+}
+
+BodySpec ParseBody(const YamlNode& node, NameBook& names, bool is_chassis) {
+  MapReader r(node, is_chassis ? "chassis" : "body");
+  BodySpec b;
+  b.location = node.location;
+  b.name = r.Required("name").AsString("name");
+  names.Add("body", b.name, node);
+  if (!is_chassis) {
+    b.pos_m = Vector(r, "pos_m", {0, 0, 0});
+    b.euler_deg = Vector(r, "euler_deg", {0, 0, 0});
+    b.joint = ParseJoint(r.Required("joint"), names);
+  }
+  const YamlNode& geoms = r.Required("geoms");
+  if (!geoms.IsSequence() || geoms.items.empty()) {
+    geoms.Fail("geoms must be a list with at least one geom (every body needs mass)");
+  }
+  for (const auto& g : geoms.items) b.geoms.push_back(ParseGeom(g, names));
+  if (const YamlNode* sites = r.Optional("sites")) {
+    if (!sites->IsSequence()) sites->Fail("sites must be a list");
+    for (const auto& s : sites->items) b.sites.push_back(ParseSite(s, names));
+  }
+  if (const YamlNode* bodies = r.Optional("bodies")) {
+    if (!bodies->IsSequence()) bodies->Fail("bodies must be a list");
+    for (const auto& child : bodies->items) b.bodies.push_back(ParseBody(child, names, false));
+  }
+  r.Finish();
+  return b;
+}
+
+}  // namespace
+
+RobotSpec ParseRobotSpec(const std::string& text, const std::string& file) {
+  const YamlNode root = ParseYaml(text, file);
+  MapReader r(root, "robot");
+  RobotSpec robot;
+  robot.file = file;
+  robot.name = r.Required("name").AsString("name");
+  if (const YamlNode* t = r.Optional("timestep_s")) {
+    robot.timestep_s = t->AsNumber("timestep_s");
+    if (!(robot.timestep_s > 0 && robot.timestep_s <= 0.01)) {
+      t->Fail("timestep_s must be within (0, 0.01]");
+    }
+  }
+  if (const YamlNode* i = r.Optional("integrator")) {
+    robot.integrator = i->AsString("integrator");
+    // sensing between mj_step1 and mj_step2 needs a single-stage integrator
+    if (robot.integrator != "Euler" && robot.integrator != "implicit") {
+      i->Fail("integrator must be Euler or implicit, not '" + robot.integrator + "'");
+    }
+  }
+
+  NameBook names;
+  robot.chassis = ParseBody(r.Required("chassis"), names, true);
+
+  if (const YamlNode* actuators = r.Optional("actuators")) {
+    if (!actuators->IsSequence()) actuators->Fail("actuators must be a list");
+    for (const auto& node : actuators->items) {
+      MapReader a(node, "actuator");
+      ActuatorSpec spec;
+      spec.location = node.location;
+      spec.name = a.Required("name").AsString("name");
+      names.Add("actuator", spec.name, node);
+      const YamlNode& joint = a.Required("joint");
+      spec.joint = joint.AsString("joint");
+      if (!names.Has("joint", spec.joint)) {
+        joint.Fail("actuator '" + spec.name + "': no joint named '" + spec.joint + "'");
+      }
+      a.Finish();
+      robot.actuators.push_back(spec);
+    }
+  }
+
+  if (const YamlNode* components = r.Optional("components")) {
+    if (components->kind != YamlNode::Kind::kNull) {
+      if (!components->IsSequence()) components->Fail("components must be a list");
+      for (const auto& node : components->items) {
+        MapReader c(node, "component");
+        ComponentSpec spec;
+        spec.location = node.location;
+        spec.type = c.Required("type").AsString("type");
+        spec.name = c.Required("name").AsString("name");
+        names.Add("component", spec.name, node);
+        if (const YamlNode* p = c.Optional("period_s")) {
+          spec.period_s = p->AsNumber("period_s");
+          if (!(*spec.period_s > 0)) p->Fail("period_s must be greater than 0");
+        }
+        if (const YamlNode* p = c.Optional("params")) {
+          spec.params = *p;
+        } else {
+          spec.params.location = node.location;
+        }
+        c.Finish();
+        robot.components.push_back(std::move(spec));
+      }
+    }
+  }
+  r.Finish();
+  return robot;
+}
+
+RobotSpec LoadRobotSpec(const std::string& path) {
+  return ParseRobotSpec(ReadTextFile(path), path);
+}
+
+}  // namespace unimouse

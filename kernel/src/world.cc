@@ -1,0 +1,432 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "world.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <iomanip>
+#include <limits>
+#include <numbers>
+#include <sstream>
+
+#include "unimouse/errors.h"
+
+namespace unimouse {
+namespace {
+
+// geom groups: what rays and the renderer tell apart
+constexpr int kGroupWorld = 0;  // floor, walls, obstacles
+constexpr int kGroupRobot = 1;  // never seen by the robot's own sensors
+constexpr int kGroupProxy = 3;  // collision stand-ins for scenery; invisible
+
+// contact bits: static things touch robots, never each other
+constexpr const char* kStaticContact = "contype='1' conaffinity='0'";
+constexpr const char* kRobotContact = "contype='1' conaffinity='1'";
+
+constexpr int kProxyCount = 24;
+// proxies cover shapes this far beyond the robot's reach; a robot at 5 m/s needs 10 ticks to
+// cross it, and proxies move every tick
+constexpr double kProxyMargin_m = 0.05;
+constexpr double kParkedZ_m = -10;
+constexpr double kRestClearance_m = 1e-4;
+
+class Mjcf {
+ public:
+  Mjcf() { out_ << std::setprecision(17); }
+  template <class T>
+  Mjcf& operator<<(const T& v) {
+    out_ << v;
+    return *this;
+  }
+  Mjcf& Vec(const Vec3& v) {
+    out_ << v[0] << ' ' << v[1] << ' ' << v[2];
+    return *this;
+  }
+  std::string str() const { return out_.str(); }
+
+ private:
+  std::ostringstream out_;
+};
+
+const char* MaterialOf(StaticBox::Kind kind) {
+  switch (kind) {
+    case StaticBox::Kind::kWall:
+      return "wall";
+    case StaticBox::Kind::kPost:
+      return "post";
+    case StaticBox::Kind::kObstacle:
+      return "obstacle";
+  }
+  return "obstacle";
+}
+
+void WriteBoxGeom(Mjcf& x, const StaticBox& b, const char* contact, int group) {
+  x << "<geom type='box' group='" << group << "' " << contact << " material='"
+    << MaterialOf(b.kind) << "' pos='";
+  x.Vec(b.center_m) << "' size='";
+  x.Vec(b.half_m) << "' quat='" << std::cos(b.yaw_rad / 2) << " 0 0 " << std::sin(b.yaw_rad / 2)
+                  << "'/>\n";
+}
+
+void WriteAssets(Mjcf& x) {
+  x << "<asset>\n"
+    << "<texture name='grid' type='2d' builtin='checker' rgb1='0.12 0.12 0.12' "
+       "rgb2='0.16 0.16 0.16' width='512' height='512'/>\n"
+    << "<material name='floor' texture='grid' texrepeat='1 1' texuniform='true'/>\n"
+    << "<material name='wall' rgba='0.92 0.92 0.9 1'/>\n"
+    << "<material name='post' rgba='0.85 0.15 0.1 1'/>\n"
+    << "<material name='obstacle' rgba='0.3 0.5 0.8 1'/>\n"
+    << "</asset>\n";
+}
+
+void WriteGeom(Mjcf& x, const GeomSpec& g) {
+  x << "<geom";
+  if (!g.name.empty()) x << " name='" << g.name << "'";
+  x << " type='" << g.type << "' group='" << kGroupRobot << "' ";
+  x << (g.contact ? kRobotContact : "contype='0' conaffinity='0'");
+  if (g.type == "box") {
+    x << " size='" << g.size_m[0] / 2 << ' ' << g.size_m[1] / 2 << ' ' << g.size_m[2] / 2 << "'";
+  } else if (g.type == "sphere") {
+    x << " size='" << g.radius_m << "'";
+  } else {
+    x << " size='" << g.radius_m << ' ' << g.length_m / 2 << "'";
+  }
+  x << " pos='";
+  x.Vec(g.pos_m) << "' euler='";
+  x.Vec(g.euler_deg) << "' mass='" << g.mass_kg << "' friction='" << g.friction
+                     << " 0.005 0.0001' rgba='" << g.rgba[0] << ' ' << g.rgba[1] << ' '
+                     << g.rgba[2] << ' ' << g.rgba[3] << "'/>\n";
+}
+
+void WriteBody(Mjcf& x, const BodySpec& b, bool is_chassis) {
+  x << "<body name='" << b.name << "'";
+  if (!is_chassis) {
+    x << " pos='";
+    x.Vec(b.pos_m) << "' euler='";
+    x.Vec(b.euler_deg) << "'";
+  }
+  x << ">\n";
+  if (is_chassis) {
+    x << "<freejoint name='" << b.name << "_free'/>\n";
+  } else {
+    const JointSpec& j = *b.joint;
+    x << "<joint name='" << j.name << "' type='" << j.type << "'";
+    if (j.type == "hinge") {
+      x << " axis='";
+      x.Vec(j.axis) << "'";
+    }
+    x << " damping='" << j.damping_nm_s << "' armature='" << j.armature_kg_m2 << "'/>\n";
+  }
+  for (const auto& g : b.geoms) WriteGeom(x, g);
+  for (const auto& s : b.sites) {
+    x << "<site name='" << s.name << "' group='" << kGroupRobot << "' size='0.003' pos='";
+    x.Vec(s.pos_m) << "' euler='";
+    x.Vec(s.euler_deg) << "'/>\n";
+  }
+  for (const auto& child : b.bodies) WriteBody(x, child, false);
+  x << "</body>\n";
+}
+
+// distance on the floor plane from a point to a (yawed) box
+double FloorDistance(const StaticBox& b, double px, double py) {
+  const double dx = px - b.center_m[0];
+  const double dy = py - b.center_m[1];
+  const double c = std::cos(b.yaw_rad), s = std::sin(b.yaw_rad);
+  const double lx = std::max(std::fabs(c * dx + s * dy) - b.half_m[0], 0.0);
+  const double ly = std::max(std::fabs(-s * dx + c * dy) - b.half_m[1], 0.0);
+  return std::hypot(lx, ly);
+}
+
+// how far a geom reaches below its centre, from its orientation
+double ReachBelow(const mjModel& m, const mjData& d, int g) {
+  const mjtNum* size = m.geom_size + 3 * g;
+  const mjtNum* r = d.geom_xmat + 9 * g;  // row-major; row 2 holds each axis's world z
+  switch (m.geom_type[g]) {
+    case mjGEOM_SPHERE:
+      return size[0];
+    case mjGEOM_CAPSULE:
+      return size[0] + size[1] * std::fabs(r[8]);
+    case mjGEOM_CYLINDER:
+      return size[0] * std::sqrt(std::max(0.0, 1 - r[8] * r[8])) + size[1] * std::fabs(r[8]);
+    case mjGEOM_BOX:
+      return size[0] * std::fabs(r[6]) + size[1] * std::fabs(r[7]) + size[2] * std::fabs(r[8]);
+    default:
+      return m.geom_rbound[g];
+  }
+}
+
+}  // namespace
+
+mjModel* CompileMjcf(const std::string& mjcf, const std::string& what) {
+  mjVFS vfs;
+  mj_defaultVFS(&vfs);
+  const char* name = "world.xml";
+  UNIMOUSE_DEMAND(mj_makeEmptyFileVFS(&vfs, name, static_cast<int>(mjcf.size())) == 0);
+  const int index = mj_findFileVFS(&vfs, name);
+  std::memcpy(vfs.filedata[index], mjcf.data(), mjcf.size());
+  char error[1024] = "";
+  mjModel* m = mj_loadXML(name, &vfs, error, sizeof(error));
+  mj_deleteVFS(&vfs);
+  if (m == nullptr) {
+    std::string reason(error);
+    std::replace(reason.begin(), reason.end(), '\n', ' ');
+    throw InputError(what + ": MuJoCo cannot build it: " + reason);
+  }
+  return m;
+}
+
+std::vector<StaticBox> MazeBoxes(const Maze& maze, const MazeDimensions& dims) {
+  const double p = dims.cell_m;
+  const double t = dims.wall_thickness_m / 2;
+  const double h = dims.wall_height_m / 2;
+  const double half_wall = (dims.cell_m - dims.wall_thickness_m) / 2;
+  std::vector<StaticBox> boxes;
+  for (int y = 0; y <= maze.height(); ++y) {
+    for (int x = 0; x <= maze.width(); ++x) {
+      boxes.push_back({StaticBox::Kind::kPost, {p * x, p * y, h}, {t, t, h}, 0});
+    }
+  }
+  for (int y = 0; y <= maze.height(); ++y) {
+    for (int x = 0; x < maze.width(); ++x) {
+      if (maze.HasHorizontalWall(x, y)) {
+        boxes.push_back({StaticBox::Kind::kWall, {p * (x + 0.5), p * y, h}, {half_wall, t, h}, 0});
+      }
+    }
+  }
+  for (int y = 0; y < maze.height(); ++y) {
+    for (int x = 0; x <= maze.width(); ++x) {
+      if (maze.HasVerticalWall(x, y)) {
+        boxes.push_back({StaticBox::Kind::kWall, {p * x, p * (y + 0.5), h}, {t, half_wall, h}, 0});
+      }
+    }
+  }
+  return boxes;
+}
+
+std::vector<StaticBox> MazeCollisionBoxes(const Maze& maze, const MazeDimensions& dims) {
+  const double p = dims.cell_m;
+  const double t = dims.wall_thickness_m / 2;
+  const double h = dims.wall_height_m / 2;
+  const int w = maze.width(), ht = maze.height();
+  std::vector<StaticBox> boxes;
+  std::vector<char> post_used(static_cast<size_t>((w + 1) * (ht + 1)), 0);
+  auto use_post = [&](int x, int y) { post_used[static_cast<size_t>(y * (w + 1) + x)] = 1; };
+
+  // east-west runs, posts included at both ends
+  for (int y = 0; y <= ht; ++y) {
+    for (int x = 0; x < w;) {
+      if (!maze.HasHorizontalWall(x, y)) {
+        ++x;
+        continue;
+      }
+      const int begin = x;
+      while (x < w && maze.HasHorizontalWall(x, y)) use_post(x++, y);
+      use_post(x, y);
+      boxes.push_back({StaticBox::Kind::kWall,
+                       {p * (begin + x) / 2, p * y, h},
+                       {p * (x - begin) / 2 + t, t, h},
+                       0});
+    }
+  }
+  // north-south runs
+  for (int x = 0; x <= w; ++x) {
+    for (int y = 0; y < ht;) {
+      if (!maze.HasVerticalWall(x, y)) {
+        ++y;
+        continue;
+      }
+      const int begin = y;
+      while (y < ht && maze.HasVerticalWall(x, y)) use_post(x, y++);
+      use_post(x, y);
+      boxes.push_back({StaticBox::Kind::kWall,
+                       {p * x, p * (begin + y) / 2, h},
+                       {t, p * (y - begin) / 2 + t, h},
+                       0});
+    }
+  }
+  for (int y = 0; y <= ht; ++y) {
+    for (int x = 0; x <= w; ++x) {
+      if (!post_used[static_cast<size_t>(y * (w + 1) + x)]) {
+        boxes.push_back({StaticBox::Kind::kPost, {p * x, p * y, h}, {t, t, h}, 0});
+      }
+    }
+  }
+  return boxes;
+}
+
+Pose2D CellCentre(Cell c, Heading h, const MazeDimensions& dims) {
+  return {dims.cell_m * (c.x + 0.5), dims.cell_m * (c.y + 0.5), HeadingYaw(h)};
+}
+
+World::~World() = default;
+
+std::unique_ptr<World> World::Build(const RobotSpec& robot, const Maze* maze,
+                                    std::optional<Pose2D> spawn) {
+  std::unique_ptr<World> w(new World());
+  MazeDimensions dims;
+  double floor_centre_x = 0, floor_centre_y = 0, floor_half_m = 5;
+  if (maze != nullptr) {
+    w->scenery_ = MazeBoxes(*maze, dims);
+    w->collision_shapes_ = MazeCollisionBoxes(*maze, dims);
+    floor_centre_x = dims.cell_m * maze->width() / 2;
+    floor_centre_y = dims.cell_m * maze->height() / 2;
+    floor_half_m = dims.cell_m * std::max(maze->width(), maze->height()) / 2 + 0.5;
+    w->spawn_ = CellCentre(maze->start(), maze->start_heading(), dims);
+  } else {
+    w->spawn_ = {0, 0, std::numbers::pi / 2};
+  }
+  if (spawn) w->spawn_ = *spawn;
+
+  // physics: floor, proxies, robot
+  Mjcf x;
+  x << "<mujoco model='" << robot.name << "'>\n"
+    << "<compiler angle='degree' eulerseq='xyz' autolimits='true'/>\n"
+    << "<option timestep='" << robot.timestep_s << "' integrator='" << robot.integrator
+    << "'/>\n"
+    << "<visual><global offwidth='1920' offheight='1080'/></visual>\n";
+  WriteAssets(x);
+  x << "<worldbody>\n"
+    << "<light name='sun' directional='true' pos='0 0 4' dir='0 0 -1'/>\n"
+    << "<geom name='floor' type='plane' group='" << kGroupWorld << "' " << kStaticContact
+    << " material='floor' friction='0.1 0.005 0.0001' pos='" << floor_centre_x << ' '
+    << floor_centre_y << " 0' size='" << floor_half_m << ' ' << floor_half_m << " 0.05'/>\n";
+  const int proxies = w->collision_shapes_.empty() ? 0 : kProxyCount;
+  for (int i = 0; i < proxies; ++i) {
+    x << "<geom name='proxy" << i << "' type='box' group='" << kGroupProxy << "' "
+      << kStaticContact << " friction='0.6 0.005 0.0001' pos='0 0 " << kParkedZ_m
+      << "' size='0.01 0.01 0.01' rgba='1 0 1 0.3'/>\n";
+  }
+  WriteBody(x, robot.chassis, true);
+  x << "</worldbody>\n<actuator>\n";
+  for (const auto& a : robot.actuators) {
+    x << "<motor name='" << a.name << "' joint='" << a.joint << "' gear='1'/>\n";
+  }
+  x << "</actuator>\n</mujoco>\n";
+  w->mjcf_ = x.str();
+  w->model_.reset(CompileMjcf(w->mjcf_, robot.file));
+
+  const mjModel& m = *w->model_;
+  w->robot_body_ = mj_name2id(&m, mjOBJ_BODY, robot.chassis.name.c_str());
+  UNIMOUSE_DEMAND(w->robot_body_ > 0);
+  const int free_joint = m.body_jntadr[w->robot_body_];
+  w->robot_qpos_ = m.jnt_qposadr[free_joint];
+  w->robot_qvel_ = m.jnt_dofadr[free_joint];
+  w->proxy_count_ = proxies;
+  w->first_proxy_ = proxies > 0 ? mj_name2id(&m, mjOBJ_GEOM, "proxy0") : -1;
+  w->proxy_shape_.assign(static_cast<size_t>(proxies), -1);
+
+  // find the resting height and reach of the robot from its geometry: lift it to 1 m, then see
+  // how far its lowest contact geom hangs below and how far any geom sticks out sideways
+  {
+    std::unique_ptr<mjData, DataDeleter> d(mj_makeData(&m));
+    d->qpos[w->robot_qpos_ + 2] = 1;
+    mj_kinematics(&m, d.get());
+    double lowest = std::numeric_limits<double>::infinity();
+    double reach = 0;
+    for (int g = 0; g < m.ngeom; ++g) {
+      if (m.body_rootid[m.geom_bodyid[g]] != w->robot_body_) continue;
+      const mjtNum* gp = d->geom_xpos + 3 * g;
+      reach = std::max(reach, std::hypot(gp[0], gp[1]) + m.geom_rbound[g]);
+      if (m.geom_contype[g] != 0) lowest = std::min(lowest, gp[2] - ReachBelow(m, *d, g));
+    }
+    if (!std::isfinite(lowest)) {
+      throw InputError(robot.chassis.location.ToString() +
+                       ": the robot has no geom with contact: true, so it would fall through the "
+                       "floor");
+    }
+    w->robot_rest_height_m_ = 1 - lowest + kRestClearance_m;
+    w->robot_radius_m_ = reach;
+  }
+
+  // scenery: every static box, for rays and pictures
+  Mjcf s;
+  s << "<mujoco model='scenery'>\n";
+  WriteAssets(s);
+  s << "<worldbody>\n";
+  for (const auto& b : w->scenery_) WriteBoxGeom(s, b, "contype='0' conaffinity='0'", kGroupWorld);
+  s << "</worldbody>\n</mujoco>\n";
+  w->scenery_model_.reset(CompileMjcf(s.str(), "scenery"));
+  w->scenery_data_.reset(mj_makeData(w->scenery_model_.get()));
+  mj_kinematics(w->scenery_model_.get(), w->scenery_data_.get());
+  return w;
+}
+
+void World::PlaceRobot(mjData& d, const Pose2D& pose) const {
+  mjtNum* q = d.qpos + robot_qpos_;
+  q[0] = pose.x_m;
+  q[1] = pose.y_m;
+  q[2] = robot_rest_height_m_;
+  q[3] = std::cos(pose.yaw_rad / 2);
+  q[4] = 0;
+  q[5] = 0;
+  q[6] = std::sin(pose.yaw_rad / 2);
+  for (int i = 0; i < 6; ++i) d.qvel[robot_qvel_ + i] = 0;
+}
+
+Pose2D World::RobotPose(const mjData& d) const {
+  const mjtNum* q = d.qpos + robot_qpos_;
+  // heading of the body's x axis projected on the floor
+  const double yaw = std::atan2(2 * (q[3] * q[6] + q[4] * q[5]), 1 - 2 * (q[5] * q[5] + q[6] * q[6]));
+  return {q[0], q[1], yaw};
+}
+
+void World::UpdateCollisionProxies(const mjData& d) {
+  if (proxy_count_ == 0) return;
+  const mjtNum* p = d.qpos + robot_qpos_;
+  const double reach = robot_radius_m_ + kProxyMargin_m;
+
+  candidates_.clear();
+  for (int i = 0; i < static_cast<int>(collision_shapes_.size()); ++i) {
+    if (FloorDistance(collision_shapes_[i], p[0], p[1]) < reach) candidates_.push_back(i);
+  }
+  if (static_cast<int>(candidates_.size()) > proxy_count_) {
+    // keep the nearest; ties by index keep it deterministic
+    std::sort(candidates_.begin(), candidates_.end(), [&](int a, int b) {
+      const double da = FloorDistance(collision_shapes_[a], p[0], p[1]);
+      const double db = FloorDistance(collision_shapes_[b], p[0], p[1]);
+      return da != db ? da < db : a < b;
+    });
+    candidates_.resize(static_cast<size_t>(proxy_count_));
+    std::sort(candidates_.begin(), candidates_.end());
+    ++proxy_overflows_;
+  }
+
+  mjModel& m = *model_;
+  for (int slot = 0; slot < proxy_count_; ++slot) {
+    const int shape = slot < static_cast<int>(candidates_.size()) ? candidates_[slot] : -1;
+    if (proxy_shape_[slot] == shape) continue;
+    proxy_shape_[slot] = shape;
+    const int g = first_proxy_ + slot;
+    if (shape < 0) {
+      m.geom_pos[3 * g + 0] = 0;
+      m.geom_pos[3 * g + 1] = 0;
+      m.geom_pos[3 * g + 2] = kParkedZ_m;
+      continue;
+    }
+    const StaticBox& b = collision_shapes_[shape];
+    for (int k = 0; k < 3; ++k) {
+      m.geom_pos[3 * g + k] = b.center_m[k];
+      m.geom_size[3 * g + k] = b.half_m[k];
+    }
+    m.geom_quat[4 * g + 0] = std::cos(b.yaw_rad / 2);
+    m.geom_quat[4 * g + 1] = 0;
+    m.geom_quat[4 * g + 2] = 0;
+    m.geom_quat[4 * g + 3] = std::sin(b.yaw_rad / 2);
+    m.geom_rbound[g] = std::hypot(b.half_m[0], b.half_m[1], b.half_m[2]);
+  }
+}
+
+double World::CastRay(const mjData& d, const double origin[3], const double direction[3],
+                      double max_m) const {
+  const mjtByte world_only[mjNGROUP] = {1, 0, 0, 0, 0, 0};
+  int geom = -1;
+  double best = mj_ray(model_.get(), &d, origin, direction, world_only, 1, -1, &geom);
+  if (!scenery_.empty()) {
+    const double wall = mj_ray(scenery_model_.get(), scenery_data_.get(), origin, direction,
+                               nullptr, 1, -1, &geom);
+    if (wall >= 0 && (best < 0 || wall < best)) best = wall;
+  }
+  return best >= 0 && best <= max_m ? best : -1;
+}
+
+}  // namespace unimouse

@@ -1,0 +1,193 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "yaml_doc.h"
+
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+
+#include "text_file.h"
+#include "unimouse/errors.h"
+
+namespace unimouse {
+namespace {
+
+SourceLocation At(const std::string& file, const YAML::Mark& mark) {
+  // yaml-cpp counts from 0
+  return {file, mark.line + 1, mark.column + 1};
+}
+
+YamlNode Convert(const YAML::Node& in, const std::string& file) {
+  YamlNode out;
+  out.location = At(file, in.Mark());
+  switch (in.Type()) {
+    case YAML::NodeType::Scalar:
+      out.kind = YamlNode::Kind::kScalar;
+      out.scalar = in.Scalar();
+      break;
+    case YAML::NodeType::Sequence:
+      out.kind = YamlNode::Kind::kSequence;
+      for (const auto& item : in) {
+        out.items.push_back(Convert(item, file));
+      }
+      break;
+    case YAML::NodeType::Map:
+      out.kind = YamlNode::Kind::kMap;
+      for (const auto& entry : in) {
+        YamlNode key = Convert(entry.first, file);
+        if (key.kind != YamlNode::Kind::kScalar) {
+          key.Fail("map keys must be plain words");
+        }
+        for (const auto& [seen, value] : out.entries) {
+          if (seen.scalar == key.scalar) {
+            key.Fail("duplicate key '" + key.scalar + "' (first given at line " +
+                     std::to_string(seen.location.line) + ")");
+          }
+        }
+        out.entries.emplace_back(std::move(key), Convert(entry.second, file));
+      }
+      break;
+    default:
+      out.kind = YamlNode::Kind::kNull;
+  }
+  return out;
+}
+
+size_t EditDistance(std::string_view a, std::string_view b) {
+  std::vector<size_t> row(b.size() + 1);
+  for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (size_t i = 1; i <= a.size(); ++i) {
+    size_t diagonal = row[0];
+    row[0] = i;
+    for (size_t j = 1; j <= b.size(); ++j) {
+      const size_t up = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diagonal = up;
+    }
+  }
+  return row[b.size()];
+}
+
+}  // namespace
+
+std::string SourceLocation::ToString() const {
+  return file + ":" + std::to_string(line) + ":" + std::to_string(column);
+}
+
+void YamlNode::Fail(const std::string& reason) const {
+  throw InputError(location.ToString() + ": " + reason);
+}
+
+double YamlNode::AsNumber(std::string_view what) const {
+  if (kind != Kind::kScalar) {
+    Fail(std::string(what) + " must be a number");
+  }
+  double value = 0;
+  const char* begin = scalar.data();
+  const char* end = begin + scalar.size();
+  if (!scalar.empty() && *begin == '+') ++begin;
+  const auto [ptr, ec] = std::from_chars(begin, end, value);
+  if (ec != std::errc() || ptr != end) {
+    Fail(std::string(what) + " must be a number, not '" + scalar + "'");
+  }
+  if (!std::isfinite(value)) {
+    Fail(std::string(what) + " must be finite, not '" + scalar + "'");
+  }
+  return value;
+}
+
+int YamlNode::AsInteger(std::string_view what) const {
+  const double value = AsNumber(what);
+  if (value != std::floor(value) || std::fabs(value) > 2e9) {
+    Fail(std::string(what) + " must be a whole number, not '" + scalar + "'");
+  }
+  return static_cast<int>(value);
+}
+
+bool YamlNode::AsBool(std::string_view what) const {
+  if (kind == Kind::kScalar && (scalar == "true" || scalar == "false")) {
+    return scalar == "true";
+  }
+  Fail(std::string(what) + " must be true or false");
+}
+
+const std::string& YamlNode::AsString(std::string_view what) const {
+  if (kind != Kind::kScalar) {
+    Fail(std::string(what) + " must be a word or text");
+  }
+  return scalar;
+}
+
+YamlNode ParseYaml(const std::string& text, const std::string& file) {
+  try {
+    YamlNode root = Convert(YAML::Load(text), file);
+    if (root.kind == YamlNode::Kind::kNull) {
+      root.location = {file, 1, 1};
+    }
+    return root;
+  } catch (const YAML::Exception& e) {
+    throw InputError(At(file, e.mark).ToString() + ": " + e.msg);
+  }
+}
+
+YamlNode LoadYamlFile(const std::string& path) { return ParseYaml(ReadTextFile(path), path); }
+
+std::string NearestWord(std::string_view word, const std::vector<std::string>& candidates) {
+  std::string best;
+  size_t best_distance = std::max<size_t>(2, word.size() / 3) + 1;
+  for (const auto& c : candidates) {
+    const size_t d = EditDistance(word, c);
+    if (d < best_distance) {
+      best_distance = d;
+      best = c;
+    }
+  }
+  return best;
+}
+
+MapReader::MapReader(const YamlNode& node, std::string what) : node_(node), what_(std::move(what)) {
+  if (!node.IsMap()) {
+    node.Fail(what_ + " must be a map of key: value lines");
+  }
+}
+
+const YamlNode* MapReader::Optional(std::string_view key) {
+  asked_.emplace_back(key);
+  for (const auto& [k, v] : node_.entries) {
+    if (k.scalar == key) {
+      return &v;
+    }
+  }
+  return nullptr;
+}
+
+const YamlNode& MapReader::Required(std::string_view key) {
+  const YamlNode* value = Optional(key);
+  if (value == nullptr) {
+    node_.Fail(what_ + ": missing key '" + std::string(key) + "'");
+  }
+  return *value;
+}
+
+double MapReader::Number(std::string_view key, double fallback) {
+  const YamlNode* value = Optional(key);
+  return value ? value->AsNumber(key) : fallback;
+}
+
+std::string MapReader::String(std::string_view key, const std::string& fallback) {
+  const YamlNode* value = Optional(key);
+  return value ? value->AsString(key) : fallback;
+}
+
+void MapReader::Finish() const {
+  for (const auto& [k, v] : node_.entries) {
+    if (std::find(asked_.begin(), asked_.end(), k.scalar) == asked_.end()) {
+      const std::string near = NearestWord(k.scalar, asked_);
+      k.Fail(what_ + ": unknown key '" + k.scalar + "'" +
+             (near.empty() ? "" : " (did you mean '" + near + "'?)"));
+    }
+  }
+}
+
+}  // namespace unimouse

@@ -43,13 +43,15 @@ double NonNegativeNumber(const YamlNode& node, std::string_view what) {
   return v;
 }
 
-Vec3 Vector(MapReader& r, std::string_view key, Vec3 fallback) {
+Vec3 Vector(const MapReader& r, std::string_view key, Vec3 fallback) {
   const YamlNode* n = r.Optional(key);
   return n ? n->AsNumbers<3>(key) : fallback;
 }
 
 GeomSpec ParseGeom(const YamlNode& node, NameBook& names) {
-  MapReader r(node, "geom");
+  const MapReader r(node, "geom",
+                    {"name", "type", "size_m", "radius_m", "length_m", "pos_m", "euler_deg",
+                     "mass_kg", "friction", "contact", "rgba"});
   GeomSpec g;
   g.location = node.location;
   g.name = r.String("name", "");
@@ -57,12 +59,16 @@ GeomSpec ParseGeom(const YamlNode& node, NameBook& names) {
   const YamlNode& type = r.Required("type");
   g.type = type.AsString("type");
   if (g.type == "box") {
+    r.Forbid("radius_m", "does not apply to a box (it has size_m)");
+    r.Forbid("length_m", "does not apply to a box (it has size_m)");
     const YamlNode& size = r.Required("size_m");
     g.size_m = size.AsNumbers<3>("size_m");
     for (double s : g.size_m) {
       if (!(s > 0)) size.Fail("size_m entries must be greater than 0");
     }
   } else if (g.type == "sphere" || g.type == "cylinder" || g.type == "capsule") {
+    r.Forbid("size_m", "does not apply to a " + g.type + " (it has radius_m)");
+    if (g.type == "sphere") r.Forbid("length_m", "does not apply to a sphere");
     g.radius_m = PositiveNumber(r.Required("radius_m"), "radius_m");
     if (g.type != "sphere") g.length_m = PositiveNumber(r.Required("length_m"), "length_m");
   } else {
@@ -80,24 +86,22 @@ GeomSpec ParseGeom(const YamlNode& node, NameBook& names) {
     }
     g.rgba = rgba;
   }
-  r.Finish();
   return g;
 }
 
 SiteSpec ParseSite(const YamlNode& node, NameBook& names) {
-  MapReader r(node, "site");
+  const MapReader r(node, "site", {"name", "pos_m", "euler_deg"});
   SiteSpec s;
   s.location = node.location;
   s.name = r.Required("name").AsString("name");
   names.Add("site", s.name, node);
   s.pos_m = Vector(r, "pos_m", {0, 0, 0});
   s.euler_deg = Vector(r, "euler_deg", {0, 0, 0});
-  r.Finish();
   return s;
 }
 
 JointSpec ParseJoint(const YamlNode& node, NameBook& names) {
-  MapReader r(node, "joint");
+  const MapReader r(node, "joint", {"name", "type", "axis", "damping_nm_s", "armature_kg_m2"});
   JointSpec j;
   j.location = node.location;
   j.name = r.Required("name").AsString("name");
@@ -107,6 +111,7 @@ JointSpec ParseJoint(const YamlNode& node, NameBook& names) {
   if (j.type != "hinge" && j.type != "ball") {
     type.Fail("joint type must be hinge or ball, not '" + j.type + "'");
   }
+  if (j.type == "ball") r.Forbid("axis", "does not apply to a ball joint, which turns every way");
   if (j.type == "hinge") {
     const YamlNode& axis = r.Required("axis");
     j.axis = axis.AsNumbers<3>("axis");
@@ -118,12 +123,13 @@ JointSpec ParseJoint(const YamlNode& node, NameBook& names) {
   if (const YamlNode* a = r.Optional("armature_kg_m2")) {
     j.armature_kg_m2 = NonNegativeNumber(*a, "armature_kg_m2");
   }
-  r.Finish();
   return j;
 }
 
 BodySpec ParseBody(const YamlNode& node, NameBook& names, bool is_chassis) {
-  MapReader r(node, is_chassis ? "chassis" : "body");
+  std::vector<std::string> keys = {"name", "geoms", "sites", "bodies"};
+  if (!is_chassis) keys.insert(keys.end(), {"pos_m", "euler_deg", "joint"});
+  const MapReader r(node, is_chassis ? "chassis" : "body", keys);
   BodySpec b;
   b.location = node.location;
   b.name = r.Required("name").AsString("name");
@@ -146,7 +152,6 @@ BodySpec ParseBody(const YamlNode& node, NameBook& names, bool is_chassis) {
     if (!bodies->IsSequence()) bodies->Fail("bodies must be a list");
     for (const auto& child : bodies->items) b.bodies.push_back(ParseBody(child, names, false));
   }
-  r.Finish();
   return b;
 }
 
@@ -154,7 +159,8 @@ BodySpec ParseBody(const YamlNode& node, NameBook& names, bool is_chassis) {
 
 RobotSpec ParseRobotSpec(const std::string& text, const std::string& file) {
   const YamlNode root = ParseYaml(text, file);
-  MapReader r(root, "robot");
+  const MapReader r(root, "robot",
+                    {"name", "timestep_s", "integrator", "chassis", "actuators", "components"});
   RobotSpec robot;
   robot.file = file;
   robot.name = r.Required("name").AsString("name");
@@ -178,7 +184,7 @@ RobotSpec ParseRobotSpec(const std::string& text, const std::string& file) {
   if (const YamlNode* actuators = r.Optional("actuators")) {
     if (!actuators->IsSequence()) actuators->Fail("actuators must be a list");
     for (const auto& node : actuators->items) {
-      MapReader a(node, "actuator");
+      const MapReader a(node, "actuator", {"name", "joint"});
       ActuatorSpec spec;
       spec.location = node.location;
       spec.name = a.Required("name").AsString("name");
@@ -188,7 +194,6 @@ RobotSpec ParseRobotSpec(const std::string& text, const std::string& file) {
       if (!names.Has("joint", spec.joint)) {
         joint.Fail("actuator '" + spec.name + "': no joint named '" + spec.joint + "'");
       }
-      a.Finish();
       robot.actuators.push_back(spec);
     }
   }
@@ -197,7 +202,7 @@ RobotSpec ParseRobotSpec(const std::string& text, const std::string& file) {
     if (components->kind != YamlNode::Kind::kNull) {
       if (!components->IsSequence()) components->Fail("components must be a list");
       for (const auto& node : components->items) {
-        MapReader c(node, "component");
+        const MapReader c(node, "component", {"type", "name", "period_s", "params"});
         ComponentSpec spec;
         spec.location = node.location;
         spec.type = c.Required("type").AsString("type");
@@ -212,12 +217,10 @@ RobotSpec ParseRobotSpec(const std::string& text, const std::string& file) {
         } else {
           spec.params.location = node.location;
         }
-        c.Finish();
         robot.components.push_back(std::move(spec));
       }
     }
   }
-  r.Finish();
   return robot;
 }
 

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cctype>
 #include <cmath>
 
 #include "text_file.h"
@@ -83,6 +84,11 @@ double YamlNode::AsNumber(std::string_view what) const {
   if (kind != Kind::kScalar) {
     Fail(std::string(what) + " must be a number");
   }
+  std::string lower = scalar;
+  for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (lower == ".inf" || lower == "+.inf" || lower == "-.inf" || lower == ".nan") {
+    Fail(std::string(what) + " must be finite, not '" + scalar + "'");
+  }
   double value = 0;
   const char* begin = scalar.data();
   const char* end = begin + scalar.size();
@@ -137,7 +143,10 @@ std::string NearestWord(std::string_view word, const std::vector<std::string>& c
   std::string best;
   size_t best_distance = std::max<size_t>(2, word.size() / 3) + 1;
   for (const auto& c : candidates) {
-    const size_t d = EditDistance(word, c);
+    // a name without its unit suffix ("torque" for "torque_nm") is the likeliest slip
+    const bool missing_unit = c.size() > word.size() + 1 && c.compare(0, word.size(), word) == 0 &&
+                              c[word.size()] == '_';
+    const size_t d = missing_unit ? 1 : EditDistance(word, c);
     if (d < best_distance) {
       best_distance = d;
       best = c;
@@ -146,47 +155,41 @@ std::string NearestWord(std::string_view word, const std::vector<std::string>& c
   return best;
 }
 
-MapReader::MapReader(const YamlNode& node, std::string what) : node_(node), what_(std::move(what)) {
+MapReader::MapReader(const YamlNode& node, std::string what, std::vector<std::string> known)
+    : node_(node), what_(std::move(what)) {
   if (!node.IsMap()) {
     node.Fail(what_ + " must be a map of key: value lines");
   }
+  for (const auto& [k, v] : node.entries) {
+    if (std::find(known.begin(), known.end(), k.scalar) == known.end()) {
+      const std::string near = NearestWord(k.scalar, known);
+      k.Fail(what_ + ": unknown key '" + k.scalar + "'" +
+             (near.empty() ? "" : " (did you mean '" + near + "'?)"));
+    }
+  }
 }
 
-const YamlNode* MapReader::Optional(std::string_view key) {
-  asked_.emplace_back(key);
+const YamlNode* MapReader::Optional(std::string_view key) const {
   for (const auto& [k, v] : node_.entries) {
-    if (k.scalar == key) {
-      return &v;
-    }
+    if (k.scalar == key) return &v;
   }
   return nullptr;
 }
 
-const YamlNode& MapReader::Required(std::string_view key) {
+const YamlNode& MapReader::Required(std::string_view key) const {
   const YamlNode* value = Optional(key);
-  if (value == nullptr) {
-    node_.Fail(what_ + ": missing key '" + std::string(key) + "'");
-  }
+  if (value == nullptr) node_.Fail(what_ + ": missing key '" + std::string(key) + "'");
   return *value;
 }
 
-double MapReader::Number(std::string_view key, double fallback) {
-  const YamlNode* value = Optional(key);
-  return value ? value->AsNumber(key) : fallback;
-}
-
-std::string MapReader::String(std::string_view key, const std::string& fallback) {
+std::string MapReader::String(std::string_view key, const std::string& fallback) const {
   const YamlNode* value = Optional(key);
   return value ? value->AsString(key) : fallback;
 }
 
-void MapReader::Finish() const {
+void MapReader::Forbid(std::string_view key, const std::string& reason) const {
   for (const auto& [k, v] : node_.entries) {
-    if (std::find(asked_.begin(), asked_.end(), k.scalar) == asked_.end()) {
-      const std::string near = NearestWord(k.scalar, asked_);
-      k.Fail(what_ + ": unknown key '" + k.scalar + "'" +
-             (near.empty() ? "" : " (did you mean '" + near + "'?)"));
-    }
+    if (k.scalar == key) k.Fail(what_ + ": '" + k.scalar + "' " + reason);
   }
 }
 

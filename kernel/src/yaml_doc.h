@@ -67,27 +67,25 @@ YamlNode LoadYamlFile(const std::string& path);
 /// Parses YAML text; `file` names it in errors.
 YamlNode ParseYaml(const std::string& text, const std::string& file);
 
-/// Reads a map strictly: every key must be consumed, or Finish() names the first stray one.
+/// Reads a map strictly: keys outside the known list are refused up front, so a misspelt key is
+/// reported as such rather than as a missing one.
 class MapReader {
  public:
-  /// Fails unless node is a map; `what` names it in errors ("robot", "geom 'plate'").
-  MapReader(const YamlNode& node, std::string what);
+  /// Fails unless node is a map whose keys are all in `known`; `what` names it in errors
+  /// ("robot", "geom").
+  MapReader(const YamlNode& node, std::string what, std::vector<std::string> known);
 
   /// Returns the value of a key that must be present.
-  const YamlNode& Required(std::string_view key);
+  const YamlNode& Required(std::string_view key) const;
   /// Returns the value of a key, or nullptr when absent.
-  const YamlNode* Optional(std::string_view key);
-  double Number(std::string_view key, double fallback);
-  std::string String(std::string_view key, const std::string& fallback);
-  /// Fails at the first key that was never asked for, suggesting the nearest known key.
-  void Finish() const;
-
-  const YamlNode& node() const { return node_; }
+  const YamlNode* Optional(std::string_view key) const;
+  std::string String(std::string_view key, const std::string& fallback) const;
+  /// Fails if `key` is present: it does not apply here, for the reason given.
+  void Forbid(std::string_view key, const std::string& reason) const;
 
  private:
   const YamlNode& node_;
   std::string what_;
-  std::vector<std::string> asked_;
 };
 
 /// Returns the candidate closest to `word` by edit distance, or "" if none is close.

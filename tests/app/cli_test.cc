@@ -1,0 +1,132 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The `unimouse` program as a user meets it: exit codes, messages and files written.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Outcome {
+  int exit_code = -1;
+  std::string output;  // stdout and stderr together
+};
+
+// runs the program with arguments, optionally after environment assignments ("A=b ")
+Outcome Unimouse(const std::string& arguments, const std::string& environment = "") {
+  const std::string command = environment + UNIMOUSE_BINARY + " " + arguments + " 2>&1";
+  Outcome out;
+  FILE* pipe = popen(command.c_str(), "r");
+  char buffer[4096];
+  size_t n;
+  while ((n = fread(buffer, 1, sizeof(buffer), pipe)) > 0) out.output.append(buffer, n);
+  const int status = pclose(pipe);
+  out.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return out;
+}
+
+class CliTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("unimouse_cli_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  std::string Write(const std::string& name, const std::string& text) {
+    const fs::path path = dir_ / name;
+    std::ofstream(path) << text;
+    return path.string();
+  }
+
+  fs::path dir_;
+};
+
+TEST_F(CliTest, RunWritesAResultWithPoseTimeAndSpeed) {
+  const Outcome o = Unimouse("run --duration 0.5 --seed 3 --out " + dir_.string());
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  EXPECT_NE(o.output.find("in maze japan2018 (16x16)"), std::string::npos) << o.output;
+  std::ifstream in(dir_ / "result.json");
+  const nlohmann::json result = nlohmann::json::parse(in);
+  EXPECT_EQ(result["status"], "completed");
+  EXPECT_EQ(result["steps"], 500);
+  EXPECT_EQ(result["seed"], 3);
+  EXPECT_NEAR(result["sim_time_s"].get<double>(), 0.5, 1e-9);
+  EXPECT_NEAR(result["robot_pose"]["x_m"].get<double>(), 0.09, 1e-3);
+  EXPECT_GT(result["real_time_factor"].get<double>(), 0);
+  EXPECT_GT(result["wall_time_s"].get<double>(), 0);
+}
+
+TEST_F(CliTest, RunOnAnOpenFloor) {
+  const Outcome o = Unimouse("run --maze none --duration 0.1 --out " + dir_.string());
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  EXPECT_NE(o.output.find("on an open floor"), std::string::npos) << o.output;
+}
+
+TEST_F(CliTest, CheckAcceptsTheBundledRobot) {
+  const Outcome o = Unimouse("check unimouse");
+  EXPECT_EQ(o.exit_code, 0) << o.output;
+  EXPECT_NE(o.output.find("ok: robot 'unimouse', 4 bodies"), std::string::npos) << o.output;
+}
+
+TEST_F(CliTest, BadRobotFileExitsWithCode2AndOneLocatedLine) {
+  const std::string path = Write("bad.yaml", "name: x\nchassis:\n  name: c\n  mass: 1\n");
+  const Outcome o = Unimouse("check " + path);
+  EXPECT_EQ(o.exit_code, 2);
+  EXPECT_EQ(o.output, "unimouse: error: " + path + ":4:3: chassis: unknown key 'mass'\n");
+}
+
+TEST_F(CliTest, BadMazeFileExitsWithCode2) {
+  const std::string path = Write("bad.txt", "o---o\n| X |\no---o\n");
+  const Outcome o = Unimouse("run --maze " + path + " --out " + dir_.string());
+  EXPECT_EQ(o.exit_code, 2);
+  EXPECT_NE(o.output.find(path + ":2:3: unexpected 'X'"), std::string::npos) << o.output;
+}
+
+TEST_F(CliTest, MissingFilesAndBadOptionsExitWithCode2) {
+  EXPECT_EQ(Unimouse("run --maze no_such_maze").exit_code, 2);
+  EXPECT_EQ(Unimouse("run --duration -1").exit_code, 2);
+  EXPECT_EQ(Unimouse("run --duration abc").exit_code, 2);
+  EXPECT_EQ(Unimouse("frobnicate").exit_code, 2);
+}
+
+TEST_F(CliTest, EverySubcommandHasHelp) {
+  for (const char* command : {"--help", "run --help", "check --help", "plugins --help"}) {
+    const Outcome o = Unimouse(command);
+    EXPECT_EQ(o.exit_code, 0) << command;
+    EXPECT_NE(o.output.find("Usage"), std::string::npos) << command;
+  }
+}
+
+TEST_F(CliTest, PluginsListsTypesFromThePluginPath) {
+  const Outcome o = Unimouse("--plugin-path " + std::string(FAKE_PLUGIN_DIR) + "/good plugins");
+  EXPECT_EQ(o.exit_code, 0) << o.output;
+  EXPECT_NE(o.output.find("fake.widget"), std::string::npos) << o.output;
+  EXPECT_NE(o.output.find("- speed_m_per_s (number), default 1.5, [0, 10]: how fast"),
+            std::string::npos)
+      << o.output;
+}
+
+TEST_F(CliTest, PluginPathFromTheEnvironmentIsSearchedToo) {
+  const Outcome o = Unimouse("plugins", "UNIMOUSE_PLUGIN_PATH=" + std::string(FAKE_PLUGIN_DIR) + "/good ");
+  EXPECT_EQ(o.exit_code, 0) << o.output;
+  EXPECT_NE(o.output.find("fake.widget"), std::string::npos) << o.output;
+}
+
+TEST_F(CliTest, ABadPluginIsRefusedInOneSentence) {
+  const Outcome o = Unimouse("--plugin-path " + std::string(FAKE_PLUGIN_DIR) + "/wrong_abi plugins");
+  EXPECT_EQ(o.exit_code, 2);
+  EXPECT_NE(o.output.find("was built for plugin ABI version 2"), std::string::npos) << o.output;
+  EXPECT_EQ(std::count(o.output.begin(), o.output.end(), '\n'), 1) << o.output;
+}
+
+}  // namespace

@@ -1,0 +1,186 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Maze + robot -> MuJoCo world: walls and posts where the maze says (table 4.8: 0.18 m pitch,
+// walls 168 x 12 x 50 mm, posts 12 x 12 x 50 mm), the robot at rest in the start cell.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "inline_assets.h"
+#include "kernel.h"
+
+namespace unimouse {
+namespace {
+
+using testing::kSmallMaze;
+
+int CountKind(const std::vector<StaticBox>& boxes, StaticBox::Kind kind) {
+  int n = 0;
+  for (const auto& b : boxes) n += b.kind == kind;
+  return n;
+}
+
+bool HasBox(const std::vector<StaticBox>& boxes, StaticBox::Kind kind, Vec3 centre, Vec3 half) {
+  for (const auto& b : boxes) {
+    bool same = b.kind == kind;
+    for (int k = 0; k < 3; ++k) {
+      same = same && std::fabs(b.center_m[k] - centre[k]) < 1e-12 &&
+             std::fabs(b.half_m[k] - half[k]) < 1e-12;
+    }
+    if (same) return true;
+  }
+  return false;
+}
+
+TEST(MazeBoxesTest, OnePostPerGridCornerAndOneBoxPerWall) {
+  const Maze maze = ParseMazeText(kSmallMaze, "small.txt");
+  const std::vector<StaticBox> boxes = MazeBoxes(maze);
+  EXPECT_EQ(CountKind(boxes, StaticBox::Kind::kPost), 4 * 3);
+  // 3 north + 1 inner + 3 south east-west walls; 3 + 3 north-south walls
+  EXPECT_EQ(CountKind(boxes, StaticBox::Kind::kWall), 13);
+}
+
+TEST(MazeBoxesTest, PostsAndWallsSitOnTheCellGrid) {
+  const std::vector<StaticBox> boxes = MazeBoxes(ParseMazeText(kSmallMaze, "small.txt"));
+  // posts at multiples of 0.18 m, 12 x 12 x 50 mm
+  EXPECT_TRUE(HasBox(boxes, StaticBox::Kind::kPost, {0, 0, 0.025}, {0.006, 0.006, 0.025}));
+  EXPECT_TRUE(HasBox(boxes, StaticBox::Kind::kPost, {0.54, 0.36, 0.025}, {0.006, 0.006, 0.025}));
+  // the inner wall on line y = 1 over column 1: 168 x 12 x 50 mm
+  EXPECT_TRUE(HasBox(boxes, StaticBox::Kind::kWall, {0.27, 0.18, 0.025}, {0.084, 0.006, 0.025}));
+  // the north-south wall east of cell (1, 0)
+  EXPECT_TRUE(HasBox(boxes, StaticBox::Kind::kWall, {0.36, 0.09, 0.025}, {0.006, 0.084, 0.025}));
+  // and no wall between cells (0, 0) and (1, 0)
+  EXPECT_FALSE(HasBox(boxes, StaticBox::Kind::kWall, {0.18, 0.09, 0.025}, {0.006, 0.084, 0.025}));
+}
+
+TEST(MazeBoxesTest, CollisionBoxesCoverRunsOfWallsWithTheirPosts) {
+  const std::vector<StaticBox> runs = MazeCollisionBoxes(ParseMazeText(kSmallMaze, "small.txt"));
+  // the south edge: one box from post 0 to post 3, posts included
+  EXPECT_TRUE(HasBox(runs, StaticBox::Kind::kWall, {0.27, 0, 0.025}, {0.276, 0.006, 0.025}));
+  // the west edge, two cells high
+  EXPECT_TRUE(HasBox(runs, StaticBox::Kind::kWall, {0, 0.18, 0.025}, {0.006, 0.186, 0.025}));
+  // every post touches a wall in this maze, so none stands alone
+  EXPECT_EQ(CountKind(runs, StaticBox::Kind::kPost), 0);
+  // south, north, inner; west, x = 2 (two cells), east
+  EXPECT_EQ(runs.size(), 6u);
+}
+
+class WorldTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    robot_ = LoadRobotSpec(testing::BundledRobotPath());
+    maze_ = std::make_unique<Maze>(ParseMazeText(kSmallMaze, "small.txt"));
+    kernel_ = Kernel::Create(robot_, maze_.get(), registry_, 1);
+  }
+
+  bool TouchesFloor(const char* body) const {
+    const mjModel& m = kernel_->model();
+    const mjData& d = kernel_->state().data();
+    const int b = mj_name2id(&m, mjOBJ_BODY, body);
+    const int floor = mj_name2id(&m, mjOBJ_GEOM, "floor");
+    for (int i = 0; i < d.ncon; ++i) {
+      const mjContact& c = d.contact[i];
+      const bool floor_pair = c.geom1 == floor || c.geom2 == floor;
+      const int other = c.geom1 == floor ? c.geom2 : c.geom1;
+      if (floor_pair && m.geom_bodyid[other] == b && c.dist < 1e-4) return true;
+    }
+    return false;
+  }
+
+  RobotSpec robot_;
+  std::unique_ptr<Maze> maze_;
+  PluginRegistry registry_;
+  std::unique_ptr<Kernel> kernel_;
+};
+
+TEST_F(WorldTest, SceneryHoldsEveryWallAndPostWhilePhysicsHoldsOnlyProxies) {
+  EXPECT_EQ(kernel_->world().scenery_model().ngeom, 12 + 13);
+  // floor, proxies and the robot's 6 geoms
+  EXPECT_EQ(kernel_->model().ngeom, 1 + kernel_->world().proxy_count() + 6);
+}
+
+TEST_F(WorldTest, PlacesTheRobotInTheStartCellFacingNorth) {
+  const Pose2D pose = kernel_->world().RobotPose(kernel_->state().data());
+  EXPECT_NEAR(pose.x_m, 0.09, 1e-12);
+  EXPECT_NEAR(pose.y_m, 0.09, 1e-12);
+  EXPECT_NEAR(pose.yaw_rad, std::numbers::pi / 2, 1e-12);
+}
+
+TEST_F(WorldTest, RobotSettlesOnBothWheelsAndTheCaster) {
+  for (int i = 0; i < 500; ++i) kernel_->Step();
+  EXPECT_TRUE(TouchesFloor("left_wheel"));
+  EXPECT_TRUE(TouchesFloor("right_wheel"));
+  EXPECT_TRUE(TouchesFloor("caster"));
+  EXPECT_FALSE(TouchesFloor("chassis"));
+
+  // at rest, where it was put: the axle at wheel-radius height, still facing north
+  const mjData& d = kernel_->state().data();
+  const Pose2D pose = kernel_->world().RobotPose(d);
+  EXPECT_NEAR(pose.x_m, 0.09, 1e-3);
+  EXPECT_NEAR(pose.y_m, 0.09, 1e-3);
+  EXPECT_NEAR(pose.yaw_rad, std::numbers::pi / 2, 1e-3);
+  const int chassis = kernel_->world().robot_body();
+  EXPECT_NEAR(d.xpos[3 * chassis + 2], 0.016, 5e-4);
+  EXPECT_LT(std::hypot(d.cvel[6 * chassis + 3], d.cvel[6 * chassis + 4]), 1e-3);
+}
+
+TEST_F(WorldTest, RaysSeeTheMazeWallsButNotTheRobot) {
+  const mjData& d = kernel_->state().data();
+  // from the start cell centre at sensor height: north is open for one cell, the north edge
+  // wall's face is at y = 0.36 - 0.006
+  const double origin[3] = {0.09, 0.09, 0.016};
+  const double north[3] = {0, 1, 0};
+  EXPECT_NEAR(kernel_->world().CastRay(d, origin, north, 2), 0.354 - 0.09, 1e-9);
+  // east: no wall between cells 0 and 1, the wall at x = 0.36
+  const double east[3] = {1, 0, 0};
+  EXPECT_NEAR(kernel_->world().CastRay(d, origin, east, 2), 0.354 - 0.09, 1e-9);
+  // west: the perimeter, through the robot's own plate
+  const double west[3] = {-1, 0, 0};
+  EXPECT_NEAR(kernel_->world().CastRay(d, origin, west, 2), 0.09 - 0.006, 1e-9);
+  // beyond max range nothing is reported
+  EXPECT_EQ(kernel_->world().CastRay(d, origin, north, 0.2), -1);
+}
+
+TEST_F(WorldTest, CollisionProxiesFollowTheRobot) {
+  const mjModel& m = kernel_->model();
+  const int first = mj_name2id(&m, mjOBJ_GEOM, "proxy0");
+  auto active = [&] {
+    int n = 0;
+    for (int i = 0; i < kernel_->world().proxy_count(); ++i) n += m.geom_pos[3 * (first + i) + 2] > 0;
+    return n;
+  };
+  // in the start cell: the west and south runs are within reach, the open east and north not
+  EXPECT_EQ(active(), 2);
+  // in open space far from the maze: none
+  kernel_->world().PlaceRobot(kernel_->state().data(), {3, 3, 0});
+  kernel_->world().UpdateCollisionProxies(kernel_->state().data());
+  EXPECT_EQ(active(), 0);
+}
+
+TEST_F(WorldTest, RobotCannotDriveThroughAWall) {
+  // drive west into the perimeter wall from the start cell
+  kernel_->world().PlaceRobot(kernel_->state().data(), {0.09, 0.09, std::numbers::pi});
+  const int left = mj_name2id(&kernel_->model(), mjOBJ_ACTUATOR, "left_motor");
+  const int right = mj_name2id(&kernel_->model(), mjOBJ_ACTUATOR, "right_motor");
+  for (int i = 0; i < 2000; ++i) {
+    kernel_->state().data().ctrl[left] = 0.002;
+    kernel_->state().data().ctrl[right] = 0.002;
+    kernel_->Step();
+  }
+  const Pose2D pose = kernel_->world().RobotPose(kernel_->state().data());
+  // the plate's front (0.06 m ahead of the axle) stops at the wall face x = 0.006
+  EXPECT_GT(pose.x_m, 0.006 + 0.06 - 2e-3);
+}
+
+TEST(OpenWorldTest, FlatWorldHasNoSceneryAndPlacesTheRobotAtTheOrigin) {
+  PluginRegistry registry;
+  auto kernel = Kernel::Create(LoadRobotSpec(testing::BundledRobotPath()), nullptr, registry, 1);
+  EXPECT_TRUE(kernel->world().scenery().empty());
+  EXPECT_EQ(kernel->world().proxy_count(), 0);
+  const Pose2D pose = kernel->world().RobotPose(kernel->state().data());
+  EXPECT_NEAR(pose.x_m, 0, 1e-12);
+  EXPECT_NEAR(pose.yaw_rad, std::numbers::pi / 2, 1e-12);
+}
+
+}  // namespace
+}  // namespace unimouse

@@ -1,0 +1,39 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Small robots and mazes shared by tests, inline so that each test reads whole.
+#ifndef UNIMOUSE_TESTS_INLINE_ASSETS_H_
+#define UNIMOUSE_TESTS_INLINE_ASSETS_H_
+
+#include <string>
+
+namespace unimouse::testing {
+
+/// The bundled robot file, read from the source tree.
+std::string BundledRobotPath();
+/// The collection of contest mazes beside the project, or "" when absent.
+std::string SharedMazesDir();
+
+/// The bundled robot's YAML with its components list replaced by `components` (YAML list items,
+/// each starting with "- "), and the line number the first of them lands on.
+struct RobotYaml {
+  std::string text;
+  int first_component_line = 0;
+};
+RobotYaml BundledRobotWith(const std::string& components);
+
+/// A 3 x 2 maze drawn so that posts and walls can be counted by hand:
+///
+///   o---o---o---o      north edge: 3 walls
+///   |       |   |      row 1: walls at x = 0, 2, 3
+///   o   o---o   o      one wall on line y = 1, over column 1
+///   | S     |   |      row 0: walls at x = 0, 2, 3
+///   o---o---o---o      south edge: 3 walls
+inline constexpr const char* kSmallMaze =
+    "o---o---o---o\n"
+    "|       |   |\n"
+    "o   o---o   o\n"
+    "| S     |   |\n"
+    "o---o---o---o\n";
+
+}  // namespace unimouse::testing
+
+#endif  // UNIMOUSE_TESTS_INLINE_ASSETS_H_

@@ -1,0 +1,105 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Components that exist only for tests: they record what the kernel does to them, or drive the
+// robot in a known way.
+#ifndef UNIMOUSE_TESTS_PROBE_COMPONENTS_H_
+#define UNIMOUSE_TESTS_PROBE_COMPONENTS_H_
+
+#include <string>
+#include <vector>
+
+#include "unimouse/component.h"
+
+namespace unimouse::testing {
+
+/// Every hook call of every Probe, in order, as "sense:tag" etc.
+std::vector<std::string>& ProbeEvents();
+
+struct ProbeParams {
+  std::string tag;
+  double torque_nm = 0;
+  int count = 1;
+  std::string mode = "a";
+  bool enabled = true;
+  template <class V>
+  void Visit(V& v) {
+    v("tag", tag, "name written into the event log", param::Required{});
+    v("torque_nm", torque_nm, "torque written to left_motor in Actuate", param::Range{-1, 1});
+    v("count", count, "a whole number for validation tests", param::Range{1, 10});
+    v("mode", mode, "a word for validation tests", param::OneOf{"a|b"});
+    v("enabled", enabled, "a flag for validation tests");
+  }
+};
+
+/// Records its hooks; in Sense also the chassis x position it sees; writes torque_nm.
+class Probe final : public Component {
+ public:
+  static constexpr const char* kTypeName = "test.probe";
+  static constexpr const char* kSummary = "records hook calls";
+  static constexpr double kDefaultPeriod_s = 0;
+  using Params = ProbeParams;
+  explicit Probe(Params p) : p_(std::move(p)) {}
+  void Bind(BindContext& ctx) override;
+  void Reset(const ResetContext& ctx) const override;
+  void Sense(const SenseContext& ctx) const override;
+  void Actuate(const ActuateContext& ctx) const override;
+
+ private:
+  Params p_;
+  int actuator_ = -1;
+  int chassis_ = -1;
+};
+
+struct RandomTorqueParams {
+  double scale_nm = 0.002;
+  template <class V>
+  void Visit(V& v) {
+    v("scale_nm", scale_nm, "standard deviation of the torque on each wheel");
+  }
+};
+
+/// Drives both wheels with fresh Gaussian torques from its own random stream every tick.
+class RandomTorque final : public Component {
+ public:
+  static constexpr const char* kTypeName = "test.random_torque";
+  static constexpr const char* kSummary = "random wheel torques";
+  static constexpr double kDefaultPeriod_s = 0;
+  using Params = RandomTorqueParams;
+  explicit RandomTorque(Params p) : p_(p) {}
+  void Bind(BindContext& ctx) override;
+  void Actuate(const ActuateContext& ctx) const override;
+
+ private:
+  Params p_;
+  int left_ = -1, right_ = -1;
+  RngId rng_;
+};
+
+struct SignalParams {
+  std::string read;
+  std::string write;
+  template <class V>
+  void Visit(V& v) {
+    v("read", read, "signal to read, '' for none");
+    v("write", write, "signal to write, '' for none");
+  }
+};
+
+/// Declares one read and one write signal; copies read + 1 into write.
+class SignalRelay final : public Component {
+ public:
+  static constexpr const char* kTypeName = "test.relay";
+  static constexpr const char* kSummary = "signal relay";
+  static constexpr double kDefaultPeriod_s = 0;
+  using Params = SignalParams;
+  explicit SignalRelay(Params p) : p_(std::move(p)) {}
+  void Bind(BindContext& ctx) override;
+  void Actuate(const ActuateContext& ctx) const override;
+
+ private:
+  Params p_;
+  SignalId in_, out_;
+};
+
+}  // namespace unimouse::testing
+
+#endif  // UNIMOUSE_TESTS_PROBE_COMPONENTS_H_

@@ -47,9 +47,11 @@ class ConstantTorque final : public Component {
 void RunSixtySeconds(benchmark::State& bench, const Maze* maze) {
   RobotSpec robot = LoadRobotSpec(UNIMOUSE_SOURCE_DIR "/robots/unimouse.yaml");
   // slightly unequal torques: the robot curves, meets walls and keeps pushing along them
-  robot.components.push_back(
-      {"bench.constant_torque", "drive", std::nullopt,
-       ParseYaml("{left_nm: 0.0010, right_nm: 0.0012}", "bench"), {"bench", 1, 1}});
+  robot.components.push_back({"bench.constant_torque",
+                              "drive",
+                              std::nullopt,
+                              ParseYaml("{left_nm: 0.0010, right_nm: 0.0012}", "bench"),
+                              {"bench", 1, 1}});
   PluginRegistry registry;
   registry.AddStatic(ComponentType<ConstantTorque>());
   auto kernel = Kernel::Create(robot, maze, registry, 1);
@@ -59,8 +61,7 @@ void RunSixtySeconds(benchmark::State& bench, const Maze* maze) {
     for (int i = 0; i < steps; ++i) kernel->Step();
   }
   const double sim_s = 60.0 * static_cast<double>(bench.iterations());
-  bench.counters["real_time_factor"] =
-      benchmark::Counter(sim_s, benchmark::Counter::kIsRate);
+  bench.counters["real_time_factor"] = benchmark::Counter(sim_s, benchmark::Counter::kIsRate);
   bench.counters["proxy_overflows"] = static_cast<double>(kernel->world().proxy_overflows());
   const Pose2D pose = kernel->world().RobotPose(kernel->state().data());
   bench.counters["end_x_m"] = pose.x_m;

@@ -49,8 +49,8 @@ struct Kernel::BindSession {
     const mjModel& m = kernel->model();
     const int id = mj_name2id(&m, type, name);
     if (id < 0 && error.empty()) {
-      error = prefix + "no " + kind + " named '" + name + "' (the robot has: " +
-              Names(m, type, count) + ")";
+      error = prefix + "no " + kind + " named '" + name +
+              "' (the robot has: " + Names(m, type, count) + ")";
     }
     return id;
   }
@@ -133,8 +133,8 @@ std::unique_ptr<Kernel> Kernel::Create(const RobotSpec& robot, const Maze* maze,
     char error[512] = "";
     c.self = c.type->create(&config, &ConfigHost(), error, sizeof(error));
     if (c.self == nullptr) {
-      throw InputError(spec.location.ToString() + ": component '" + spec.name + "' (" +
-                       spec.type + "): " + error);
+      throw InputError(spec.location.ToString() + ": component '" + spec.name + "' (" + spec.type +
+                       "): " + error);
     }
     const double period_s = spec.period_s.value_or(c.type->default_period_s);
     if (period_s > 0) {
@@ -170,10 +170,9 @@ std::unique_ptr<Kernel> Kernel::Create(const RobotSpec& robot, const Maze* maze,
 
 void Kernel::BindComponent(int index) {
   ComponentInstance& c = components_[index];
-  BindSession session{this, index,
-                      c.location.ToString() + ": component '" + c.name + "' (" + c.type->name +
-                          "): ",
-                      ""};
+  BindSession session{
+      this, index,
+      c.location.ToString() + ": component '" + c.name + "' (" + c.type->name + "): ", ""};
   unimouse_bind b{};
   b.size = sizeof(b);
   b.ctx = &session;
@@ -201,7 +200,9 @@ void Kernel::BindComponent(int index) {
   b.signal_write = [](void* ctx, const char* name) {
     return static_cast<BindSession*>(ctx)->Signal(name, true);
   };
-  b.rng_stream = [](void* ctx, const char* name) { return static_cast<BindSession*>(ctx)->Rng(name); };
+  b.rng_stream = [](void* ctx, const char* name) {
+    return static_cast<BindSession*>(ctx)->Rng(name);
+  };
   b.set_state_size = [](void* ctx, int nstate) {
     auto* s = static_cast<BindSession*>(ctx);
     s->kernel->components_[s->component].nstate = nstate < 0 ? 0 : nstate;
@@ -322,8 +323,8 @@ void Kernel::Step() {
   for (int w : {mjWARN_BADQACC, mjWARN_BADQVEL, mjWARN_BADQPOS}) {
     if (d.warning[w].number > 0) {
       std::ostringstream out;
-      out << "physics diverged at t=" << d.time << " s (MuJoCo warning " << w
-          << " for dof " << d.warning[w].lastinfo << "); check masses, timestep and controls";
+      out << "physics diverged at t=" << d.time << " s (MuJoCo warning " << w << " for dof "
+          << d.warning[w].lastinfo << "); check masses, timestep and controls";
       throw RuntimeFault(out.str());
     }
   }

@@ -40,8 +40,8 @@ struct ComponentInstance {
 class Kernel {
  public:
   /// Receives every log line: level (UNIMOUSE_LOG_*), the component's name and the message.
-  using LogSink = std::function<void(int level, const std::string& component,
-                                     const std::string& message)>;
+  using LogSink =
+      std::function<void(int level, const std::string& component, const std::string& message)>;
 
   Kernel(const Kernel&) = delete;
   Kernel& operator=(const Kernel&) = delete;

@@ -94,7 +94,8 @@ Maze ParseMazeText(const std::string& text, const std::string& file) {
   if (lines.size() < 3 || lines.size() % 2 == 0) {
     FailAt(file, lines.empty() ? 0 : lines.size() - 1, 0,
            "a maze has an odd number of lines, at least 3 (post rows and cell rows alternate); "
-           "found " + std::to_string(lines.size()));
+           "found " +
+               std::to_string(lines.size()));
   }
   // trailing spaces are not significant; a short cell row is padded
   for (auto& line : lines) {
@@ -102,8 +103,10 @@ Maze ParseMazeText(const std::string& text, const std::string& file) {
   }
   const size_t row_length = lines[0].size();
   if (row_length < 5 || (row_length - 1) % 4 != 0) {
-    FailAt(file, 0, row_length, "the first line must be a row of posts 'o---o---o', 4 characters "
-                                "per cell; it has " + std::to_string(row_length) + " characters");
+    FailAt(file, 0, row_length,
+           "the first line must be a row of posts 'o---o---o', 4 characters "
+           "per cell; it has " +
+               std::to_string(row_length) + " characters");
   }
   const int width = static_cast<int>((row_length - 1) / 4);
   const int height = static_cast<int>((lines.size() - 1) / 2);
@@ -114,8 +117,9 @@ Maze ParseMazeText(const std::string& text, const std::string& file) {
   for (size_t i = 0; i < lines.size(); ++i) {
     std::string& line = lines[i];
     if (line.size() > row_length) {
-      FailAt(file, i, row_length, "line is longer than the first line (" +
-                                      std::to_string(row_length) + " characters): ragged maze");
+      FailAt(file, i, row_length,
+             "line is longer than the first line (" + std::to_string(row_length) +
+                 " characters): ragged maze");
     }
     line.resize(row_length, ' ');
     const bool post_row = i % 2 == 0;
@@ -124,16 +128,17 @@ Maze ParseMazeText(const std::string& text, const std::string& file) {
       if (post_row) {
         const int y = height - static_cast<int>(i / 2);
         if (line[col] != 'o' && line[col] != '+') {
-          FailAt(file, i, col, std::string("expected a post 'o' or '+', found '") + line[col] + "'");
+          FailAt(file, i, col,
+                 std::string("expected a post 'o' or '+', found '") + line[col] + "'");
         }
         if (x == width) break;
         const std::string_view span(line.data() + col + 1, 3);
         if (span == "---") {
-          maze.SetWall({x, y < height ? y : height - 1}, y < height ? Heading::kSouth : Heading::kNorth,
-                       true);
+          maze.SetWall({x, y < height ? y : height - 1},
+                       y < height ? Heading::kSouth : Heading::kNorth, true);
         } else if (span != "   ") {
-          FailAt(file, i, col + 1, "expected a wall '---' or three spaces, found '" +
-                                       std::string(span) + "'");
+          FailAt(file, i, col + 1,
+                 "expected a wall '---' or three spaces, found '" + std::string(span) + "'");
         }
       } else {
         const int y = height - 1 - static_cast<int>(i / 2);
@@ -155,7 +160,8 @@ Maze ParseMazeText(const std::string& text, const std::string& file) {
             goals.push_back({x, y});
           } else if (c != ' ') {
             FailAt(file, i, col + k,
-                   std::string("unexpected '") + c + "' inside a cell (only 'S' or 'G' at its centre)");
+                   std::string("unexpected '") + c +
+                       "' inside a cell (only 'S' or 'G' at its centre)");
           }
         }
       }

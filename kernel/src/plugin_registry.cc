@@ -54,8 +54,7 @@ const unimouse_plugin_info* LoadPluginLibrary(const std::string& path) {
   if (handle == nullptr) {
     throw InputError(path + ": cannot load plugin library: " + dlerror());
   }
-  const auto entry =
-      reinterpret_cast<unimouse_plugin_entry>(dlsym(handle, UNIMOUSE_PLUGIN_SYMBOL));
+  const auto entry = reinterpret_cast<unimouse_plugin_entry>(dlsym(handle, UNIMOUSE_PLUGIN_SYMBOL));
   const unimouse_plugin_info* info = entry ? entry() : nullptr;
   const std::string rebuild = "; rebuild it against this unimouse";
   if (entry == nullptr) {
@@ -80,9 +79,9 @@ const unimouse_plugin_info* LoadPluginLibrary(const std::string& path) {
                      std::to_string(sizeof(unimouse_component_type)) + ")" + rebuild);
   }
   if (info->mujoco_version != mj_version()) {
-    throw InputError(path + " was built against MuJoCo " +
-                     MujocoVersionText(info->mujoco_version) + ", but this unimouse runs MuJoCo " +
-                     MujocoVersionText(mj_version()) + rebuild);
+    throw InputError(path + " was built against MuJoCo " + MujocoVersionText(info->mujoco_version) +
+                     ", but this unimouse runs MuJoCo " + MujocoVersionText(mj_version()) +
+                     rebuild);
   }
   for (int i = 0; i < info->ntype; ++i) {
     const unimouse_component_type* t = info->types[i];

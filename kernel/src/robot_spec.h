@@ -18,15 +18,15 @@ using Vec3 = std::array<double, 3>;
 
 struct GeomSpec {
   std::string name;
-  std::string type;         ///< box, sphere, cylinder or capsule
-  Vec3 size_m{};            ///< box: full extents along x, y, z
-  double radius_m = 0;      ///< sphere, cylinder, capsule
-  double length_m = 0;      ///< cylinder, capsule: along the geom's z axis
-  Vec3 pos_m{};             ///< in the body frame
-  Vec3 euler_deg{};         ///< xyz rotation in the body frame
-  double mass_kg = 0;       ///< a body's geoms must weigh something in total
-  double friction = 0.6;    ///< Coulomb sliding coefficient
-  bool contact = true;      ///< false: seen and weighed, never touched
+  std::string type;       ///< box, sphere, cylinder or capsule
+  Vec3 size_m{};          ///< box: full extents along x, y, z
+  double radius_m = 0;    ///< sphere, cylinder, capsule
+  double length_m = 0;    ///< cylinder, capsule: along the geom's z axis
+  Vec3 pos_m{};           ///< in the body frame
+  Vec3 euler_deg{};       ///< xyz rotation in the body frame
+  double mass_kg = 0;     ///< a body's geoms must weigh something in total
+  double friction = 0.6;  ///< Coulomb sliding coefficient
+  bool contact = true;    ///< false: seen and weighed, never touched
   std::array<double, 4> rgba{0.6, 0.6, 0.6, 1};
   SourceLocation location;
 };
@@ -40,8 +40,8 @@ struct SiteSpec {
 
 struct JointSpec {
   std::string name;
-  std::string type;     ///< hinge or ball
-  Vec3 axis{0, 1, 0};   ///< hinge axis in the body frame
+  std::string type;    ///< hinge or ball
+  Vec3 axis{0, 1, 0};  ///< hinge axis in the body frame
   double damping_nm_s = 0;
   double armature_kg_m2 = 0;
   SourceLocation location;

@@ -61,8 +61,8 @@ const char* MaterialOf(StaticBox::Kind kind) {
 }
 
 void WriteBoxGeom(Mjcf& x, const StaticBox& b, const char* contact, int group) {
-  x << "<geom type='box' group='" << group << "' " << contact << " material='"
-    << MaterialOf(b.kind) << "' pos='";
+  x << "<geom type='box' group='" << group << "' " << contact << " material='" << MaterialOf(b.kind)
+    << "' pos='";
   x.Vec(b.center_m) << "' size='";
   x.Vec(b.half_m) << "' quat='" << std::cos(b.yaw_rad / 2) << " 0 0 " << std::sin(b.yaw_rad / 2)
                   << "'/>\n";
@@ -94,8 +94,8 @@ void WriteGeom(Mjcf& x, const GeomSpec& g) {
   x << " pos='";
   x.Vec(g.pos_m) << "' euler='";
   x.Vec(g.euler_deg) << "' mass='" << g.mass_kg << "' friction='" << g.friction
-                     << " 0.005 0.0001' rgba='" << g.rgba[0] << ' ' << g.rgba[1] << ' '
-                     << g.rgba[2] << ' ' << g.rgba[3] << "'/>\n";
+                     << " 0.005 0.0001' rgba='" << g.rgba[0] << ' ' << g.rgba[1] << ' ' << g.rgba[2]
+                     << ' ' << g.rgba[3] << "'/>\n";
 }
 
 void WriteBody(Mjcf& x, const BodySpec& b, bool is_chassis) {
@@ -281,8 +281,7 @@ std::unique_ptr<World> World::Build(const RobotSpec& robot, const Maze* maze,
   Mjcf x;
   x << "<mujoco model='" << robot.name << "'>\n"
     << "<compiler angle='degree' eulerseq='xyz' autolimits='true'/>\n"
-    << "<option timestep='" << robot.timestep_s << "' integrator='" << robot.integrator
-    << "'/>\n"
+    << "<option timestep='" << robot.timestep_s << "' integrator='" << robot.integrator << "'/>\n"
     << "<visual><global offwidth='1920' offheight='1080'/></visual>\n";
   WriteAssets(x);
   x << "<worldbody>\n"
@@ -292,8 +291,8 @@ std::unique_ptr<World> World::Build(const RobotSpec& robot, const Maze* maze,
     << floor_centre_y << " 0' size='" << floor_half_m << ' ' << floor_half_m << " 0.05'/>\n";
   const int proxies = w->collision_shapes_.empty() ? 0 : kProxyCount;
   for (int i = 0; i < proxies; ++i) {
-    x << "<geom name='proxy" << i << "' type='box' group='" << kGroupProxy << "' "
-      << kStaticContact << " friction='0.6 0.005 0.0001' pos='0 0 " << kParkedZ_m
+    x << "<geom name='proxy" << i << "' type='box' group='" << kGroupProxy << "' " << kStaticContact
+      << " friction='0.6 0.005 0.0001' pos='0 0 " << kParkedZ_m
       << "' size='0.01 0.01 0.01' rgba='1 0 1 0.3'/>\n";
   }
   WriteBody(x, robot.chassis, true);
@@ -366,7 +365,8 @@ void World::PlaceRobot(mjData& d, const Pose2D& pose) const {
 Pose2D World::RobotPose(const mjData& d) const {
   const mjtNum* q = d.qpos + robot_qpos_;
   // heading of the body's x axis projected on the floor
-  const double yaw = std::atan2(2 * (q[3] * q[6] + q[4] * q[5]), 1 - 2 * (q[5] * q[5] + q[6] * q[6]));
+  const double yaw =
+      std::atan2(2 * (q[3] * q[6] + q[4] * q[5]), 1 - 2 * (q[5] * q[5] + q[6] * q[6]));
   return {q[0], q[1], yaw};
 }
 
@@ -432,8 +432,8 @@ double World::CastRay(const mjData& d, const double origin[3], const double dire
   int geom = -1;
   double best = mj_ray(model_.get(), &d, origin, direction, world_only, 1, -1, &geom);
   if (!scenery_.empty()) {
-    const double wall = mj_ray(scenery_model_.get(), scenery_data_.get(), origin, direction,
-                               nullptr, 1, -1, &geom);
+    const double wall =
+        mj_ray(scenery_model_.get(), scenery_data_.get(), origin, direction, nullptr, 1, -1, &geom);
     if (wall >= 0 && (best < 0 || wall < best)) best = wall;
   }
   return best >= 0 && best <= max_m ? best : -1;

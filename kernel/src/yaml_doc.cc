@@ -4,8 +4,8 @@
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
-#include <charconv>
 #include <cctype>
+#include <charconv>
 #include <cmath>
 
 #include "text_file.h"
@@ -144,8 +144,8 @@ std::string NearestWord(std::string_view word, const std::vector<std::string>& c
   size_t best_distance = std::max<size_t>(2, word.size() / 3) + 1;
   for (const auto& c : candidates) {
     // a name without its unit suffix ("torque" for "torque_nm") is the likeliest slip
-    const bool missing_unit = c.size() > word.size() + 1 && c.compare(0, word.size(), word) == 0 &&
-                              c[word.size()] == '_';
+    const bool missing_unit =
+        c.size() > word.size() + 1 && c.compare(0, word.size(), word) == 0 && c[word.size()] == '_';
     const size_t d = missing_unit ? 1 : EditDistance(word, c);
     if (d < best_distance) {
       best_distance = d;

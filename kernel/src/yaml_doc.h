@@ -30,8 +30,8 @@ class YamlNode {
 
   Kind kind = Kind::kNull;
   std::string scalar;
-  std::vector<YamlNode> items;                          ///< sequence items
-  std::vector<std::pair<YamlNode, YamlNode>> entries;   ///< map keys and values, in file order
+  std::vector<YamlNode> items;                         ///< sequence items
+  std::vector<std::pair<YamlNode, YamlNode>> entries;  ///< map keys and values, in file order
   SourceLocation location;
 
   /// Throws InputError "file:line:col: reason".

@@ -30,9 +30,18 @@ static const unimouse_param kParams[] = {
     {"speed_m_per_s", UNIMOUSE_PARAM_NUMBER, 0, 1.5, NULL, 0, 10, 0, NULL, "how fast"},
 };
 
-static const unimouse_component_type kType = {
-    sizeof(unimouse_component_type), "fake.widget", "a widget from a C plugin", 1, kParams, 0.01,
-    Create, Bind, NULL, NULL, NULL, Destroy};
+static const unimouse_component_type kType = {sizeof(unimouse_component_type),
+                                              "fake.widget",
+                                              "a widget from a C plugin",
+                                              1,
+                                              kParams,
+                                              0.01,
+                                              Create,
+                                              Bind,
+                                              NULL,
+                                              NULL,
+                                              NULL,
+                                              Destroy};
 
 static const unimouse_component_type* const kTypes[] = {&kType};
 
@@ -46,9 +55,12 @@ static const unimouse_component_type* const kTypes[] = {&kType};
 #define FAKE_MUJOCO_VERSION mjVERSION_HEADER
 #endif
 
-static const unimouse_plugin_info kInfo = {FAKE_ABI_VERSION,  FAKE_INFO_SIZE,
+static const unimouse_plugin_info kInfo = {FAKE_ABI_VERSION,
+                                           FAKE_INFO_SIZE,
                                            sizeof(unimouse_component_type),
-                                           FAKE_MUJOCO_VERSION, 1, kTypes};
+                                           FAKE_MUJOCO_VERSION,
+                                           1,
+                                           kTypes};
 
 #ifdef FAKE_NO_SYMBOL
 UNIMOUSE_EXPORT const unimouse_plugin_info* some_other_symbol(void) { return &kInfo; }

@@ -36,7 +36,8 @@ class CliTest : public ::testing::Test {
  protected:
   void SetUp() override {
     dir_ = fs::temp_directory_path() /
-           ("unimouse_cli_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+           ("unimouse_cli_" +
+            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
     fs::remove_all(dir_);
     fs::create_directories(dir_);
   }
@@ -117,13 +118,15 @@ TEST_F(CliTest, PluginsListsTypesFromThePluginPath) {
 }
 
 TEST_F(CliTest, PluginPathFromTheEnvironmentIsSearchedToo) {
-  const Outcome o = Unimouse("plugins", "UNIMOUSE_PLUGIN_PATH=" + std::string(FAKE_PLUGIN_DIR) + "/good ");
+  const Outcome o =
+      Unimouse("plugins", "UNIMOUSE_PLUGIN_PATH=" + std::string(FAKE_PLUGIN_DIR) + "/good ");
   EXPECT_EQ(o.exit_code, 0) << o.output;
   EXPECT_NE(o.output.find("fake.widget"), std::string::npos) << o.output;
 }
 
 TEST_F(CliTest, ABadPluginIsRefusedInOneSentence) {
-  const Outcome o = Unimouse("--plugin-path " + std::string(FAKE_PLUGIN_DIR) + "/wrong_abi plugins");
+  const Outcome o =
+      Unimouse("--plugin-path " + std::string(FAKE_PLUGIN_DIR) + "/wrong_abi plugins");
   EXPECT_EQ(o.exit_code, 2);
   EXPECT_NE(o.output.find("was built for plugin ABI version 2"), std::string::npos) << o.output;
   EXPECT_EQ(std::count(o.output.begin(), o.output.end(), '\n'), 1) << o.output;

@@ -53,7 +53,8 @@ TEST_F(ComponentConfigTest, AcceptsValidParametersAndFillsDefaults) {
 }
 
 TEST_F(ComponentConfigTest, UnknownParameterSuggestsTheNearestDeclaredOne) {
-  const std::string e = ErrorOf("  - { type: test.probe, name: p, params: { tag: x, torque: 1 } }\n");
+  const std::string e =
+      ErrorOf("  - { type: test.probe, name: p, params: { tag: x, torque: 1 } }\n");
   EXPECT_EQ(e, At("torque") +
                    "component 'p' (test.probe): unknown parameter 'torque' (did you mean "
                    "'torque_nm'?)");
@@ -61,11 +62,13 @@ TEST_F(ComponentConfigTest, UnknownParameterSuggestsTheNearestDeclaredOne) {
 
 TEST_F(ComponentConfigTest, MissingRequiredParameterIsNamedWithItsMeaning) {
   std::string e = ErrorOf("  - { type: test.probe, name: p, params: { count: 2 } }\n");
-  EXPECT_EQ(e, At("{ count") + "component 'p' (test.probe): missing parameter 'tag' (name "
-                               "written into the event log)");
+  EXPECT_EQ(e, At("{ count") +
+                   "component 'p' (test.probe): missing parameter 'tag' (name "
+                   "written into the event log)");
   e = ErrorOf("  - { type: test.probe, name: p }\n");
-  EXPECT_EQ(e, At("{ type") + "component 'p' (test.probe): missing parameter 'tag' (name "
-                              "written into the event log)");
+  EXPECT_EQ(e, At("{ type") +
+                   "component 'p' (test.probe): missing parameter 'tag' (name "
+                   "written into the event log)");
 }
 
 TEST_F(ComponentConfigTest, WrongKindsOfValueAreRefused) {
@@ -80,7 +83,8 @@ TEST_F(ComponentConfigTest, WrongKindsOfValueAreRefused) {
 }
 
 TEST_F(ComponentConfigTest, NonFiniteAndOutOfRangeValuesAreRefused) {
-  std::string e = ErrorOf("  - { type: test.probe, name: p, params: { tag: x, torque_nm: .nan } }\n");
+  std::string e =
+      ErrorOf("  - { type: test.probe, name: p, params: { tag: x, torque_nm: .nan } }\n");
   EXPECT_EQ(e, At(".nan") + "component 'p' (test.probe): torque_nm must be finite, not '.nan'");
   e = ErrorOf("  - { type: test.probe, name: p, params: { tag: x, count: 11 } }\n");
   EXPECT_EQ(e, At("11") + "component 'p' (test.probe): count must be within [1, 10], not 11");
@@ -90,15 +94,17 @@ TEST_F(ComponentConfigTest, NonFiniteAndOutOfRangeValuesAreRefused) {
 
 TEST_F(ComponentConfigTest, UnknownTypeSuggestsAKnownOne) {
   const std::string e = ErrorOf("  - { type: test.prob, name: p }\n");
-  EXPECT_EQ(e, At("{ type") + "component 'p': unknown type 'test.prob' (did you mean "
-                              "'test.probe'?); `unimouse plugins` lists the types found");
+  EXPECT_EQ(e, At("{ type") +
+                   "component 'p': unknown type 'test.prob' (did you mean "
+                   "'test.probe'?); `unimouse plugins` lists the types found");
 }
 
 TEST_F(ComponentConfigTest, SignalsNeedExactlyOneWriter) {
   std::string e = ErrorOf("  - { type: test.relay, name: r, params: { read: speed } }\n");
   EXPECT_EQ(e, At("{ type") + "component 'r' reads signal 'speed', which no component writes");
-  e = ErrorOf("  - { type: test.relay, name: a, params: { write: speed } }\n"
-              "  - { type: test.relay, name: b, params: { write: speed } }\n");
+  e = ErrorOf(
+      "  - { type: test.relay, name: a, params: { write: speed } }\n"
+      "  - { type: test.relay, name: b, params: { write: speed } }\n");
   EXPECT_EQ(e, "robot.yaml:" + std::to_string(line_ + 1) +
                    ":5: component 'b' (test.relay): signal 'speed' is already written by "
                    "component 'a'; a signal has one writer");

@@ -1,11 +1,12 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // The text maze format: walls where the characters are, start and goals, precise errors.
+#include "maze.h"
+
 #include <gtest/gtest.h>
 
 #include <filesystem>
 
 #include "inline_assets.h"
-#include "maze.h"
 #include "unimouse/errors.h"
 
 namespace unimouse {
@@ -102,7 +103,8 @@ TEST(MazeTextTest, ReadsTheDissertationsMazes) {
 
 TEST(MazeTextTest, ReadsEveryMazeOfTheContestCollection) {
   const std::string dir = testing::SharedMazesDir();
-  if (dir.empty()) GTEST_SKIP() << "the maze collection (../shared/mazes) is not beside the project";
+  if (dir.empty())
+    GTEST_SKIP() << "the maze collection (../shared/mazes) is not beside the project";
   int count = 0;
   for (const auto& entry : std::filesystem::recursive_directory_iterator(dir)) {
     if (entry.path().extension() != ".txt") continue;

@@ -1,11 +1,12 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // The loader accepts a matching plugin library and refuses each kind of mismatch with one
 // sentence naming the library.
+#include "plugin_registry.h"
+
 #include <gtest/gtest.h>
 
 #include <string>
 
-#include "plugin_registry.h"
 #include "probe_components.h"
 #include "unimouse/errors.h"
 

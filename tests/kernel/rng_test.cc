@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
+#include "rng.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
-
-#include "rng.h"
 
 namespace unimouse {
 namespace {

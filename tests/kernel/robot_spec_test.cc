@@ -1,11 +1,12 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Robot files are read strictly; every class of mistake names its file:line:col.
+#include "robot_spec.h"
+
 #include <gtest/gtest.h>
 
 #include <string>
 
 #include "inline_assets.h"
-#include "robot_spec.h"
 #include "unimouse/errors.h"
 
 namespace unimouse {
@@ -79,14 +80,14 @@ TEST(RobotSpecTest, WrongTypePointsAtTheValue) {
 TEST(RobotSpecTest, NonFiniteNumbersAreRefused) {
   EXPECT_EQ(ErrorOf(TinyWith("0.1 }", ".inf }")),
             "robot.yaml:5:48: mass_kg must be finite, not '.inf'");
-  EXPECT_EQ(ErrorOf(TinyWith("0.02", "nan")), "robot.yaml:5:33: radius_m must be finite, not 'nan'");
+  EXPECT_EQ(ErrorOf(TinyWith("0.02", "nan")),
+            "robot.yaml:5:33: radius_m must be finite, not 'nan'");
 }
 
 TEST(RobotSpecTest, OutOfRangeValuesAreRefused) {
   EXPECT_EQ(ErrorOf(std::string(kTiny) + "timestep_s: 0.5\n"),
             "robot.yaml:6:13: timestep_s must be within (0, 0.01]");
-  EXPECT_EQ(ErrorOf(TinyWith("0.02", "-0.02")),
-            "robot.yaml:5:33: radius_m must be greater than 0");
+  EXPECT_EQ(ErrorOf(TinyWith("0.02", "-0.02")), "robot.yaml:5:33: radius_m must be greater than 0");
   EXPECT_EQ(ErrorOf(std::string(kTiny) + "integrator: RK4\n"),
             "robot.yaml:6:13: integrator must be Euler or implicit, not 'RK4'");
 }
@@ -119,7 +120,8 @@ TEST(RobotSpecTest, ActuatorsMustNameAJoint) {
 
 TEST(RobotSpecTest, ComponentsKeepTheirParametersForLaterValidation) {
   const RobotSpec robot = ParseRobotSpec(
-      std::string(kTiny) + "components:\n  - { type: x.y, name: c, period_s: 0.03, params: { a: 1 } }\n",
+      std::string(kTiny) +
+          "components:\n  - { type: x.y, name: c, period_s: 0.03, params: { a: 1 } }\n",
       "robot.yaml");
   ASSERT_EQ(robot.components.size(), 1u);
   EXPECT_EQ(robot.components[0].type, "x.y");

@@ -146,7 +146,8 @@ TEST_F(WorldTest, CollisionProxiesFollowTheRobot) {
   const int first = mj_name2id(&m, mjOBJ_GEOM, "proxy0");
   auto active = [&] {
     int n = 0;
-    for (int i = 0; i < kernel_->world().proxy_count(); ++i) n += m.geom_pos[3 * (first + i) + 2] > 0;
+    for (int i = 0; i < kernel_->world().proxy_count(); ++i)
+      n += m.geom_pos[3 * (first + i) + 2] > 0;
     return n;
   };
   // in the start cell: the west and south runs are within reach, the open east and north not

@@ -23,7 +23,8 @@ RobotYaml BundledRobotWith(const std::string& components) {
   const std::string marker = "components: []";
   const size_t at = text.find(marker);
   RobotYaml out;
-  out.first_component_line = static_cast<int>(std::count(text.begin(), text.begin() + at, '\n')) + 2;
+  out.first_component_line =
+      static_cast<int>(std::count(text.begin(), text.begin() + at, '\n')) + 2;
   out.text = text.substr(0, at) + "components:\n" + components + text.substr(at + marker.size());
   return out;
 }

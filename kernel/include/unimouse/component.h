@@ -50,9 +50,7 @@ class BindContext {
   const mjModel& model() const { return *b_.model; }
   double timestep_s() const { return b_.timestep_s; }
   int JointId(const std::string& name) const { return Check(b_.joint(b_.ctx, name.c_str())); }
-  int ActuatorId(const std::string& name) const {
-    return Check(b_.actuator(b_.ctx, name.c_str()));
-  }
+  int ActuatorId(const std::string& name) const { return Check(b_.actuator(b_.ctx, name.c_str())); }
   int SiteId(const std::string& name) const { return Check(b_.site(b_.ctx, name.c_str())); }
   int BodyId(const std::string& name) const { return Check(b_.body(b_.ctx, name.c_str())); }
   SignalId ReadSignal(const std::string& name) const {
@@ -223,12 +221,9 @@ const unimouse_component_type* ComponentType() {
 template <class... T>
 const unimouse_plugin_info* PluginInfo() {
   static const unimouse_component_type* const types[] = {ComponentType<T>()...};
-  static const unimouse_plugin_info info = {UNIMOUSE_ABI_VERSION,
-                                            sizeof(unimouse_plugin_info),
-                                            sizeof(unimouse_component_type),
-                                            mjVERSION_HEADER,
-                                            static_cast<int>(sizeof...(T)),
-                                            types};
+  static const unimouse_plugin_info info = {
+      UNIMOUSE_ABI_VERSION, sizeof(unimouse_plugin_info),   sizeof(unimouse_component_type),
+      mjVERSION_HEADER,     static_cast<int>(sizeof...(T)), types};
   return &info;
 }
 

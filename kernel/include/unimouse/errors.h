@@ -41,19 +41,19 @@ class RuntimeFault : public std::runtime_error {
 }  // namespace unimouse
 
 /// Throws InputError(message) unless cond holds.
-#define UNIMOUSE_THROW_UNLESS(cond, message)  \
-  do {                                        \
-    if (!(cond)) {                            \
-      throw ::unimouse::InputError(message);  \
-    }                                         \
+#define UNIMOUSE_THROW_UNLESS(cond, message) \
+  do {                                       \
+    if (!(cond)) {                           \
+      throw ::unimouse::InputError(message); \
+    }                                        \
   } while (0)
 
 /// Aborts with file:line unless cond holds; for our own invariants, never for user input.
-#define UNIMOUSE_DEMAND(cond)                                             \
-  do {                                                                    \
-    if (!(cond)) {                                                        \
-      ::unimouse::AbortBrokenInvariant(#cond, __FILE__, __LINE__);        \
-    }                                                                     \
+#define UNIMOUSE_DEMAND(cond)                                      \
+  do {                                                             \
+    if (!(cond)) {                                                 \
+      ::unimouse::AbortBrokenInvariant(#cond, __FILE__, __LINE__); \
+    }                                                              \
   } while (0)
 
 #endif  // UNIMOUSE_ERRORS_H_

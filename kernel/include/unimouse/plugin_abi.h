@@ -78,11 +78,11 @@ typedef struct unimouse_tick {
   void* ctx;
   const mjModel* model;
   mjData* data;
-  double* state;   /* this component's slice */
-  int nstate;      /* doubles in state */
-  double* signals; /* every signal, indexed by the ids from bind */
-  int64_t step;    /* physics steps taken before this tick */
-  double time_s;   /* simulated time at the start of this tick */
+  double* state;                                /* this component's slice */
+  int nstate;                                   /* doubles in state */
+  double* signals;                              /* every signal, indexed by the ids from bind */
+  int64_t step;                                 /* physics steps taken before this tick */
+  double time_s;                                /* simulated time at the start of this tick */
   double (*rng_uniform)(void* ctx, int stream); /* [0, 1) */
   double (*rng_normal)(void* ctx, int stream);  /* standard normal */
   /* distance along a unit direction to the first wall, obstacle or floor within max_m that is not

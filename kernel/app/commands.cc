@@ -99,10 +99,10 @@ int CheckCommand(const std::string& robot_name, const std::string& plugin_path) 
   const RobotSpec robot = LoadRobotSpec(robot_file);
   const PluginRegistry registry = LoadRegistry(plugin_path);
   const std::unique_ptr<Kernel> kernel = Kernel::Create(robot, nullptr, registry, 1);
-  const mjModel& m = kernel->model();
+  const mjModel& m = kernel->mj_model();
   std::printf("%s: ok: robot '%s', %d bodies, %d joints, %d actuators, %zu components\n",
               robot_file.c_str(), robot.name.c_str(), m.nbody - 1, m.njnt, m.nu,
-              kernel->components().size());
+              kernel->model().components.size());
   return kExitPassed;
 }
 

@@ -8,6 +8,7 @@
 #include <mutex>
 #include <sstream>
 
+#include "component_config.h"
 #include "unimouse/errors.h"
 
 namespace unimouse {
@@ -46,7 +47,7 @@ struct Kernel::BindSession {
   std::string error;
 
   int Lookup(mjtObj type, const char* kind, const char* name, int count) {
-    const mjModel& m = kernel->model();
+    const mjModel& m = kernel->mj_model();
     const int id = mj_name2id(&m, type, name);
     if (id < 0 && error.empty()) {
       error = prefix + "no " + kind + " named '" + name +
@@ -57,10 +58,10 @@ struct Kernel::BindSession {
 
   int Signal(const char* name, bool write) {
     Kernel& k = *kernel;
-    int id = k.FindSignal(name);
+    int id = k.model_.FindSignal(name);
     if (id < 0) {
-      id = static_cast<int>(k.signal_names_.size());
-      k.signal_names_.emplace_back(name);
+      id = static_cast<int>(k.model_.signal_names.size());
+      k.model_.signal_names.emplace_back(name);
       k.signal_writer_.push_back(-1);
       k.signal_first_reader_.push_back(-1);
     }
@@ -69,7 +70,7 @@ struct Kernel::BindSession {
       if (writer >= 0) {
         if (error.empty()) {
           error = prefix + "signal '" + name + "' is already written by component '" +
-                  k.components_[writer].name + "'; a signal has one writer";
+                  k.model_.components[writer].name + "'; a signal has one writer";
         }
         return -1;
       }
@@ -82,36 +83,23 @@ struct Kernel::BindSession {
 
   int Rng(const char* name) {
     Kernel& k = *kernel;
-    for (const auto& existing : k.rng_names_) {
+    for (const auto& existing : k.model_.rng_names) {
       if (existing == name) {
         if (error.empty()) error = prefix + "random stream '" + name + "' is already in use";
         return -1;
       }
     }
-    k.rng_names_.emplace_back(name);
-    return static_cast<int>(k.rng_names_.size()) - 1;
+    k.model_.rng_names.emplace_back(name);
+    return static_cast<int>(k.model_.rng_names.size()) - 1;
   }
 };
-
-Kernel::~Kernel() {
-  for (auto& c : components_) {
-    if (c.self != nullptr) c.type->destroy(c.self);
-  }
-}
-
-int Kernel::FindSignal(const std::string& name) const {
-  for (size_t i = 0; i < signal_names_.size(); ++i) {
-    if (signal_names_[i] == name) return static_cast<int>(i);
-  }
-  return -1;
-}
 
 std::unique_ptr<Kernel> Kernel::Create(const RobotSpec& robot, const Maze* maze,
                                        const PluginRegistry& registry, uint64_t seed,
                                        std::optional<Pose2D> spawn) {
   InstallMujocoHandlers();
   std::unique_ptr<Kernel> k(new Kernel(seed));
-  k->world_ = World::Build(robot, maze, spawn);
+  k->model_.world = World::Build(robot, maze, spawn);
 
   // create every component from validated parameters
   std::vector<std::string> known;
@@ -141,58 +129,59 @@ std::unique_ptr<Kernel> Kernel::Create(const RobotSpec& robot, const Maze* maze,
       const double steps = period_s / k->timestep_s();
       c.every_n_steps = static_cast<int>(std::lround(steps));
       if (c.every_n_steps < 1 || std::fabs(steps - c.every_n_steps) > 1e-6 * steps) {
-        k->components_.push_back(c);  // destroyed with the kernel
+        k->model_.components.push_back(c);  // destroyed with the model
         std::ostringstream why;
         why << spec.location.ToString() << ": component '" << spec.name << "': period_s "
             << period_s << " is not a whole number of " << k->timestep_s() << " s physics steps";
         throw InputError(why.str());
       }
     }
-    k->components_.push_back(c);
+    k->model_.components.push_back(c);
   }
 
-  for (size_t i = 0; i < k->components_.size(); ++i) k->BindComponent(static_cast<int>(i));
+  for (size_t i = 0; i < k->model_.components.size(); ++i) k->BindComponent(static_cast<int>(i));
 
   // every signal read must have a writer
-  for (size_t s = 0; s < k->signal_names_.size(); ++s) {
+  for (size_t s = 0; s < k->model_.signal_names.size(); ++s) {
     if (k->signal_writer_[s] < 0) {
-      const ComponentInstance& reader = k->components_[k->signal_first_reader_[s]];
+      const ComponentInstance& reader = k->model_.components[k->signal_first_reader_[s]];
       throw InputError(reader.location.ToString() + ": component '" + reader.name +
-                       "' reads signal '" + k->signal_names_[s] + "', which no component writes");
+                       "' reads signal '" + k->model_.signal_names[s] +
+                       "', which no component writes");
     }
   }
 
-  k->state_ = std::make_unique<State>(k->model(), k->component_state_size_,
-                                      static_cast<int>(k->signal_names_.size()));
+  k->state_ = std::make_unique<State>(k->mj_model(), k->model_.component_state_size,
+                                      static_cast<int>(k->model_.signal_names.size()));
   k->Reset();
   return k;
 }
 
 void Kernel::BindComponent(int index) {
-  ComponentInstance& c = components_[index];
+  ComponentInstance& c = model_.components[index];
   BindSession session{
       this, index,
       c.location.ToString() + ": component '" + c.name + "' (" + c.type->name + "): ", ""};
   unimouse_bind b{};
   b.size = sizeof(b);
   b.ctx = &session;
-  b.model = &model();
+  b.model = &mj_model();
   b.timestep_s = timestep_s();
   b.joint = [](void* ctx, const char* name) {
     auto* s = static_cast<BindSession*>(ctx);
-    return s->Lookup(mjOBJ_JOINT, "joint", name, s->kernel->model().njnt);
+    return s->Lookup(mjOBJ_JOINT, "joint", name, s->kernel->mj_model().njnt);
   };
   b.actuator = [](void* ctx, const char* name) {
     auto* s = static_cast<BindSession*>(ctx);
-    return s->Lookup(mjOBJ_ACTUATOR, "actuator", name, s->kernel->model().nu);
+    return s->Lookup(mjOBJ_ACTUATOR, "actuator", name, s->kernel->mj_model().nu);
   };
   b.site = [](void* ctx, const char* name) {
     auto* s = static_cast<BindSession*>(ctx);
-    return s->Lookup(mjOBJ_SITE, "site", name, s->kernel->model().nsite);
+    return s->Lookup(mjOBJ_SITE, "site", name, s->kernel->mj_model().nsite);
   };
   b.body = [](void* ctx, const char* name) {
     auto* s = static_cast<BindSession*>(ctx);
-    return s->Lookup(mjOBJ_BODY, "body", name, s->kernel->model().nbody);
+    return s->Lookup(mjOBJ_BODY, "body", name, s->kernel->mj_model().nbody);
   };
   b.signal_read = [](void* ctx, const char* name) {
     return static_cast<BindSession*>(ctx)->Signal(name, false);
@@ -205,22 +194,22 @@ void Kernel::BindComponent(int index) {
   };
   b.set_state_size = [](void* ctx, int nstate) {
     auto* s = static_cast<BindSession*>(ctx);
-    s->kernel->components_[s->component].nstate = nstate < 0 ? 0 : nstate;
+    s->kernel->model_.components[s->component].nstate = nstate < 0 ? 0 : nstate;
   };
 
   char error[512] = "";
   const int failed = c.type->bind(c.self, &b, error, sizeof(error));
   if (!session.error.empty()) throw InputError(session.error);
   if (failed) throw InputError(session.prefix + error);
-  c.state_offset = component_state_size_;
-  component_state_size_ += c.nstate;
+  c.state_offset = model_.component_state_size;
+  model_.component_state_size += c.nstate;
 }
 
 unimouse_tick Kernel::MakeTick(HookContext& hook, const ComponentInstance& c) {
   unimouse_tick t{};
   t.size = sizeof(t);
   t.ctx = &hook;
-  t.model = &model();
+  t.model = &mj_model();
   t.data = &state_->data();
   t.state = state_->component_state().data() + c.state_offset;
   t.nstate = c.nstate;
@@ -235,11 +224,11 @@ unimouse_tick Kernel::MakeTick(HookContext& hook, const ComponentInstance& c) {
   };
   t.ray_cast = [](void* ctx, const double origin[3], const double direction[3], double max_m) {
     Kernel& k = *static_cast<HookContext*>(ctx)->kernel;
-    return k.world_->CastRay(k.state_->data(), origin, direction, max_m);
+    return k.model_.world->CastRay(k.state_->data(), origin, direction, max_m);
   };
   t.log = [](void* ctx, int level, const char* message) {
     auto* h = static_cast<HookContext*>(ctx);
-    h->kernel->Emit(level, h->kernel->components_[h->component].name, message);
+    h->kernel->Emit(level, h->kernel->model_.components[h->component].name, message);
   };
   return t;
 }
@@ -267,21 +256,21 @@ void Kernel::ThrowIfFaulted() {
 }
 
 void Kernel::Reset() {
-  const mjModel& m = model();
+  const mjModel& m = mj_model();
   mjData& d = state_->data();
   mj_resetData(&m, &d);
-  world_->PlaceRobot(d, world_->spawn());
-  world_->UpdateCollisionProxies(d);
+  model_.world->PlaceRobot(d, model_.world->spawn());
+  model_.world->UpdateCollisionProxies(d);
   mj_forward(&m, &d);
 
   std::fill(state_->component_state().begin(), state_->component_state().end(), 0.0);
   std::fill(state_->signals().begin(), state_->signals().end(), 0.0);
   state_->rngs().clear();
-  for (const auto& name : rng_names_) state_->rngs().emplace_back(seed_, name);
+  for (const auto& name : model_.rng_names) state_->rngs().emplace_back(seed_, name);
   state_->set_step(0);
 
-  for (size_t i = 0; i < components_.size(); ++i) {
-    const ComponentInstance& c = components_[i];
+  for (size_t i = 0; i < model_.components.size(); ++i) {
+    const ComponentInstance& c = model_.components[i];
     if (c.type->reset == nullptr) continue;
     HookContext hook{this, static_cast<int>(i)};
     const unimouse_tick t = MakeTick(hook, c);
@@ -291,24 +280,24 @@ void Kernel::Reset() {
 }
 
 void Kernel::Step() {
-  const mjModel& m = model();
+  const mjModel& m = mj_model();
   mjData& d = state_->data();
   const int64_t step = state_->step();
 
   if (boundary_hook_) boundary_hook_();
-  world_->UpdateCollisionProxies(d);
+  model_.world->UpdateCollisionProxies(d);
   mj_step1(&m, &d);
 
-  for (size_t i = 0; i < components_.size(); ++i) {
-    const ComponentInstance& c = components_[i];
+  for (size_t i = 0; i < model_.components.size(); ++i) {
+    const ComponentInstance& c = model_.components[i];
     if (c.type->sense == nullptr || step % c.every_n_steps != 0) continue;
     HookContext hook{this, static_cast<int>(i)};
     const unimouse_tick t = MakeTick(hook, c);
     c.type->sense(c.self, &t);
   }
   ThrowIfFaulted();
-  for (size_t i = 0; i < components_.size(); ++i) {
-    const ComponentInstance& c = components_[i];
+  for (size_t i = 0; i < model_.components.size(); ++i) {
+    const ComponentInstance& c = model_.components[i];
     if (c.type->actuate == nullptr || step % c.every_n_steps != 0) continue;
     HookContext hook{this, static_cast<int>(i)};
     const unimouse_tick t = MakeTick(hook, c);

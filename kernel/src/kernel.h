@@ -18,24 +18,12 @@
 #include <string>
 #include <vector>
 
-#include "component_config.h"
+#include "model.h"
 #include "plugin_registry.h"
 #include "robot_spec.h"
 #include "state.h"
-#include "world.h"
 
 namespace unimouse {
-
-/// One component of the robot, bound and ready; constant for the run.
-struct ComponentInstance {
-  const unimouse_component_type* type = nullptr;
-  void* self = nullptr;
-  std::string name;
-  SourceLocation location;
-  int every_n_steps = 1;
-  int state_offset = 0;
-  int nstate = 0;
-};
 
 class Kernel {
  public:
@@ -45,7 +33,6 @@ class Kernel {
 
   Kernel(const Kernel&) = delete;
   Kernel& operator=(const Kernel&) = delete;
-  ~Kernel();
 
   /// Builds the world, validates, creates and binds every component, and resets. Throws
   /// InputError with file:line:col.
@@ -62,18 +49,15 @@ class Kernel {
   void SetBoundaryHook(std::function<void()> hook) { boundary_hook_ = std::move(hook); }
   void SetLogSink(LogSink sink) { log_sink_ = std::move(sink); }
 
-  const World& world() const { return *world_; }
-  World& world() { return *world_; }
-  const mjModel& model() const { return world_->model(); }
+  const Model& model() const { return model_; }
+  const mjModel& mj_model() const { return model_.mj(); }
+  const World& world() const { return *model_.world; }
+  /// Writable for placing the robot and moving the collision proxies.
+  World& world() { return *model_.world; }
   State& state() { return *state_; }
   const State& state() const { return *state_; }
-  double timestep_s() const { return world_->model().opt.timestep; }
+  double timestep_s() const { return model_.timestep_s(); }
   uint64_t seed() const { return seed_; }
-
-  const std::vector<ComponentInstance>& components() const { return components_; }
-  const std::vector<std::string>& signal_names() const { return signal_names_; }
-  /// Returns a signal's id, or -1.
-  int FindSignal(const std::string& name) const;
 
  private:
   struct HookContext {
@@ -89,14 +73,11 @@ class Kernel {
   void ThrowIfFaulted();
 
   uint64_t seed_;
-  std::unique_ptr<World> world_;
-  std::vector<ComponentInstance> components_;
-  std::vector<std::string> signal_names_;
+  Model model_;
+  std::unique_ptr<State> state_;
+  // bind-time bookkeeping: which component writes, and first reads, each signal
   std::vector<int> signal_writer_;
   std::vector<int> signal_first_reader_;
-  std::vector<std::string> rng_names_;
-  int component_state_size_ = 0;
-  std::unique_ptr<State> state_;
   std::function<void()> boundary_hook_;
   LogSink log_sink_;
   std::string fault_;

@@ -118,8 +118,8 @@ TEST_F(ComponentConfigTest, SignalsPassFromWriterToReader) {
       "robot.yaml");
   auto kernel = Kernel::Create(robot, nullptr, registry_, 1);
   kernel->Step();
-  EXPECT_EQ(kernel->state().signals()[kernel->FindSignal("one")], 1);
-  EXPECT_EQ(kernel->state().signals()[kernel->FindSignal("two")], 2);
+  EXPECT_EQ(kernel->state().signals()[kernel->model().FindSignal("one")], 1);
+  EXPECT_EQ(kernel->state().signals()[kernel->model().FindSignal("two")], 2);
 }
 
 }  // namespace

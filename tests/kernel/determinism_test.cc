@@ -34,7 +34,7 @@ class DeterminismTest : public ::testing::Test {
     }
     for (int i = 0; i < 3000; ++i) k->Step();
     const mjData& d = k->state().data();
-    return std::vector<mjtNum>(d.qpos, d.qpos + k->model().nq);
+    return std::vector<mjtNum>(d.qpos, d.qpos + k->mj_model().nq);
   }
 
   PluginRegistry registry_;
@@ -69,7 +69,7 @@ TEST_F(DeterminismTest, ResetReplaysTheRunExactly) {
 TEST_F(DeterminismTest, CopiedStateContinuesIdentically) {
   auto kernel = Kernel::Create(robot_, maze_.get(), registry_, 7);
   for (int i = 0; i < 500; ++i) kernel->Step();
-  State saved(kernel->model(), static_cast<int>(kernel->state().component_state().size()),
+  State saved(kernel->mj_model(), static_cast<int>(kernel->state().component_state().size()),
               static_cast<int>(kernel->state().signals().size()));
   saved.CopyFrom(kernel->state());
   for (int i = 0; i < 500; ++i) kernel->Step();

@@ -65,8 +65,8 @@ TEST_F(TickOrderTest, SenseSeesKinematicsOfWhatTheBoundaryHookChanged) {
 
 TEST_F(TickOrderTest, ControlsWrittenInActuateActInTheSameStep) {
   auto kernel = Make("  - { type: test.probe, name: a, params: { tag: a, torque_nm: 0.001 } }\n");
-  const int wheel = mj_name2id(&kernel->model(), mjOBJ_JOINT, "left_wheel");
-  const int dof = kernel->model().jnt_dofadr[wheel];
+  const int wheel = mj_name2id(&kernel->mj_model(), mjOBJ_JOINT, "left_wheel");
+  const int dof = kernel->mj_model().jnt_dofadr[wheel];
   ASSERT_EQ(kernel->state().data().qvel[dof], 0);
   kernel->Step();
   // if mj_step2 ran before Actuate the wheel would still be at rest after one step

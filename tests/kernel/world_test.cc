@@ -74,7 +74,7 @@ class WorldTest : public ::testing::Test {
   }
 
   bool TouchesFloor(const char* body) const {
-    const mjModel& m = kernel_->model();
+    const mjModel& m = kernel_->mj_model();
     const mjData& d = kernel_->state().data();
     const int b = mj_name2id(&m, mjOBJ_BODY, body);
     const int floor = mj_name2id(&m, mjOBJ_GEOM, "floor");
@@ -96,7 +96,7 @@ class WorldTest : public ::testing::Test {
 TEST_F(WorldTest, SceneryHoldsEveryWallAndPostWhilePhysicsHoldsOnlyProxies) {
   EXPECT_EQ(kernel_->world().scenery_model().ngeom, 12 + 13);
   // floor, proxies and the robot's 6 geoms
-  EXPECT_EQ(kernel_->model().ngeom, 1 + kernel_->world().proxy_count() + 6);
+  EXPECT_EQ(kernel_->mj_model().ngeom, 1 + kernel_->world().proxy_count() + 6);
 }
 
 TEST_F(WorldTest, PlacesTheRobotInTheStartCellFacingNorth) {
@@ -142,7 +142,7 @@ TEST_F(WorldTest, RaysSeeTheMazeWallsButNotTheRobot) {
 }
 
 TEST_F(WorldTest, CollisionProxiesFollowTheRobot) {
-  const mjModel& m = kernel_->model();
+  const mjModel& m = kernel_->mj_model();
   const int first = mj_name2id(&m, mjOBJ_GEOM, "proxy0");
   auto active = [&] {
     int n = 0;
@@ -161,8 +161,8 @@ TEST_F(WorldTest, CollisionProxiesFollowTheRobot) {
 TEST_F(WorldTest, RobotCannotDriveThroughAWall) {
   // drive west into the perimeter wall from the start cell
   kernel_->world().PlaceRobot(kernel_->state().data(), {0.09, 0.09, std::numbers::pi});
-  const int left = mj_name2id(&kernel_->model(), mjOBJ_ACTUATOR, "left_motor");
-  const int right = mj_name2id(&kernel_->model(), mjOBJ_ACTUATOR, "right_motor");
+  const int left = mj_name2id(&kernel_->mj_model(), mjOBJ_ACTUATOR, "left_motor");
+  const int right = mj_name2id(&kernel_->mj_model(), mjOBJ_ACTUATOR, "right_motor");
   for (int i = 0; i < 2000; ++i) {
     kernel_->state().data().ctrl[left] = 0.002;
     kernel_->state().data().ctrl[right] = 0.002;

@@ -1,0 +1,26 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
+# Checks the README's promise on a brand-new Debian 12: bootstraps a minimal root, clones this
+# repository into it and runs the two quick-start commands exactly as written. Needs root,
+# mmdebstrap and access to a Debian mirror; takes a few minutes. Not part of the test suite.
+set -euo pipefail
+repo=$(git -C "$(dirname "$0")" rev-parse --show-toplevel)
+root=${1:-/tmp/unimouse-fresh-root}
+
+rm -rf "$root"
+mmdebstrap --variant=minbase --include=git,ca-certificates bookworm "$root"
+git clone -q "$repo" "$root/root/unimouse"
+if [ -d "$repo/../shared/mazes" ]; then
+  mkdir -p "$root/root/shared" && cp -r "$repo/../shared/mazes" "$root/root/shared/"
+fi
+cp /etc/resolv.conf "$root/etc/resolv.conf"
+mount --bind /proc "$root/proc"
+mount --bind /dev "$root/dev"
+trap 'umount "$root/proc" "$root/dev"' EXIT
+
+quick_start=$(sed -n '/^## Quick start/,/^## /p' "$repo/README.md" | grep -E '^(\./setup|ctest)')
+echo "$quick_start"
+while IFS= read -r command; do
+  chroot "$root" /bin/bash -c "cd /root/unimouse && $command"
+done <<< "$quick_start"
+echo "fresh-root check passed"

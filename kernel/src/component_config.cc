@@ -76,6 +76,7 @@ unimouse_config ValidateParams(const unimouse_component_type& type, const Compon
       continue;
     }
     const std::string what = who + p.name;
+    config.given.emplace_back(p.name);
     switch (p.kind) {
       case UNIMOUSE_PARAM_NUMBER: {
         const double v = value->AsNumber(what);
@@ -121,6 +122,12 @@ const unimouse_host& ConfigHost() {
     h.config_string = [](const unimouse_config* cfg, const char* name) -> const char* {
       const auto it = cfg->strings.find(name);
       return it == cfg->strings.end() ? "" : it->second.c_str();
+    };
+    h.config_given = [](const unimouse_config* cfg, const char* name) -> int {
+      for (const auto& g : cfg->given) {
+        if (g == name) return 1;
+      }
+      return 0;
     };
     h.log = [](void*, int, const char* message) { std::cerr << message << "\n"; };
     return h;

@@ -6,6 +6,7 @@
 
 #include <map>
 #include <string>
+#include <vector>
 
 #include "robot_spec.h"
 #include "unimouse/plugin_abi.h"
@@ -14,6 +15,7 @@
 struct unimouse_config {
   std::map<std::string, double> numbers;
   std::map<std::string, std::string> strings;
+  std::vector<std::string> given;  ///< names the robot file set explicitly
 };
 
 namespace unimouse {

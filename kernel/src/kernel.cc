@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "kernel.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -13,6 +14,9 @@
 
 namespace unimouse {
 namespace {
+
+// the writer of an input signal: the world outside the robot
+constexpr int kOutsideWriter = -2;
 
 // MuJoCo would otherwise print to stdout, write MUJOCO_LOG.TXT into the working directory and,
 // on errors, exit(1)
@@ -66,6 +70,7 @@ struct Kernel::BindSession {
       k.signal_first_reader_.push_back(-1);
     }
     if (write) {
+      // a component may take over an input, as a test controller does
       const int writer = k.signal_writer_[id];
       if (writer >= 0) {
         if (error.empty()) {
@@ -95,11 +100,18 @@ struct Kernel::BindSession {
 };
 
 std::unique_ptr<Kernel> Kernel::Create(const RobotSpec& robot, const Maze* maze,
-                                       const PluginRegistry& registry, uint64_t seed,
-                                       std::optional<Pose2D> spawn) {
+                                       const PluginRegistry& registry,
+                                       const KernelOptions& options) {
   InstallMujocoHandlers();
-  std::unique_ptr<Kernel> k(new Kernel(seed));
-  k->model_.world = World::Build(robot, maze, spawn);
+  std::unique_ptr<Kernel> k(new Kernel(options));
+  k->model_.world = World::Build(robot, maze, options.spawn);
+
+  // inputs are written from outside: the firmware link or a scenario
+  for (const auto& input : robot.inputs) {
+    k->model_.signal_names.push_back(input);
+    k->signal_writer_.push_back(kOutsideWriter);
+    k->signal_first_reader_.push_back(-1);
+  }
 
   // create every component from validated parameters
   std::vector<std::string> known;
@@ -143,7 +155,7 @@ std::unique_ptr<Kernel> Kernel::Create(const RobotSpec& robot, const Maze* maze,
 
   // every signal read must have a writer
   for (size_t s = 0; s < k->model_.signal_names.size(); ++s) {
-    if (k->signal_writer_[s] < 0) {
+    if (k->signal_writer_[s] == -1) {
       const ComponentInstance& reader = k->model_.components[k->signal_first_reader_[s]];
       throw InputError(reader.location.ToString() + ": component '" + reader.name +
                        "' reads signal '" + k->model_.signal_names[s] +
@@ -153,6 +165,7 @@ std::unique_ptr<Kernel> Kernel::Create(const RobotSpec& robot, const Maze* maze,
 
   k->state_ = std::make_unique<State>(k->mj_model(), k->model_.component_state_size,
                                       static_cast<int>(k->model_.signal_names.size()));
+  k->message_cursor_.assign(k->model_.components.size(), 0);
   k->Reset();
   return k;
 }
@@ -167,6 +180,8 @@ void Kernel::BindComponent(int index) {
   b.ctx = &session;
   b.model = &mj_model();
   b.timestep_s = timestep_s();
+  b.component_name = c.name.c_str();
+  b.output_dir = options_.output_dir.c_str();
   b.joint = [](void* ctx, const char* name) {
     auto* s = static_cast<BindSession*>(ctx);
     return s->Lookup(mjOBJ_JOINT, "joint", name, s->kernel->mj_model().njnt);
@@ -205,10 +220,21 @@ void Kernel::BindComponent(int index) {
   model_.component_state_size += c.nstate;
 }
 
-unimouse_tick Kernel::MakeTick(HookContext& hook, const ComponentInstance& c) {
+void Kernel::RunHook(int index, void (*hook)(const void*, const unimouse_tick*)) {
+  const ComponentInstance& c = model_.components[index];
+
+  // messages logged since the component last ran; the views cover every stored message
+  for (size_t i = message_views_.size(); i < messages_.size(); ++i) {
+    const StoredMessage& m = messages_[i];
+    message_views_.push_back({m.time_s, m.level, m.source.c_str(), m.text.c_str()});
+  }
+  const size_t seen = message_cursor_[index];
+  message_cursor_[index] = message_views_.size();
+
+  HookContext context{this, index};
   unimouse_tick t{};
   t.size = sizeof(t);
-  t.ctx = &hook;
+  t.ctx = &context;
   t.model = &mj_model();
   t.data = &state_->data();
   t.state = state_->component_state().data() + c.state_offset;
@@ -230,10 +256,14 @@ unimouse_tick Kernel::MakeTick(HookContext& hook, const ComponentInstance& c) {
     auto* h = static_cast<HookContext*>(ctx);
     h->kernel->Emit(level, h->kernel->model_.components[h->component].name, message);
   };
-  return t;
+  t.messages = message_views_.data() + seen;
+  t.nmessages = static_cast<int>(message_views_.size() - seen);
+  hook(c.self, &t);
 }
 
 void Kernel::Emit(int level, const std::string& component, const std::string& message) {
+  // stored only: views are added between hooks, so a hook's view array never moves under it
+  messages_.push_back({state_->data().time, level, component, message});
   if (level >= UNIMOUSE_LOG_ERROR && fault_.empty()) {
     std::ostringstream out;
     out << "component '" << component << "' failed at t=" << state_->data().time
@@ -245,6 +275,22 @@ void Kernel::Emit(int level, const std::string& component, const std::string& me
   } else if (level > UNIMOUSE_LOG_INFO) {
     std::cerr << component << ": " << message << "\n";
   }
+}
+
+void Kernel::ForgetSeenMessages() {
+  size_t seen_by_all = message_views_.size();
+  for (size_t i = 0; i < model_.components.size(); ++i) {
+    const ComponentInstance& c = model_.components[i];
+    if (c.type->sense != nullptr || c.type->actuate != nullptr) {
+      seen_by_all = std::min(seen_by_all, message_cursor_[i]);
+    }
+  }
+  // erasing at the front of a deque leaves the other elements, and the views into them, in place
+  if (seen_by_all < 1024) return;
+  messages_.erase(messages_.begin(), messages_.begin() + static_cast<long>(seen_by_all));
+  message_views_.erase(message_views_.begin(),
+                       message_views_.begin() + static_cast<long>(seen_by_all));
+  for (auto& cursor : message_cursor_) cursor = cursor > seen_by_all ? cursor - seen_by_all : 0;
 }
 
 void Kernel::ThrowIfFaulted() {
@@ -269,12 +315,12 @@ void Kernel::Reset() {
   for (const auto& name : model_.rng_names) state_->rngs().emplace_back(seed_, name);
   state_->set_step(0);
 
+  messages_.clear();
+  message_views_.clear();
+  std::fill(message_cursor_.begin(), message_cursor_.end(), 0);
   for (size_t i = 0; i < model_.components.size(); ++i) {
     const ComponentInstance& c = model_.components[i];
-    if (c.type->reset == nullptr) continue;
-    HookContext hook{this, static_cast<int>(i)};
-    const unimouse_tick t = MakeTick(hook, c);
-    c.type->reset(c.self, &t);
+    if (c.type->reset != nullptr) RunHook(static_cast<int>(i), c.type->reset);
   }
   ThrowIfFaulted();
 }
@@ -290,23 +336,22 @@ void Kernel::Step() {
 
   for (size_t i = 0; i < model_.components.size(); ++i) {
     const ComponentInstance& c = model_.components[i];
-    if (c.type->sense == nullptr || step % c.every_n_steps != 0) continue;
-    HookContext hook{this, static_cast<int>(i)};
-    const unimouse_tick t = MakeTick(hook, c);
-    c.type->sense(c.self, &t);
+    if (c.type->sense != nullptr && step % c.every_n_steps == 0) {
+      RunHook(static_cast<int>(i), c.type->sense);
+    }
   }
   ThrowIfFaulted();
   for (size_t i = 0; i < model_.components.size(); ++i) {
     const ComponentInstance& c = model_.components[i];
-    if (c.type->actuate == nullptr || step % c.every_n_steps != 0) continue;
-    HookContext hook{this, static_cast<int>(i)};
-    const unimouse_tick t = MakeTick(hook, c);
-    c.type->actuate(c.self, &t);
+    if (c.type->actuate != nullptr && step % c.every_n_steps == 0) {
+      RunHook(static_cast<int>(i), c.type->actuate);
+    }
   }
   ThrowIfFaulted();
 
   mj_step2(&m, &d);
   state_->set_step(step + 1);
+  ForgetSeenMessages();
 
   // MuJoCo resets a diverged simulation silently apart from this warning
   for (int w : {mjWARN_BADQACC, mjWARN_BADQVEL, mjWARN_BADQPOS}) {

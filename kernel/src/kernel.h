@@ -12,6 +12,7 @@
 #define UNIMOUSE_KERNEL_KERNEL_H_
 
 #include <cstdint>
+#include <deque>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -25,6 +26,13 @@
 
 namespace unimouse {
 
+/// Choices made per run rather than per robot.
+struct KernelOptions {
+  uint64_t seed = 1;
+  std::string output_dir = ".";       ///< where components write their files
+  std::optional<Pose2D> spawn;        ///< default: the maze's start, or the origin facing north
+};
+
 class Kernel {
  public:
   /// Receives every log line: level (UNIMOUSE_LOG_*), the component's name and the message.
@@ -37,8 +45,13 @@ class Kernel {
   /// Builds the world, validates, creates and binds every component, and resets. Throws
   /// InputError with file:line:col.
   static std::unique_ptr<Kernel> Create(const RobotSpec& robot, const Maze* maze,
-                                        const PluginRegistry& registry, uint64_t seed,
-                                        std::optional<Pose2D> spawn = std::nullopt);
+                                        const PluginRegistry& registry,
+                                        const KernelOptions& options);
+  /// Same, with default options and the given seed.
+  static std::unique_ptr<Kernel> Create(const RobotSpec& robot, const Maze* maze,
+                                        const PluginRegistry& registry, uint64_t seed) {
+    return Create(robot, maze, registry, KernelOptions{seed});
+  }
 
   /// Returns to time 0: the robot at its spawn pose, fresh random streams, components reset.
   void Reset();
@@ -66,13 +79,23 @@ class Kernel {
   };
   struct BindSession;
 
-  explicit Kernel(uint64_t seed) : seed_(seed) {}
+  struct StoredMessage {
+    double time_s;
+    int level;
+    std::string source;
+    std::string text;
+  };
+
+  explicit Kernel(const KernelOptions& options) : seed_(options.seed), options_(options) {}
   void BindComponent(int index);
-  unimouse_tick MakeTick(HookContext& hook, const ComponentInstance& c);
+  // runs one hook of component `index` with a fresh tick; `hook` is one of the type's pointers
+  void RunHook(int index, void (*hook)(const void*, const unimouse_tick*));
   void Emit(int level, const std::string& component, const std::string& message);
   void ThrowIfFaulted();
+  void ForgetSeenMessages();
 
   uint64_t seed_;
+  KernelOptions options_;
   Model model_;
   std::unique_ptr<State> state_;
   // bind-time bookkeeping: which component writes, and first reads, each signal
@@ -81,6 +104,10 @@ class Kernel {
   std::function<void()> boundary_hook_;
   LogSink log_sink_;
   std::string fault_;
+  // the run's messages, oldest first; what each component has already been shown of them
+  std::deque<StoredMessage> messages_;
+  std::vector<unimouse_message> message_views_;
+  std::vector<size_t> message_cursor_;
 };
 
 }  // namespace unimouse

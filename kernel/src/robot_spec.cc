@@ -160,7 +160,7 @@ BodySpec ParseBody(const YamlNode& node, NameBook& names, bool is_chassis) {
 RobotSpec ParseRobotSpec(const std::string& text, const std::string& file) {
   const YamlNode root = ParseYaml(text, file);
   const MapReader r(root, "robot",
-                    {"name", "timestep_s", "integrator", "chassis", "actuators", "components"});
+                    {"name", "timestep_s", "integrator", "chassis", "actuators", "inputs", "components"});
   RobotSpec robot;
   robot.file = file;
   robot.name = r.Required("name").AsString("name");
@@ -195,6 +195,14 @@ RobotSpec ParseRobotSpec(const std::string& text, const std::string& file) {
         joint.Fail("actuator '" + spec.name + "': no joint named '" + spec.joint + "'");
       }
       robot.actuators.push_back(spec);
+    }
+  }
+
+  if (const YamlNode* inputs = r.Optional("inputs")) {
+    if (!inputs->IsSequence()) inputs->Fail("inputs must be a list of signal names");
+    for (const auto& item : inputs->items) {
+      robot.inputs.push_back(item.AsString("input"));
+      names.Add("input", robot.inputs.back(), item);
     }
   }
 

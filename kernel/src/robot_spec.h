@@ -81,6 +81,9 @@ struct RobotSpec {
   std::string integrator = "Euler";
   BodySpec chassis;
   std::vector<ActuatorSpec> actuators;
+  /// Signals the outside world writes (the firmware link, a scenario): components may read them
+  /// without a component writing them.
+  std::vector<std::string> inputs;
   std::vector<ComponentSpec> components;
 };
 

@@ -49,6 +49,10 @@ class BindContext {
 
   const mjModel& model() const { return *b_.model; }
   double timestep_s() const { return b_.timestep_s; }
+  /// Returns the instance's name in the robot file.
+  std::string name() const { return b_.component_name; }
+  /// Returns the directory the run writes its files into.
+  std::string output_dir() const { return b_.output_dir; }
   int JointId(const std::string& name) const { return Check(b_.joint(b_.ctx, name.c_str())); }
   int ActuatorId(const std::string& name) const { return Check(b_.actuator(b_.ctx, name.c_str())); }
   int SiteId(const std::string& name) const { return Check(b_.site(b_.ctx, name.c_str())); }
@@ -89,6 +93,10 @@ class TickContext {
   /// Returns the distance to the first non-robot surface along a unit direction, or -1.
   double CastRay(const double origin[3], const double direction[3], double max_m) const {
     return t_.ray_cast(t_.ctx, origin, direction, max_m);
+  }
+  /// Returns the messages logged since this component's previous hook call.
+  std::span<const unimouse_message> messages() const {
+    return {t_.messages, static_cast<size_t>(t_.nmessages)};
   }
   int64_t step() const { return t_.step; }
   double time_s() const { return t_.time_s; }
@@ -174,6 +182,7 @@ const unimouse_component_type* ComponentType() {
         typename T::Params params;
         param::ConfigReader reader(cfg, host);
         params.Visit(reader);
+        if constexpr (requires { params.given; }) params.given = reader.given();
         return new T(std::move(params));
       } catch (const std::exception& e) {
         internal::CopyMessage(e.what(), err, err_size);

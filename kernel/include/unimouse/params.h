@@ -83,13 +83,20 @@ class SchemaBuilder {
   std::deque<std::string> strings_;  // stable addresses for default_string
 };
 
+/// Names of the parameters the robot file gave; the others kept their defaults. A Params struct
+/// with a `given` member of this type receives it (for presets that supply defaults).
+using GivenSet = std::vector<std::string>;
+
 /// Reads validated values into a Params struct through the host table.
 class ConfigReader {
  public:
   ConfigReader(const unimouse_config* cfg, const unimouse_host* host) : cfg_(cfg), host_(host) {}
 
+  const GivenSet& given() const { return given_; }
+
   template <class T, class... Constraints>
   void operator()(const char* name, T& field, const char*, Constraints...) {
+    if (host_->config_given(cfg_, name)) given_.emplace_back(name);
     if constexpr (std::is_same_v<T, bool>) {
       field = host_->config_number(cfg_, name) != 0;
     } else if constexpr (std::is_arithmetic_v<T>) {
@@ -102,7 +109,16 @@ class ConfigReader {
  private:
   const unimouse_config* cfg_;
   const unimouse_host* host_;
+  GivenSet given_;
 };
+
+/// Returns whether the robot file gave parameter `name`.
+inline bool Given(const GivenSet& given, const char* name) {
+  for (const auto& g : given) {
+    if (g == name) return true;
+  }
+  return false;
+}
 
 }  // namespace unimouse::param
 

@@ -52,6 +52,7 @@ typedef struct unimouse_host {
   void* ctx;
   double (*config_number)(const unimouse_config* cfg, const char* name);
   const char* (*config_string)(const unimouse_config* cfg, const char* name);
+  int (*config_given)(const unimouse_config* cfg, const char* name); /* 0: the default applies */
   void (*log)(void* ctx, int level, const char* message);
 } unimouse_host;
 
@@ -62,6 +63,8 @@ typedef struct unimouse_bind {
   void* ctx;
   const mjModel* model;
   double timestep_s;
+  const char* component_name; /* the instance's name in the robot file */
+  const char* output_dir;     /* where the run writes its files */
   int (*joint)(void* ctx, const char* name);
   int (*actuator)(void* ctx, const char* name);
   int (*site)(void* ctx, const char* name);
@@ -71,6 +74,14 @@ typedef struct unimouse_bind {
   int (*rng_stream)(void* ctx, const char* name);   /* named, seeded stream: "tof.front" */
   void (*set_state_size)(void* ctx, int nstate);    /* doubles of evolving state it needs */
 } unimouse_bind;
+
+/* A text line a component logged (a firmware's log channel, for one), with when and who. */
+typedef struct unimouse_message {
+  double time_s;
+  int level;
+  const char* source; /* component name */
+  const char* text;
+} unimouse_message;
 
 /* Everything a hook may touch during one tick. In sense, data is read-only by contract. */
 typedef struct unimouse_tick {
@@ -89,6 +100,9 @@ typedef struct unimouse_tick {
    * part of a robot; -1 when nothing is hit */
   double (*ray_cast)(void* ctx, const double origin[3], const double direction[3], double max_m);
   void (*log)(void* ctx, int level, const char* message);
+  /* messages logged since this component's previous hook call, oldest first */
+  const unimouse_message* messages;
+  int nmessages;
 } unimouse_tick;
 
 /* One component type. create, bind and destroy are required; the hooks are optional. */

@@ -46,6 +46,7 @@ class ConstantTorque final : public Component {
 
 void RunSixtySeconds(benchmark::State& bench, const Maze* maze) {
   RobotSpec robot = LoadRobotSpec(UNIMOUSE_SOURCE_DIR "/robots/unimouse.yaml");
+  robot.components.clear();  // the bare mechanics
   // slightly unequal torques: the robot curves, meets walls and keeps pushing along them
   robot.components.push_back({"bench.constant_torque",
                               "drive",

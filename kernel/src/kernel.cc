@@ -181,6 +181,7 @@ void Kernel::BindComponent(int index) {
   b.model = &mj_model();
   b.timestep_s = timestep_s();
   b.component_name = c.name.c_str();
+  b.period_s = c.every_n_steps * timestep_s();
   b.output_dir = options_.output_dir.c_str();
   b.joint = [](void* ctx, const char* name) {
     auto* s = static_cast<BindSession*>(ctx);

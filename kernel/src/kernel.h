@@ -50,7 +50,9 @@ class Kernel {
   /// Same, with default options and the given seed.
   static std::unique_ptr<Kernel> Create(const RobotSpec& robot, const Maze* maze,
                                         const PluginRegistry& registry, uint64_t seed) {
-    return Create(robot, maze, registry, KernelOptions{seed});
+    KernelOptions options;
+    options.seed = seed;
+    return Create(robot, maze, registry, options);
   }
 
   /// Returns to time 0: the robot at its spawn pose, fresh random streams, components reset.

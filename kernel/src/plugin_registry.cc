@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <iomanip>
 #include <sstream>
 
 #include "install_paths.h"
@@ -43,7 +44,7 @@ std::string KindName(int kind) {
 
 std::string NumberText(double v) {
   std::ostringstream out;
-  out << v;
+  out << std::setprecision(10) << v;
   return out.str();
 }
 

@@ -68,7 +68,7 @@ TEST(MazeBoxesTest, CollisionBoxesCoverRunsOfWallsWithTheirPosts) {
 class WorldTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    robot_ = LoadRobotSpec(testing::BundledRobotPath());
+    robot_ = testing::BareRobot();
     maze_ = std::make_unique<Maze>(ParseMazeText(kSmallMaze, "small.txt"));
     kernel_ = Kernel::Create(robot_, maze_.get(), registry_, 1);
   }
@@ -175,7 +175,7 @@ TEST_F(WorldTest, RobotCannotDriveThroughAWall) {
 
 TEST(OpenWorldTest, FlatWorldHasNoSceneryAndPlacesTheRobotAtTheOrigin) {
   PluginRegistry registry;
-  auto kernel = Kernel::Create(LoadRobotSpec(testing::BundledRobotPath()), nullptr, registry, 1);
+  auto kernel = Kernel::Create(testing::BareRobot(), nullptr, registry, 1);
   EXPECT_TRUE(kernel->world().scenery().empty());
   EXPECT_EQ(kernel->world().proxy_count(), 0);
   const Pose2D pose = kernel->world().RobotPose(kernel->state().data());

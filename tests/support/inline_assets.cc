@@ -19,14 +19,20 @@ RobotYaml BundledRobotWith(const std::string& components) {
   std::ifstream in(BundledRobotPath());
   std::stringstream buffer;
   buffer << in.rdbuf();
-  std::string text = buffer.str();
-  const std::string marker = "components: []";
+  const std::string text = buffer.str();
+  // the components list is the file's last section
+  const std::string marker = "\ncomponents:\n";
   const size_t at = text.find(marker);
   RobotYaml out;
-  out.first_component_line =
-      static_cast<int>(std::count(text.begin(), text.begin() + at, '\n')) + 2;
-  out.text = text.substr(0, at) + "components:\n" + components + text.substr(at + marker.size());
+  out.text = text.substr(0, at) + marker + components;
+  out.first_component_line = static_cast<int>(std::count(out.text.begin(), out.text.begin() + at, '\n')) + 3;
   return out;
+}
+
+RobotSpec BareRobot() {
+  RobotSpec robot = LoadRobotSpec(BundledRobotPath());
+  robot.components.clear();
+  return robot;
 }
 
 }  // namespace unimouse::testing

@@ -5,12 +5,17 @@
 
 #include <string>
 
+#include "robot_spec.h"
+
 namespace unimouse::testing {
 
 /// The bundled robot file, read from the source tree.
 std::string BundledRobotPath();
 /// The collection of contest mazes beside the project, or "" when absent.
 std::string SharedMazesDir();
+
+/// The bundled robot without its components: the bare mechanics.
+RobotSpec BareRobot();
 
 /// The bundled robot's YAML with its components list replaced by `components` (YAML list items,
 /// each starting with "- "), and the line number the first of them lands on.

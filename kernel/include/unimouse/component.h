@@ -49,6 +49,8 @@ class BindContext {
 
   const mjModel& model() const { return *b_.model; }
   double timestep_s() const { return b_.timestep_s; }
+  /// Returns the time between two runs of this component's hooks.
+  double period_s() const { return b_.period_s; }
   /// Returns the instance's name in the robot file.
   std::string name() const { return b_.component_name; }
   /// Returns the directory the run writes its files into.

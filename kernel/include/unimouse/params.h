@@ -112,6 +112,22 @@ class ConfigReader {
   GivenSet given_;
 };
 
+/// Returns the items of a comma-separated list parameter, spaces trimmed, empty items dropped.
+inline std::vector<std::string> SplitList(const std::string& list) {
+  std::vector<std::string> items;
+  size_t begin = 0;
+  while (begin <= list.size()) {
+    size_t end = list.find(',', begin);
+    if (end == std::string::npos) end = list.size();
+    std::string item = list.substr(begin, end - begin);
+    item.erase(0, item.find_first_not_of(' '));
+    item.erase(item.find_last_not_of(' ') + 1);
+    if (!item.empty()) items.push_back(item);
+    begin = end + 1;
+  }
+  return items;
+}
+
 /// Returns whether the robot file gave parameter `name`.
 inline bool Given(const GivenSet& given, const char* name) {
   for (const auto& g : given) {

@@ -64,6 +64,7 @@ typedef struct unimouse_bind {
   const mjModel* model;
   double timestep_s;
   const char* component_name; /* the instance's name in the robot file */
+  double period_s;            /* how often its hooks run: a whole number of steps */
   const char* output_dir;     /* where the run writes its files */
   int (*joint)(void* ctx, const char* name);
   int (*actuator)(void* ctx, const char* name);

@@ -58,6 +58,7 @@ int RunCommand(const RunOptions& options) {
   } catch (const RuntimeFault& e) {
     fault = e.what();
   }
+  kernel->Finish();
   const double wall_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 

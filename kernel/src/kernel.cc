@@ -278,11 +278,19 @@ void Kernel::Emit(int level, const std::string& component, const std::string& me
   }
 }
 
+void Kernel::Finish() {
+  for (size_t i = 0; i < model_.components.size(); ++i) {
+    const ComponentInstance& c = model_.components[i];
+    if (c.type->finish != nullptr) RunHook(static_cast<int>(i), c.type->finish);
+  }
+  fault_.clear();
+}
+
 void Kernel::ForgetSeenMessages() {
   size_t seen_by_all = message_views_.size();
   for (size_t i = 0; i < model_.components.size(); ++i) {
     const ComponentInstance& c = model_.components[i];
-    if (c.type->sense != nullptr || c.type->actuate != nullptr) {
+    if (c.type->sense != nullptr || c.type->actuate != nullptr || c.type->finish != nullptr) {
       seen_by_all = std::min(seen_by_all, message_cursor_[i]);
     }
   }

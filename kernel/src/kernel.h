@@ -29,8 +29,8 @@ namespace unimouse {
 /// Choices made per run rather than per robot.
 struct KernelOptions {
   uint64_t seed = 1;
-  std::string output_dir = ".";       ///< where components write their files
-  std::optional<Pose2D> spawn;        ///< default: the maze's start, or the origin facing north
+  std::string output_dir = ".";  ///< where components write their files
+  std::optional<Pose2D> spawn;   ///< default: the maze's start, or the origin facing north
 };
 
 class Kernel {
@@ -59,6 +59,9 @@ class Kernel {
   void Reset();
   /// Advances one physics step. Throws RuntimeFault when a component fails or physics diverges.
   void Step();
+  /// Ends the run: every component's finish hook, so that nothing it holds is lost. Call it
+  /// once, also after a RuntimeFault; a component failing here is reported, not thrown.
+  void Finish();
 
   /// Runs at the start of every tick, before physics; scenario scripts live here.
   void SetBoundaryHook(std::function<void()> hook) { boundary_hook_ = std::move(hook); }

@@ -159,8 +159,9 @@ BodySpec ParseBody(const YamlNode& node, NameBook& names, bool is_chassis) {
 
 RobotSpec ParseRobotSpec(const std::string& text, const std::string& file) {
   const YamlNode root = ParseYaml(text, file);
-  const MapReader r(root, "robot",
-                    {"name", "timestep_s", "integrator", "chassis", "actuators", "inputs", "components"});
+  const MapReader r(
+      root, "robot",
+      {"name", "timestep_s", "integrator", "chassis", "actuators", "inputs", "components"});
   RobotSpec robot;
   robot.file = file;
   robot.name = r.Required("name").AsString("name");

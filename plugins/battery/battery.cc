@@ -5,7 +5,8 @@ namespace unimouse::plugins {
 
 void Battery::Bind(BindContext& ctx) {
   voltage_ = ctx.WriteSignal(p_.voltage_out);
-  for (const auto& load : param::SplitList(p_.load_currents)) loads_.push_back(ctx.ReadSignal(load));
+  for (const auto& load : param::SplitList(p_.load_currents))
+    loads_.push_back(ctx.ReadSignal(load));
 }
 
 void Battery::Reset(const ResetContext& ctx) const { ctx.Write(voltage_, p_.emf_v); }

@@ -15,13 +15,12 @@ MotorConstants MotorModel(const std::string& name) {
 }
 
 DcMotor::DcMotor(Params params) : p_(std::move(params)) {
-  const char* names[] = {"kt_nm_per_a", "resistance_ohm", "inductance_h",
-                         "damping_nm_s_per_rad"};
+  const char* names[] = {"kt_nm_per_a", "resistance_ohm", "inductance_h", "damping_nm_s_per_rad"};
   if (p_.model == "custom") {
     for (const char* n : names) {
-      UNIMOUSE_THROW_UNLESS(param::Given(p_.given, n),
-                            std::string("model 'custom' needs every motor constant; ") + n +
-                                " is missing");
+      UNIMOUSE_THROW_UNLESS(
+          param::Given(p_.given, n),
+          std::string("model 'custom' needs every motor constant; ") + n + " is missing");
     }
   }
   // a named model supplies the constants the robot file does not give

@@ -7,9 +7,9 @@ namespace unimouse::plugins {
 namespace {
 
 // state slots
-constexpr int kAccumulated = 0;   // theta_acc of algorithm 1, motor shaft radians
-constexpr int kLastWheel = 1;     // wheel hinge angle at the previous period
-constexpr int kLastJitter = 2;    // edge offset applied at the previous period, radians
+constexpr int kAccumulated = 0;  // theta_acc of algorithm 1, motor shaft radians
+constexpr int kLastWheel = 1;    // wheel hinge angle at the previous period
+constexpr int kLastJitter = 2;   // edge offset applied at the previous period, radians
 
 }  // namespace
 

@@ -6,7 +6,6 @@
 #include <cstring>
 #include <filesystem>
 
-
 namespace unimouse::plugins {
 namespace {
 
@@ -95,7 +94,8 @@ void Logger::Sense(const SenseContext& ctx) const {
   row.push_back(ctx.time_s());
   if (body_ >= 0) {
     const double* q = d.xquat + 4 * body_;
-    const double yaw = std::atan2(2 * (q[0] * q[3] + q[1] * q[2]), 1 - 2 * (q[2] * q[2] + q[3] * q[3]));
+    const double yaw =
+        std::atan2(2 * (q[0] * q[3] + q[1] * q[2]), 1 - 2 * (q[2] * q[2] + q[3] * q[3]));
     double velocity[6];  // rotation then translation, world axes, at the body's origin
     mj_objectVelocity(&m, &d, mjOBJ_BODY, body_, velocity, 0);
     row.insert(row.end(), {d.xpos[3 * body_], d.xpos[3 * body_ + 1], yaw,
@@ -121,6 +121,12 @@ void Logger::Sense(const SenseContext& ctx) const {
     if (messages_) std::fflush(messages_.get());
     unflushed_ = 0;
   }
+}
+
+void Logger::Finish(const SenseContext& ctx) const {
+  WriteMessages(ctx);
+  std::fflush(trace_.get());
+  if (messages_) std::fflush(messages_.get());
 }
 
 void Logger::WriteMessages(const SenseContext& ctx) const {

@@ -3,7 +3,8 @@
 // speed, yaw rate), chosen joint speeds and chosen signals, as CSV or JSON lines. It also records
 // every text line components logged (a firmware's log channel among them) with its sim time:
 // inline in JSONL, in a sibling `<name>_messages.csv` for CSV. Files go to the run's output
-// directory; rows are flushed every 100 records and when the run ends, however it ends.
+// directory; rows are flushed every 100 records, and at the end of the run, however it ends,
+// it writes the lines logged since its last period and flushes.
 #ifndef UNIMOUSE_PLUGINS_LOGGER_H_
 #define UNIMOUSE_PLUGINS_LOGGER_H_
 
@@ -43,6 +44,7 @@ class Logger final : public Component {
   explicit Logger(Params params) : p_(std::move(params)) {}
   void Bind(BindContext& ctx) override;
   void Sense(const SenseContext& ctx) const override;
+  void Finish(const SenseContext& ctx) const override;
 
  private:
   struct FileCloser {

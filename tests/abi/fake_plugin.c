@@ -41,6 +41,7 @@ static const unimouse_component_type kType = {sizeof(unimouse_component_type),
                                               NULL,
                                               NULL,
                                               NULL,
+                                              NULL,
                                               Destroy};
 
 static const unimouse_component_type* const kTypes[] = {&kType};

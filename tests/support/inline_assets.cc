@@ -15,17 +15,22 @@ std::string SharedMazesDir() {
   return std::filesystem::is_directory(dir) ? dir.lexically_normal().string() : "";
 }
 
-RobotYaml BundledRobotWith(const std::string& components) {
+std::string ReadBundledRobot() {
   std::ifstream in(BundledRobotPath());
   std::stringstream buffer;
   buffer << in.rdbuf();
-  const std::string text = buffer.str();
+  return buffer.str();
+}
+
+RobotYaml BundledRobotWith(const std::string& components) {
+  const std::string text = ReadBundledRobot();
   // the components list is the file's last section
   const std::string marker = "\ncomponents:\n";
   const size_t at = text.find(marker);
   RobotYaml out;
   out.text = text.substr(0, at) + marker + components;
-  out.first_component_line = static_cast<int>(std::count(out.text.begin(), out.text.begin() + at, '\n')) + 3;
+  out.first_component_line =
+      static_cast<int>(std::count(out.text.begin(), out.text.begin() + at, '\n')) + 3;
   return out;
 }
 

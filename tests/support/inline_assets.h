@@ -14,6 +14,9 @@ std::string BundledRobotPath();
 /// The collection of contest mazes beside the project, or "" when absent.
 std::string SharedMazesDir();
 
+/// The bundled robot file's text.
+std::string ReadBundledRobot();
+
 /// The bundled robot without its components: the bare mechanics.
 RobotSpec BareRobot();
 

@@ -100,6 +100,31 @@ class SignalRelay final : public Component {
   SignalId in_, out_;
 };
 
+struct TalkerParams {
+  std::string text = "hello";
+  template <class V>
+  void Visit(V& v) {
+    v("text", text, "what it logs every step, followed by the step number");
+  }
+};
+
+/// Logs one text line every step, as a firmware's log channel would.
+class Talker final : public Component {
+ public:
+  static constexpr const char* kTypeName = "test.talker";
+  static constexpr const char* kSummary = "logs a line every step";
+  static constexpr double kDefaultPeriod_s = 0;
+  using Params = TalkerParams;
+  explicit Talker(Params p) : p_(std::move(p)) {}
+  void Bind(BindContext&) override {}
+  void Actuate(const ActuateContext& ctx) const override {
+    ctx.Log(p_.text + " " + std::to_string(ctx.step()));
+  }
+
+ private:
+  Params p_;
+};
+
 }  // namespace unimouse::testing
 
 #endif  // UNIMOUSE_TESTS_PROBE_COMPONENTS_H_

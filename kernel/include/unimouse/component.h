@@ -23,6 +23,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <type_traits>
 #include <utility>
 
 #include "unimouse/errors.h"
@@ -144,6 +145,8 @@ class Component {
   virtual void Sense(const SenseContext&) const {}
   /// Writes controls or signals before mj_step2.
   virtual void Actuate(const ActuateContext&) const {}
+  /// Writes out what it still holds when the run ends, however it ends; mjData is read-only.
+  virtual void Finish(const SenseContext&) const {}
 };
 
 namespace internal {
@@ -201,27 +204,43 @@ const unimouse_component_type* ComponentType() {
         return 1;
       }
     };
-    t.reset = +[](const void* self, const unimouse_tick* tick) {
-      try {
-        static_cast<const T*>(self)->Reset(ResetContext(*tick));
-      } catch (const std::exception& e) {
-        internal::ReportHookFault(tick, e.what());
-      }
-    };
-    t.sense = +[](const void* self, const unimouse_tick* tick) {
-      try {
-        static_cast<const T*>(self)->Sense(SenseContext(*tick));
-      } catch (const std::exception& e) {
-        internal::ReportHookFault(tick, e.what());
-      }
-    };
-    t.actuate = +[](const void* self, const unimouse_tick* tick) {
-      try {
-        static_cast<const T*>(self)->Actuate(ActuateContext(*tick));
-      } catch (const std::exception& e) {
-        internal::ReportHookFault(tick, e.what());
-      }
-    };
+    // only hooks the class overrides: the kernel skips NULL ones
+    if constexpr (!std::is_same_v<decltype(&T::Reset), decltype(&Component::Reset)>) {
+      t.reset = +[](const void* self, const unimouse_tick* tick) {
+        try {
+          static_cast<const T*>(self)->Reset(ResetContext(*tick));
+        } catch (const std::exception& e) {
+          internal::ReportHookFault(tick, e.what());
+        }
+      };
+    }
+    if constexpr (!std::is_same_v<decltype(&T::Sense), decltype(&Component::Sense)>) {
+      t.sense = +[](const void* self, const unimouse_tick* tick) {
+        try {
+          static_cast<const T*>(self)->Sense(SenseContext(*tick));
+        } catch (const std::exception& e) {
+          internal::ReportHookFault(tick, e.what());
+        }
+      };
+    }
+    if constexpr (!std::is_same_v<decltype(&T::Actuate), decltype(&Component::Actuate)>) {
+      t.actuate = +[](const void* self, const unimouse_tick* tick) {
+        try {
+          static_cast<const T*>(self)->Actuate(ActuateContext(*tick));
+        } catch (const std::exception& e) {
+          internal::ReportHookFault(tick, e.what());
+        }
+      };
+    }
+    if constexpr (!std::is_same_v<decltype(&T::Finish), decltype(&Component::Finish)>) {
+      t.finish = +[](const void* self, const unimouse_tick* tick) {
+        try {
+          static_cast<const T*>(self)->Finish(SenseContext(*tick));
+        } catch (const std::exception& e) {
+          internal::ReportHookFault(tick, e.what());
+        }
+      };
+    }
     t.destroy = +[](void* self) { delete static_cast<T*>(self); };
     return t;
   }();

@@ -106,7 +106,8 @@ typedef struct unimouse_tick {
   int nmessages;
 } unimouse_tick;
 
-/* One component type. create, bind and destroy are required; the hooks are optional. */
+/* One component type. create, bind and destroy are required; the hooks are optional. finish
+ * runs once at the end of a run, however it ends, so a component can write out what it holds. */
 typedef struct unimouse_component_type {
   uint32_t size;       /* sizeof(unimouse_component_type) as the plugin saw it */
   const char* name;    /* dotted, globally unique: "unimouse.dc_motor" */
@@ -120,6 +121,7 @@ typedef struct unimouse_component_type {
   void (*reset)(const void* self, const unimouse_tick* tick);   /* writes initial state */
   void (*sense)(const void* self, const unimouse_tick* tick);   /* after mj_step1 */
   void (*actuate)(const void* self, const unimouse_tick* tick); /* before mj_step2 */
+  void (*finish)(const void* self, const unimouse_tick* tick);  /* once, when the run ends */
   void (*destroy)(void* self);
 } unimouse_component_type;
 

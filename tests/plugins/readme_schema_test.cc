@@ -1,0 +1,98 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Each plugin's README lists exactly the parameters the plugin declares, with their kinds and
+// defaults, so the documentation cannot drift from the code.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <iomanip>
+#include <map>
+#include <sstream>
+
+#include "battery.h"
+#include "dc_motor.h"
+#include "encoder.h"
+#include "h_bridge.h"
+#include "logger.h"
+#include "tof_sensor.h"
+
+namespace unimouse {
+namespace {
+
+struct Row {
+  std::string kind;
+  std::string default_text;
+};
+
+// rows of the parameter table: | `name` | kind | default | meaning |
+std::map<std::string, Row> ReadmeTable(const std::string& folder) {
+  std::ifstream in(std::string(UNIMOUSE_SOURCE_DIR) + "/plugins/" + folder + "/README.md");
+  EXPECT_TRUE(in.good()) << folder << "/README.md is missing";
+  std::map<std::string, Row> rows;
+  bool in_table = false;
+  for (std::string line; std::getline(in, line);) {
+    if (line.rfind("| parameter |", 0) == 0) in_table = true;
+    if (line.rfind("|", 0) != 0) in_table = false;
+    if (!in_table || line.rfind("| `", 0) != 0) continue;
+    std::vector<std::string> cells;
+    std::stringstream cells_in(line.substr(1));
+    for (std::string cell; std::getline(cells_in, cell, '|');) {
+      cell.erase(0, cell.find_first_not_of(' '));
+      cell.erase(cell.find_last_not_of(' ') + 1);
+      cells.push_back(cell);
+    }
+    if (cells.size() < 4) continue;
+    rows[cells[0].substr(1, cells[0].size() - 2)] = {cells[1], cells[2]};
+  }
+  return rows;
+}
+
+std::string DefaultText(const unimouse_param& p) {
+  if (p.required) return "required";
+  if (p.kind == UNIMOUSE_PARAM_STRING) {
+    return p.default_string && *p.default_string ? std::string("`") + p.default_string + "`" : "";
+  }
+  if (p.kind == UNIMOUSE_PARAM_BOOL) return p.default_number != 0 ? "true" : "false";
+  std::ostringstream out;
+  out << std::setprecision(10) << p.default_number;
+  return out.str();
+}
+
+std::string KindText(int kind) {
+  switch (kind) {
+    case UNIMOUSE_PARAM_NUMBER:
+      return "number";
+    case UNIMOUSE_PARAM_INTEGER:
+      return "integer";
+    case UNIMOUSE_PARAM_BOOL:
+      return "bool";
+    default:
+      return "string";
+  }
+}
+
+void ExpectReadmeMatches(const std::string& folder, const unimouse_component_type* type) {
+  const std::map<std::string, Row> rows = ReadmeTable(folder);
+  EXPECT_EQ(rows.size(), static_cast<size_t>(type->nparam)) << folder;
+  for (int i = 0; i < type->nparam; ++i) {
+    const unimouse_param& p = type->params[i];
+    const auto it = rows.find(p.name);
+    if (it == rows.end()) {
+      ADD_FAILURE() << folder << "/README.md does not list " << p.name;
+      continue;
+    }
+    EXPECT_EQ(it->second.kind, KindText(p.kind)) << folder << ": " << p.name;
+    EXPECT_EQ(it->second.default_text, DefaultText(p)) << folder << ": " << p.name;
+  }
+}
+
+TEST(ReadmeSchemaTest, EveryPluginReadmeListsItsParameters) {
+  ExpectReadmeMatches("battery", ComponentType<plugins::Battery>());
+  ExpectReadmeMatches("h_bridge", ComponentType<plugins::HBridge>());
+  ExpectReadmeMatches("dc_motor", ComponentType<plugins::DcMotor>());
+  ExpectReadmeMatches("encoder", ComponentType<plugins::Encoder>());
+  ExpectReadmeMatches("tof_sensor", ComponentType<plugins::TofSensor>());
+  ExpectReadmeMatches("logger", ComponentType<plugins::Logger>());
+}
+
+}  // namespace
+}  // namespace unimouse

@@ -101,12 +101,14 @@ PluginRegistry BenchRegistry() {
   return registry;
 }
 
-// the full robot with both H-bridges at 60 % forward; it drives up the first corridor, meets
-// the wall and keeps its motors pushing
+// the full robot, which the benchmarks drive with both H-bridges at 60 % forward: it drives up
+// the first corridor, meets the wall and keeps its motors pushing
 std::unique_ptr<Kernel> FullRobot(const Maze& maze, const PluginRegistry& registry) {
-  auto kernel = Kernel::Create(LoadRobotSpec(UNIMOUSE_SOURCE_DIR "/robots/unimouse.yaml"), &maze,
-                               registry, 1);
-  return kernel;
+  RobotSpec robot = LoadRobotSpec(UNIMOUSE_SOURCE_DIR "/robots/unimouse.yaml");
+  // the electronics only: the trace logger is file output, not part of the chain
+  std::erase_if(robot.components,
+                [](const ComponentSpec& c) { return c.type == "unimouse.logger"; });
+  return Kernel::Create(robot, &maze, registry, 1);
 }
 
 void Command(Kernel& kernel, double left, double right) {
@@ -139,8 +141,8 @@ void BM_ComponentChainCostJapan2018(benchmark::State& bench) {
     recorded_torques.push_back(full->state().data().ctrl[1]);
   }
   RobotSpec robot = LoadRobotSpec(UNIMOUSE_SOURCE_DIR "/robots/unimouse.yaml");
-  robot.components = {{"bench.replay_torque", "replay", std::nullopt, ParseYaml("{}", "bench"),
-                       {"bench", 1, 1}}};
+  robot.components = {
+      {"bench.replay_torque", "replay", std::nullopt, ParseYaml("{}", "bench"), {"bench", 1, 1}}};
   auto bare = Kernel::Create(robot, &maze, registry, 1);
 
   double full_s = 1e9, bare_s = 1e9;

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "commands.h"
 
+#include <unistd.h>
+
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -42,7 +44,11 @@ int RunCommand(const RunOptions& options) {
   const RobotSpec robot = LoadRobotSpec(robot_file);
   const std::unique_ptr<Maze> maze = LoadMazeOption(options.maze);
   const PluginRegistry registry = LoadRegistry(options.plugin_path);
-  std::unique_ptr<Kernel> kernel = Kernel::Create(robot, maze.get(), registry, options.seed);
+  std::filesystem::create_directories(options.out_dir);
+  KernelOptions kernel_options;
+  kernel_options.seed = options.seed;
+  kernel_options.output_dir = options.out_dir;
+  std::unique_ptr<Kernel> kernel = Kernel::Create(robot, maze.get(), registry, kernel_options);
 
   nlohmann::json result;
   result["robot"] = robot_file;
@@ -99,11 +105,24 @@ int CheckCommand(const std::string& robot_name, const std::string& plugin_path) 
   const std::string robot_file = ResolveDataFile(robot_name, "robots/", ".yaml");
   const RobotSpec robot = LoadRobotSpec(robot_file);
   const PluginRegistry registry = LoadRegistry(plugin_path);
-  const std::unique_ptr<Kernel> kernel = Kernel::Create(robot, nullptr, registry, 1);
+  // components are really created and bound; whatever files they open go somewhere harmless
+  const std::filesystem::path scratch =
+      std::filesystem::temp_directory_path() / ("unimouse-check-" + std::to_string(::getpid()));
+  KernelOptions kernel_options;
+  kernel_options.output_dir = scratch.string();
+  std::unique_ptr<Kernel> kernel;
+  try {
+    kernel = Kernel::Create(robot, nullptr, registry, kernel_options);
+  } catch (...) {
+    std::filesystem::remove_all(scratch);
+    throw;
+  }
   const mjModel& m = kernel->mj_model();
   std::printf("%s: ok: robot '%s', %d bodies, %d joints, %d actuators, %zu components\n",
               robot_file.c_str(), robot.name.c_str(), m.nbody - 1, m.njnt, m.nu,
               kernel->model().components.size());
+  kernel.reset();
+  std::filesystem::remove_all(scratch);
   return kExitPassed;
 }
 

@@ -65,9 +65,9 @@ class LoggerTest : public ::testing::Test {
 };
 
 TEST_F(LoggerTest, CsvHasAHeaderAndOneRowPerPeriod) {
-  RunRobot("path: trace.csv, joints: left_wheel, signals: 'left.current_a, left.encoder_counts'",
+  RunRobot("path: mine.csv, joints: left_wheel, signals: 'left.current_a, left.encoder_counts'",
            100);
-  const std::vector<std::string> lines = Lines(dir_ / "trace.csv");
+  const std::vector<std::string> lines = Lines(dir_ / "mine.csv");
   ASSERT_EQ(lines.size(), 1u + 10u);  // a row every 10 ms over 100 ms
   EXPECT_EQ(lines[0],
             "time_s,x_m,y_m,yaw_rad,speed_m_per_s,yaw_rate_rad_per_s,left_wheel_rad_per_s,"

@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <sstream>
 
 #include "battery.h"
@@ -48,6 +49,10 @@ std::string RigYaml(double armature_kg_m2, const std::string& components) {
 std::unique_ptr<Kernel> MakeKernel(const std::string& robot_yaml, const Maze* maze,
                                    KernelOptions options) {
   static const PluginRegistry registry = BundledComponents();
+  // traces of the bundled robot's logger go to a scratch directory, not the working one
+  if (options.output_dir == ".") {
+    options.output_dir = (std::filesystem::temp_directory_path() / "unimouse_tests").string();
+  }
   return Kernel::Create(ParseRobotSpec(robot_yaml, "robot.yaml"), maze, registry, options);
 }
 

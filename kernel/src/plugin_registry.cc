@@ -28,7 +28,9 @@ void SplitInto(const std::string& list, std::vector<std::string>& out) {
   }
 }
 
-std::string KindName(int kind) {
+}  // namespace
+
+std::string ParamKindName(int kind) {
   switch (kind) {
     case UNIMOUSE_PARAM_NUMBER:
       return "number";
@@ -42,6 +44,8 @@ std::string KindName(int kind) {
   return "?";
 }
 
+namespace {
+
 std::string NumberText(double v) {
   std::ostringstream out;
   out << std::setprecision(10) << v;
@@ -49,6 +53,15 @@ std::string NumberText(double v) {
 }
 
 }  // namespace
+
+std::string ParamDefaultText(const unimouse_param& p) {
+  if (p.required) return "required";
+  if (p.kind == UNIMOUSE_PARAM_STRING) {
+    return p.default_string && *p.default_string ? std::string("`") + p.default_string + "`" : "";
+  }
+  if (p.kind == UNIMOUSE_PARAM_BOOL) return p.default_number != 0 ? "true" : "false";
+  return NumberText(p.default_number);
+}
 
 const unimouse_plugin_info* LoadPluginLibrary(const std::string& path) {
   void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
@@ -158,16 +171,9 @@ std::string DescribePlugins(const PluginRegistry& registry) {
         << " unless period_s is given\n";
     for (int i = 0; i < t.nparam; ++i) {
       const unimouse_param& p = t.params[i];
-      out << "  - " << p.name << " (" << KindName(p.kind) << ")";
-      if (p.required) {
-        out << ", required";
-      } else if (p.kind == UNIMOUSE_PARAM_STRING) {
-        out << ", default '" << (p.default_string ? p.default_string : "") << "'";
-      } else if (p.kind == UNIMOUSE_PARAM_BOOL) {
-        out << ", default " << (p.default_number != 0 ? "true" : "false");
-      } else {
-        out << ", default " << NumberText(p.default_number);
-      }
+      const std::string default_text = ParamDefaultText(p);
+      out << "  - " << p.name << " (" << ParamKindName(p.kind) << ")"
+          << (p.required ? ", " : ", default ") << (default_text.empty() ? "''" : default_text);
       if (std::isfinite(p.min) || std::isfinite(p.max)) {
         out << ", " << (p.min_exclusive ? "(" : "[") << NumberText(p.min) << ", "
             << NumberText(p.max) << "]";

@@ -45,6 +45,12 @@ class PluginRegistry {
   std::map<std::string, Entry> entries_;
 };
 
+/// Returns a parameter kind's name: number, integer, bool or string.
+std::string ParamKindName(int kind);
+/// Returns a parameter's default as documented: "required", a number, true/false, or the
+/// string in backquotes (empty for an empty string).
+std::string ParamDefaultText(const unimouse_param& p);
+
 /// Returns the plugin table as text: one block per type with its parameters, for `unimouse
 /// plugins`.
 std::string DescribePlugins(const PluginRegistry& registry);

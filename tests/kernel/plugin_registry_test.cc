@@ -100,7 +100,7 @@ TEST(PluginRegistryTest, DescribesTypesWithTheirParameterTables) {
             std::string::npos)
       << text;
   EXPECT_NE(text.find("- count (integer), default 1, [1, 10]"), std::string::npos) << text;
-  EXPECT_NE(text.find("- mode (string), default 'a', one of a|b"), std::string::npos) << text;
+  EXPECT_NE(text.find("- mode (string), default `a`, one of a|b"), std::string::npos) << text;
 }
 
 }  // namespace

@@ -4,7 +4,6 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
-#include <iomanip>
 #include <map>
 #include <sstream>
 
@@ -13,6 +12,7 @@
 #include "encoder.h"
 #include "h_bridge.h"
 #include "logger.h"
+#include "plugin_registry.h"
 #include "tof_sensor.h"
 
 namespace unimouse {
@@ -46,30 +46,6 @@ std::map<std::string, Row> ReadmeTable(const std::string& folder) {
   return rows;
 }
 
-std::string DefaultText(const unimouse_param& p) {
-  if (p.required) return "required";
-  if (p.kind == UNIMOUSE_PARAM_STRING) {
-    return p.default_string && *p.default_string ? std::string("`") + p.default_string + "`" : "";
-  }
-  if (p.kind == UNIMOUSE_PARAM_BOOL) return p.default_number != 0 ? "true" : "false";
-  std::ostringstream out;
-  out << std::setprecision(10) << p.default_number;
-  return out.str();
-}
-
-std::string KindText(int kind) {
-  switch (kind) {
-    case UNIMOUSE_PARAM_NUMBER:
-      return "number";
-    case UNIMOUSE_PARAM_INTEGER:
-      return "integer";
-    case UNIMOUSE_PARAM_BOOL:
-      return "bool";
-    default:
-      return "string";
-  }
-}
-
 void ExpectReadmeMatches(const std::string& folder, const unimouse_component_type* type) {
   const std::map<std::string, Row> rows = ReadmeTable(folder);
   EXPECT_EQ(rows.size(), static_cast<size_t>(type->nparam)) << folder;
@@ -80,8 +56,8 @@ void ExpectReadmeMatches(const std::string& folder, const unimouse_component_typ
       ADD_FAILURE() << folder << "/README.md does not list " << p.name;
       continue;
     }
-    EXPECT_EQ(it->second.kind, KindText(p.kind)) << folder << ": " << p.name;
-    EXPECT_EQ(it->second.default_text, DefaultText(p)) << folder << ": " << p.name;
+    EXPECT_EQ(it->second.kind, ParamKindName(p.kind)) << folder << ": " << p.name;
+    EXPECT_EQ(it->second.default_text, ParamDefaultText(p)) << folder << ": " << p.name;
   }
 }
 

@@ -158,8 +158,14 @@ inline void CopyMessage(const char* what, char* err, int err_size) {
   }
 }
 
-inline void ReportHookFault(const unimouse_tick* t, const char* what) {
-  t->log(t->ctx, UNIMOUSE_LOG_ERROR, what);
+// calls one hook of T; an exception becomes an error that stops the run, never crosses the ABI
+template <class T, class Context, void (T::*Hook)(const Context&) const>
+void CallHook(const void* self, const unimouse_tick* tick) {
+  try {
+    (static_cast<const T*>(self)->*Hook)(Context(*tick));
+  } catch (const std::exception& e) {
+    tick->log(tick->ctx, UNIMOUSE_LOG_ERROR, e.what());
+  }
 }
 
 }  // namespace internal
@@ -206,40 +212,16 @@ const unimouse_component_type* ComponentType() {
     };
     // only hooks the class overrides: the kernel skips NULL ones
     if constexpr (!std::is_same_v<decltype(&T::Reset), decltype(&Component::Reset)>) {
-      t.reset = +[](const void* self, const unimouse_tick* tick) {
-        try {
-          static_cast<const T*>(self)->Reset(ResetContext(*tick));
-        } catch (const std::exception& e) {
-          internal::ReportHookFault(tick, e.what());
-        }
-      };
+      t.reset = &internal::CallHook<T, ResetContext, &T::Reset>;
     }
     if constexpr (!std::is_same_v<decltype(&T::Sense), decltype(&Component::Sense)>) {
-      t.sense = +[](const void* self, const unimouse_tick* tick) {
-        try {
-          static_cast<const T*>(self)->Sense(SenseContext(*tick));
-        } catch (const std::exception& e) {
-          internal::ReportHookFault(tick, e.what());
-        }
-      };
+      t.sense = &internal::CallHook<T, SenseContext, &T::Sense>;
     }
     if constexpr (!std::is_same_v<decltype(&T::Actuate), decltype(&Component::Actuate)>) {
-      t.actuate = +[](const void* self, const unimouse_tick* tick) {
-        try {
-          static_cast<const T*>(self)->Actuate(ActuateContext(*tick));
-        } catch (const std::exception& e) {
-          internal::ReportHookFault(tick, e.what());
-        }
-      };
+      t.actuate = &internal::CallHook<T, ActuateContext, &T::Actuate>;
     }
     if constexpr (!std::is_same_v<decltype(&T::Finish), decltype(&Component::Finish)>) {
-      t.finish = +[](const void* self, const unimouse_tick* tick) {
-        try {
-          static_cast<const T*>(self)->Finish(SenseContext(*tick));
-        } catch (const std::exception& e) {
-          internal::ReportHookFault(tick, e.what());
-        }
-      };
+      t.finish = &internal::CallHook<T, SenseContext, &T::Finish>;
     }
     t.destroy = +[](void* self) { delete static_cast<T*>(self); };
     return t;

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "maze.h"
 
+#include <algorithm>
 #include <numbers>
 #include <string_view>
 
@@ -177,10 +178,38 @@ Maze ParseMazeText(const std::string& text, const std::string& file) {
       }
     }
   }
-  if (!goals.empty()) maze.set_goals(goals);
+  if (!goals.empty()) {
+    // south to north, west to east, as CentreCells lists them
+    std::sort(goals.begin(), goals.end(),
+              [](Cell a, Cell b) { return a.y != b.y ? a.y < b.y : a.x < b.x; });
+    maze.set_goals(goals);
+  }
   return maze;
 }
 
 Maze LoadMaze(const std::string& path) { return ParseMazeText(ReadTextFile(path), path); }
+
+std::string FormatMazeText(const Maze& maze) {
+  std::string out;
+  for (int y = maze.height() - 1; y >= -1; --y) {
+    // from the north edge down: the post row north of cell row y, then the row itself
+    for (int x = 0; x < maze.width(); ++x) {
+      out += 'o';
+      out += maze.HasHorizontalWall(x, y + 1) ? "---" : "   ";
+    }
+    out += "o\n";
+    if (y < 0) break;
+    for (int x = 0; x <= maze.width(); ++x) {
+      out += maze.HasVerticalWall(x, y) ? '|' : ' ';
+      if (x == maze.width()) break;
+      const Cell c{x, y};
+      const bool goal =
+          std::find(maze.goals().begin(), maze.goals().end(), c) != maze.goals().end();
+      out += c == maze.start() ? " S " : goal ? " G " : "   ";
+    }
+    out += '\n';
+  }
+  return out;
+}
 
 }  // namespace unimouse

@@ -71,6 +71,10 @@ Maze ParseMazeText(const std::string& text, const std::string& file);
 /// Reads a maze file.
 Maze LoadMaze(const std::string& path);
 
+/// Writes the text format: 'o' posts, '---' and '|' walls, 'S' on the start, 'G' on every goal
+/// cell; ParseMazeText reads it back to the same maze.
+std::string FormatMazeText(const Maze& maze);
+
 }  // namespace unimouse
 
 #endif  // UNIMOUSE_KERNEL_MAZE_H_

@@ -5,6 +5,7 @@
 #include <exception>
 
 #include "commands.h"
+#include "maze_commands.h"
 #include "unimouse/errors.h"
 
 int main(int argc, char** argv) {
@@ -35,6 +36,53 @@ int main(int argc, char** argv) {
   CLI::App* plugins_cmd =
       app.add_subcommand("plugins", "list the component types found and their parameters");
 
+  MazeOptions maze;
+  CLI::App* maze_cmd =
+      app.add_subcommand("maze", "maze tools: read, check, solve, explore, generate");
+  maze_cmd->require_subcommand(1);
+  auto with_files = [&](CLI::App* cmd) {
+    cmd->add_option("mazes", maze.files,
+                    "maze files, bundled maze names, or directories searched for *.txt")
+        ->required();
+  };
+  auto with_outputs = [&](CLI::App* cmd) {
+    cmd->add_flag("--json", maze.json, "print JSON instead of text");
+    cmd->add_option("--csv", maze.csv, "write a one-line-per-maze summary to this CSV file");
+  };
+  CLI::App* show_cmd = maze_cmd->add_subcommand("show", "print mazes with size, start and goal");
+  with_files(show_cmd);
+  show_cmd->add_flag("--json", maze.json, "print JSON instead of text");
+  CLI::App* check_cmd_maze = maze_cmd->add_subcommand("check", "validate maze files");
+  with_files(check_cmd_maze);
+  check_cmd_maze->add_flag("--strict", maze.strict,
+                           "treat warnings (open perimeter, unreachable goal) as errors");
+  check_cmd_maze->add_option("--csv", maze.csv,
+                             "write a one-line-per-maze summary to this CSV file");
+  CLI::App* solve_cmd = maze_cmd->add_subcommand(
+      "solve", "shortest paths by the modified and the traditional flood fill");
+  with_files(solve_cmd);
+  with_outputs(solve_cmd);
+  solve_cmd
+      ->add_option("--tie", maze.tie_rule,
+                   "traditional flood fill tie rule: compass:<NESW order>, "
+                   "relative:<FLRB order> or straight:<NESW order>")
+      ->capture_default_str();
+  CLI::App* explore_cmd =
+      maze_cmd->add_subcommand("explore", "Adachi method 0 exploration, trip by trip");
+  with_files(explore_cmd);
+  with_outputs(explore_cmd);
+  explore_cmd->add_option("--cell-time", maze.cell_time_s, "seconds per cell moved")
+      ->capture_default_str();
+  explore_cmd->add_option("--turn-time", maze.turn_time_s, "seconds per 90 degree turn")
+      ->capture_default_str();
+  CLI::App* generate_cmd = maze_cmd->add_subcommand(
+      "generate", "a random maze under the classic rules, in the text format");
+  generate_cmd->add_option("--size", maze.size, "WIDTHxHEIGHT")->capture_default_str();
+  generate_cmd->add_option("--seed", maze.seed, "random seed")->capture_default_str();
+  generate_cmd->add_option("--loops", maze.loops, "share of inner walls removed, 0 to 1")
+      ->capture_default_str();
+  generate_cmd->add_option("--out", maze.out, "file to write instead of printing");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -47,6 +95,11 @@ int main(int argc, char** argv) {
     if (run_cmd->parsed()) return RunCommand(run);
     if (check_cmd->parsed()) return CheckCommand(check_robot, plugin_path);
     if (plugins_cmd->parsed()) return PluginsCommand(plugin_path);
+    if (show_cmd->parsed()) return MazeShow(maze);
+    if (check_cmd_maze->parsed()) return MazeCheck(maze);
+    if (solve_cmd->parsed()) return MazeSolve(maze);
+    if (explore_cmd->parsed()) return MazeExplore(maze);
+    if (generate_cmd->parsed()) return MazeGenerate(maze);
   } catch (const InputError& e) {
     std::fprintf(stderr, "unimouse: error: %s\n", e.what());
     return kExitBadInput;

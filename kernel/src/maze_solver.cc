@@ -83,14 +83,14 @@ OpenSides::OpenSides(const Maze& maze)
       height_(maze.height()),
       step_{1, maze.width(), -1, -maze.width()},
       bits_(static_cast<size_t>(maze.width() * maze.height()), 0) {
+  // straight from the edge tables: a side is open if it has no wall and is not the perimeter
   for (int y = 0; y < height_; ++y) {
     for (int x = 0; x < width_; ++x) {
       uint8_t open = 0;
-      for (int h = 0; h < 4; ++h) {
-        const int nx = x + (h == kEast) - (h == kWest), ny = y + (h == kNorth) - (h == kSouth);
-        const bool inside = nx >= 0 && ny >= 0 && nx < width_ && ny < height_;
-        if (inside && !maze.HasWall({x, y}, static_cast<Heading>(h))) open |= 1 << h;
-      }
+      if (x + 1 < width_ && !maze.HasVerticalWall(x + 1, y)) open |= 1 << kEast;
+      if (y + 1 < height_ && !maze.HasHorizontalWall(x, y + 1)) open |= 1 << kNorth;
+      if (x > 0 && !maze.HasVerticalWall(x, y)) open |= 1 << kWest;
+      if (y > 0 && !maze.HasHorizontalWall(x, y)) open |= 1 << kSouth;
       bits_[static_cast<size_t>(y * width_ + x)] = open;
     }
   }

@@ -1,7 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // The `unimouse` program as a user meets it: exit codes, messages and files written.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
 #include <algorithm>
 #include <cstdio>
@@ -10,27 +9,14 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "run_program.h"
+
 namespace {
 
 namespace fs = std::filesystem;
 
-struct Outcome {
-  int exit_code = -1;
-  std::string output;  // stdout and stderr together
-};
-
-// runs the program with arguments, optionally after environment assignments ("A=b ")
-Outcome Unimouse(const std::string& arguments, const std::string& environment = "") {
-  const std::string command = environment + UNIMOUSE_BINARY + " " + arguments + " 2>&1";
-  Outcome out;
-  FILE* pipe = popen(command.c_str(), "r");
-  char buffer[4096];
-  size_t n;
-  while ((n = fread(buffer, 1, sizeof(buffer), pipe)) > 0) out.output.append(buffer, n);
-  const int status = pclose(pipe);
-  out.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return out;
-}
+using unimouse::testing::Outcome;
+using unimouse::testing::Unimouse;
 
 class CliTest : public ::testing::Test {
  protected:

@@ -1,0 +1,352 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// `unimouse maze ...`: the maze module on its own, without physics.
+#include "maze_commands.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "install_paths.h"
+#include "maze_explorer.h"
+#include "maze_generator.h"
+#include "maze_solver.h"
+#include "text_file.h"
+#include "unimouse/errors.h"
+
+namespace unimouse {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+const char* kHeadingNames[] = {"east", "north", "west", "south"};
+
+// every maze file the arguments name: files as given, directories searched for *.txt
+std::vector<std::string> MazeFiles(const std::vector<std::string>& arguments) {
+  std::vector<std::string> files;
+  for (const auto& a : arguments) {
+    if (fs::is_directory(a)) {
+      std::vector<std::string> found;
+      for (const auto& e : fs::recursive_directory_iterator(a)) {
+        if (e.is_regular_file() && e.path().extension() == ".txt")
+          found.push_back(e.path().string());
+      }
+      std::sort(found.begin(), found.end());
+      files.insert(files.end(), found.begin(), found.end());
+    } else {
+      files.push_back(ResolveDataFile(a, "mazes/", ".txt"));
+    }
+  }
+  UNIMOUSE_THROW_UNLESS(!files.empty(), "no maze files found in the arguments");
+  return files;
+}
+
+// "3F R 2F L": runs of forward moves and the turns between them
+std::string ActionText(const MazePath& path, Heading start) {
+  std::ostringstream out;
+  int heading = static_cast<int>(start), run = 0;
+  auto flush = [&] {
+    if (run > 0) out << (out.tellp() > 0 ? " " : "") << run << "F";
+    run = 0;
+  };
+  for (size_t i = 1; i < path.cells.size(); ++i) {
+    const Cell a = path.cells[i - 1], b = path.cells[i];
+    const int move = b.x > a.x ? 0 : b.x < a.x ? 2 : b.y > a.y ? 1 : 3;
+    const int turn = (move - heading) & 3;
+    if (turn != 0) {
+      flush();
+      out << (out.tellp() > 0 ? " " : "") << (turn == 1 ? "L" : turn == 3 ? "R" : "B");
+    }
+    heading = move;
+    ++run;
+  }
+  flush();
+  return out.str();
+}
+
+json PathJson(const MazePath& path, Heading start) {
+  if (!path.found) return nullptr;
+  json cells = json::array();
+  for (Cell c : path.cells) cells.push_back({c.x, c.y});
+  return {{"cost", path.Cost()},
+          {"straights", path.straights},
+          {"turns", path.turns},
+          {"actions", ActionText(path, start)},
+          {"cells", cells}};
+}
+
+std::string CostText(int cost) { return cost < 0 ? "-" : std::to_string(cost); }
+
+std::string Clock(double seconds) {
+  char text[16];
+  const int s = static_cast<int>(seconds + 0.5);
+  std::snprintf(text, sizeof(text), "%02d:%02d", s / 60, s % 60);
+  return text;
+}
+
+// progress on stderr when there are many files, so that stdout stays clean
+class Progress {
+ public:
+  explicit Progress(size_t total) : total_(total) {}
+  void Step(const std::string& file) {
+    ++done_;
+    if (total_ < 2) return;
+    std::fprintf(stderr, "\r[%zu/%zu] %-60.60s", done_, total_, file.c_str());
+    if (done_ == total_) std::fprintf(stderr, "\n");
+  }
+
+ private:
+  size_t total_, done_ = 0;
+};
+
+// a CSV cell, quoted when it has to be
+std::string Csv(const std::string& text) {
+  if (text.find_first_of(",\"\n") == std::string::npos) return text;
+  std::string out = "\"";
+  for (char c : text) out += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return out + "\"";
+}
+
+struct Summary {
+  std::vector<std::string> header;
+  std::vector<std::vector<std::string>> rows;
+  void Write(const std::string& path) const {
+    if (path.empty()) return;
+    std::ostringstream out;
+    for (size_t i = 0; i < header.size(); ++i) out << (i ? "," : "") << header[i];
+    out << "\n";
+    for (const auto& row : rows) {
+      for (size_t i = 0; i < row.size(); ++i) out << (i ? "," : "") << Csv(row[i]);
+      out << "\n";
+    }
+    WriteTextFile(path, out.str());
+  }
+};
+
+}  // namespace
+
+int MazeShow(const MazeOptions& o) {
+  json all = json::array();
+  for (const auto& file : MazeFiles(o.files)) {
+    const Maze maze = LoadMaze(file);
+    if (o.json) {
+      json goals = json::array();
+      for (Cell g : maze.goals()) goals.push_back({g.x, g.y});
+      all.push_back({{"file", file},
+                     {"width", maze.width()},
+                     {"height", maze.height()},
+                     {"start", {maze.start().x, maze.start().y}},
+                     {"start_heading", kHeadingNames[static_cast<int>(maze.start_heading())]},
+                     {"goals", goals},
+                     {"text", FormatMazeText(maze)}});
+      continue;
+    }
+    std::printf("%s: %d x %d, start (%d, %d) facing %s, %zu goal cells\n%s", file.c_str(),
+                maze.width(), maze.height(), maze.start().x, maze.start().y,
+                kHeadingNames[static_cast<int>(maze.start_heading())], maze.goals().size(),
+                FormatMazeText(maze).c_str());
+  }
+  if (o.json) std::cout << all.dump(2) << "\n";
+  return kExitPassed;
+}
+
+int MazeCheck(const MazeOptions& o) {
+  const std::vector<std::string> files = MazeFiles(o.files);
+  Progress progress(files.size());
+  Summary summary{{"file", "width", "height", "status", "reason"}, {}};
+  int bad = 0;
+  for (const auto& file : files) {
+    progress.Step(file);
+    std::string status = "ok", reason;
+    try {
+      const Maze maze = LoadMaze(file);
+      std::vector<std::string> warnings;
+      for (int x = 0; x < maze.width(); ++x) {
+        if (!maze.HasHorizontalWall(x, 0) || !maze.HasHorizontalWall(x, maze.height())) {
+          warnings.push_back("open perimeter at column " + std::to_string(x));
+          break;
+        }
+      }
+      for (int y = 0; y < maze.height(); ++y) {
+        if (!maze.HasVerticalWall(0, y) || !maze.HasVerticalWall(maze.width(), y)) {
+          warnings.push_back("open perimeter at row " + std::to_string(y));
+          break;
+        }
+      }
+      const OpenSides sides(maze);
+      CellFloodFill fill;
+      fill.Compute(sides, maze.goals());
+      if (fill.Distance(maze.start()) == CellFloodFill::kUnreachable) {
+        warnings.push_back("no goal cell can be reached from the start");
+      }
+      if (!warnings.empty()) {
+        status = o.strict ? "error" : "warning";
+        for (const auto& w : warnings) reason += (reason.empty() ? "" : "; ") + w;
+      }
+      summary.rows.push_back(
+          {file, std::to_string(maze.width()), std::to_string(maze.height()), status, reason});
+    } catch (const InputError& e) {
+      status = "error";
+      reason = e.what();
+      summary.rows.push_back({file, "", "", status, reason});
+    }
+    if (status == "error") ++bad;
+    if (status != "ok" || files.size() == 1) {
+      std::printf("%s: %s%s%s\n", file.c_str(), status.c_str(), reason.empty() ? "" : ": ",
+                  reason.c_str());
+    }
+  }
+  summary.Write(o.csv);
+  if (files.size() > 1) {
+    std::printf("%zu mazes checked, %d with errors\n", files.size(), bad);
+  }
+  return bad > 0 ? kExitBadInput : kExitPassed;
+}
+
+int MazeSolve(const MazeOptions& o) {
+  const TieRule rule = TieRule::Parse(o.tie_rule);
+  const std::vector<std::string> files = MazeFiles(o.files);
+  Progress progress(o.json || files.size() < 2 ? 1 : files.size());
+  Summary summary{{"file", "modified_cost", "modified_straights", "modified_turns",
+                   "traditional_cost", "traditional_straights", "traditional_turns"},
+                  {}};
+  json all = json::array();
+  for (const auto& file : files) {
+    progress.Step(file);
+    const Maze maze = LoadMaze(file);
+    const OpenSides sides(maze);
+    StateFloodFill states;
+    states.Compute(sides, maze.goals());
+    CellFloodFill cells;
+    cells.Compute(sides, maze.goals());
+    const MazePath modified = states.PathFrom(sides, maze.start(), maze.start_heading());
+    const MazePath traditional = cells.PathFrom(sides, maze.start(), maze.start_heading(), rule);
+    summary.rows.push_back(
+        {file, CostText(modified.found ? modified.Cost() : -1), std::to_string(modified.straights),
+         std::to_string(modified.turns), CostText(traditional.found ? traditional.Cost() : -1),
+         std::to_string(traditional.straights), std::to_string(traditional.turns)});
+    if (o.json) {
+      all.push_back({{"file", file},
+                     {"tie_rule", rule.Name()},
+                     {"modified", PathJson(modified, maze.start_heading())},
+                     {"traditional", PathJson(traditional, maze.start_heading())}});
+    } else if (files.size() == 1) {
+      if (!modified.found) {
+        std::printf("%s: no path from the start to a goal cell\n", file.c_str());
+        continue;
+      }
+      std::printf("%s (%d x %d)\n", file.c_str(), maze.width(), maze.height());
+      std::printf("  modified flood fill:    cost %3d = %d straights + %d turns\n    %s\n",
+                  modified.Cost(), modified.straights, modified.turns,
+                  ActionText(modified, maze.start_heading()).c_str());
+      std::printf(
+          "  traditional flood fill: cost %3d = %d straights + %d turns (ties: %s)\n    %s\n",
+          traditional.Cost(), traditional.straights, traditional.turns, rule.Name().c_str(),
+          ActionText(traditional, maze.start_heading()).c_str());
+    }
+  }
+  if (o.json) std::cout << all.dump(2) << "\n";
+  if (!o.json && files.size() > 1) {
+    std::printf("%-50s %9s %12s\n", "maze", "modified", "traditional");
+    for (const auto& row : summary.rows) {
+      std::printf("%-50s %9s %12s\n", row[0].c_str(), row[1].c_str(), row[4].c_str());
+    }
+  }
+  summary.Write(o.csv);
+  return kExitPassed;
+}
+
+int MazeExplore(const MazeOptions& o) {
+  ExploreOptions options;
+  options.cell_time_s = o.cell_time_s;
+  options.turn_time_s = o.turn_time_s;
+  const std::vector<std::string> files = MazeFiles(o.files);
+  Progress progress(o.json || files.size() < 2 ? 1 : files.size());
+  Summary summary{{"file", "trips", "optimal_found", "best_cost", "cells_visited", "time_s"}, {}};
+  json all = json::array();
+  for (const auto& file : files) {
+    progress.Step(file);
+    const Maze maze = LoadMaze(file);
+    const Exploration e = ExploreAdachi(maze, options);
+    double total_s = 0;
+    for (const auto& t : e.trips) total_s += t.time_s;
+    const int visited = e.trips.empty() ? 0 : e.trips.back().cells_visited;
+    summary.rows.push_back({file, std::to_string(e.trips.size()), e.optimal_found ? "yes" : "no",
+                            CostText(e.best.found ? e.best.Cost() : -1), std::to_string(visited),
+                            std::to_string(total_s)});
+    if (o.json) {
+      json trips = json::array();
+      for (const auto& t : e.trips) {
+        trips.push_back({{"trip", t.trip},
+                         {"to", t.to_goal ? "goal" : "start"},
+                         {"open_cost", t.open_cost},
+                         {"closed_cost", t.closed_cost},
+                         {"cells_visited", t.cells_visited},
+                         {"forward_moves", t.forward_moves},
+                         {"turns", t.turns},
+                         {"time_s", t.time_s}});
+      }
+      all.push_back({{"file", file},
+                     {"trips", trips},
+                     {"optimal_found", e.optimal_found},
+                     {"goal_unreachable", e.goal_unreachable},
+                     {"best", PathJson(e.best, maze.start_heading())}});
+      continue;
+    }
+    if (files.size() > 1) continue;
+    std::printf("%s (%d x %d): Adachi method 0, modified flood fill\n", file.c_str(), maze.width(),
+                maze.height());
+    std::printf("  trip  to     open  closed  visited  moves  turns  time\n");
+    for (const auto& t : e.trips) {
+      std::printf("  %4d  %-5s %5s %7s %8d %6d %6d  %s\n", t.trip, t.to_goal ? "goal" : "start",
+                  CostText(t.open_cost).c_str(), CostText(t.closed_cost).c_str(), t.cells_visited,
+                  t.forward_moves, t.turns, Clock(t.time_s).c_str());
+    }
+    if (e.goal_unreachable) {
+      std::printf("  no path from the start to a goal cell\n");
+    } else if (e.optimal_found) {
+      std::printf("  optimal path found: cost %d = %d straights + %d turns\n    %s\n",
+                  e.best.Cost(), e.best.straights, e.best.turns,
+                  ActionText(e.best, maze.start_heading()).c_str());
+    } else {
+      std::printf("  stopped after %zu trips without proving the best path\n", e.trips.size());
+    }
+  }
+  if (o.json) std::cout << all.dump(2) << "\n";
+  if (!o.json && files.size() > 1) {
+    int optimal = 0;
+    for (const auto& row : summary.rows) optimal += row[2] == "yes";
+    std::printf("%zu mazes explored, the best path proven in %d\n", files.size(), optimal);
+  }
+  summary.Write(o.csv);
+  return kExitPassed;
+}
+
+int MazeGenerate(const MazeOptions& o) {
+  GenerateOptions g;
+  const size_t x = o.size.find('x');
+  UNIMOUSE_THROW_UNLESS(x != std::string::npos, "--size is WIDTHxHEIGHT, e.g. 16x16");
+  try {
+    g.width = std::stoi(o.size.substr(0, x));
+    g.height = std::stoi(o.size.substr(x + 1));
+  } catch (const std::exception&) {
+    throw InputError("--size is WIDTHxHEIGHT, e.g. 16x16, not '" + o.size + "'");
+  }
+  g.seed = o.seed;
+  g.loops = o.loops;
+  const std::string text = FormatMazeText(GenerateMaze(g));
+  if (o.out.empty()) {
+    std::cout << text;
+  } else {
+    WriteTextFile(o.out, text);
+    std::printf("%s: %dx%d maze, seed %llu\n", o.out.c_str(), g.width, g.height,
+                static_cast<unsigned long long>(g.seed));
+  }
+  return kExitPassed;
+}
+
+}  // namespace unimouse

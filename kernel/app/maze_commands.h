@@ -1,0 +1,34 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The `unimouse maze` subcommands.
+#ifndef UNIMOUSE_APP_MAZE_COMMANDS_H_
+#define UNIMOUSE_APP_MAZE_COMMANDS_H_
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace unimouse {
+
+struct MazeOptions {
+  std::vector<std::string> files;  ///< files, bundled maze names or directories
+  bool json = false;
+  std::string csv;      ///< summary file for many mazes; "" for none
+  bool strict = false;  ///< check: warnings are errors
+  std::string tie_rule = "compass:WENS";
+  double cell_time_s = 0.5;
+  double turn_time_s = 0.5;
+  std::string size = "16x16";
+  uint64_t seed = 1;
+  double loops = 0;
+  std::string out;
+};
+
+int MazeShow(const MazeOptions& options);
+int MazeCheck(const MazeOptions& options);
+int MazeSolve(const MazeOptions& options);
+int MazeExplore(const MazeOptions& options);
+int MazeGenerate(const MazeOptions& options);
+
+}  // namespace unimouse
+
+#endif  // UNIMOUSE_APP_MAZE_COMMANDS_H_

@@ -38,7 +38,7 @@ int main(int argc, char** argv) {
 
   MazeOptions maze;
   CLI::App* maze_cmd =
-      app.add_subcommand("maze", "maze tools: read, check, solve, explore, generate");
+      app.add_subcommand("maze", "maze tools: show, check, solve, explore, convert, generate");
   maze_cmd->require_subcommand(1);
   auto with_files = [&](CLI::App* cmd) {
     cmd->add_option("mazes", maze.files,
@@ -75,6 +75,10 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   explore_cmd->add_option("--turn-time", maze.turn_time_s, "seconds per 90 degree turn")
       ->capture_default_str();
+  CLI::App* convert_cmd = maze_cmd->add_subcommand(
+      "convert", "read a maze in any format (text, .num, binary .maz) and write the text format");
+  convert_cmd->add_option("maze", maze.files, "maze file")->required();
+  convert_cmd->add_option("--out", maze.out, "file to write instead of printing");
   CLI::App* generate_cmd = maze_cmd->add_subcommand(
       "generate", "a random maze under the classic rules, in the text format");
   generate_cmd->add_option("--size", maze.size, "WIDTHxHEIGHT")->capture_default_str();
@@ -99,6 +103,7 @@ int main(int argc, char** argv) {
     if (check_cmd_maze->parsed()) return MazeCheck(maze);
     if (solve_cmd->parsed()) return MazeSolve(maze);
     if (explore_cmd->parsed()) return MazeExplore(maze);
+    if (convert_cmd->parsed()) return MazeConvert(maze);
     if (generate_cmd->parsed()) return MazeGenerate(maze);
   } catch (const InputError& e) {
     std::fprintf(stderr, "unimouse: error: %s\n", e.what());

@@ -132,11 +132,13 @@ struct Summary {
 int MazeShow(const MazeOptions& o) {
   json all = json::array();
   for (const auto& file : MazeFiles(o.files)) {
-    const Maze maze = LoadMaze(file);
+    std::string format;
+    const Maze maze = LoadMaze(file, &format);
     if (o.json) {
       json goals = json::array();
       for (Cell g : maze.goals()) goals.push_back({g.x, g.y});
       all.push_back({{"file", file},
+                     {"format", format},
                      {"width", maze.width()},
                      {"height", maze.height()},
                      {"start", {maze.start().x, maze.start().y}},
@@ -145,8 +147,8 @@ int MazeShow(const MazeOptions& o) {
                      {"text", FormatMazeText(maze)}});
       continue;
     }
-    std::printf("%s: %d x %d, start (%d, %d) facing %s, %zu goal cells\n%s", file.c_str(),
-                maze.width(), maze.height(), maze.start().x, maze.start().y,
+    std::printf("%s (%s): %d x %d, start (%d, %d) facing %s, %zu goal cells\n%s", file.c_str(),
+                format.c_str(), maze.width(), maze.height(), maze.start().x, maze.start().y,
                 kHeadingNames[static_cast<int>(maze.start_heading())], maze.goals().size(),
                 FormatMazeText(maze).c_str());
   }
@@ -323,6 +325,20 @@ int MazeExplore(const MazeOptions& o) {
     std::printf("%zu mazes explored, the best path proven in %d\n", files.size(), optimal);
   }
   summary.Write(o.csv);
+  return kExitPassed;
+}
+
+int MazeConvert(const MazeOptions& o) {
+  UNIMOUSE_THROW_UNLESS(o.files.size() == 1, "convert takes one maze");
+  std::string format;
+  const std::string file = MazeFiles(o.files)[0];
+  const std::string text = FormatMazeText(LoadMaze(file, &format));
+  if (o.out.empty()) {
+    std::cout << text;
+  } else {
+    WriteTextFile(o.out, text);
+    std::printf("%s (%s) -> %s (text)\n", file.c_str(), format.c_str(), o.out.c_str());
+  }
   return kExitPassed;
 }
 

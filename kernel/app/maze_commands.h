@@ -27,6 +27,7 @@ int MazeShow(const MazeOptions& options);
 int MazeCheck(const MazeOptions& options);
 int MazeSolve(const MazeOptions& options);
 int MazeExplore(const MazeOptions& options);
+int MazeConvert(const MazeOptions& options);
 int MazeGenerate(const MazeOptions& options);
 
 }  // namespace unimouse

@@ -80,6 +80,16 @@ void Maze::SetWall(Cell c, Heading h, bool present) {
   }
 }
 
+void FaceStartTowardsItsExit(Maze& maze) {
+  if (!maze.HasWall(maze.start(), Heading::kNorth)) return;
+  for (Heading h : {Heading::kEast, Heading::kWest, Heading::kSouth}) {
+    if (!maze.HasWall(maze.start(), h)) {
+      maze.set_start(maze.start(), h);
+      return;
+    }
+  }
+}
+
 std::vector<Cell> CentreCells(int width, int height) {
   std::vector<Cell> cells;
   for (int y = (height - 1) / 2; y <= height / 2; ++y) {
@@ -92,6 +102,15 @@ std::vector<Cell> CentreCells(int width, int height) {
 
 Maze ParseMazeText(const std::string& text, const std::string& file) {
   std::vector<std::string> lines = SplitLines(text);
+
+  // the maze is the leading block of drawing lines; free text may follow it
+  for (size_t i = 0; i < lines.size(); ++i) {
+    if (lines[i].find_first_not_of(' ') == std::string::npos ||
+        std::string("o+| -").find(lines[i][0]) == std::string::npos) {
+      lines.resize(i);
+      break;
+    }
+  }
   if (lines.size() < 3 || lines.size() % 2 == 0) {
     FailAt(file, lines.empty() ? 0 : lines.size() - 1, 0,
            "a maze has an odd number of lines, at least 3 (post rows and cell rows alternate); "
@@ -102,14 +121,15 @@ Maze ParseMazeText(const std::string& text, const std::string& file) {
   for (auto& line : lines) {
     line.erase(line.find_last_not_of(' ') + 1);
   }
-  const size_t row_length = lines[0].size();
-  if (row_length < 5 || (row_length - 1) % 4 != 0) {
-    FailAt(file, 0, row_length,
+  // the north edge sets the width: 4 characters a cell and a post at the end
+  if (lines[0].size() < 4 || (lines[0].size() - 1) % 4 == 1 || (lines[0].size() - 1) % 4 == 2) {
+    FailAt(file, 0, lines[0].size(),
            "the first line must be a row of posts 'o---o---o', 4 characters "
            "per cell; it has " +
-               std::to_string(row_length) + " characters");
+               std::to_string(lines[0].size()) + " characters");
   }
-  const int width = static_cast<int>((row_length - 1) / 4);
+  const int width = static_cast<int>((lines[0].size() + 2) / 4);
+  const size_t row_length = static_cast<size_t>(4 * width + 1);
   const int height = static_cast<int>((lines.size() - 1) / 2);
   Maze maze(width, height);
 
@@ -128,7 +148,8 @@ Maze ParseMazeText(const std::string& text, const std::string& file) {
       const size_t col = static_cast<size_t>(4 * x);
       if (post_row) {
         const int y = height - static_cast<int>(i / 2);
-        if (line[col] != 'o' && line[col] != '+') {
+        // posts may be left out where no wall touches them
+        if (line[col] != 'o' && line[col] != '+' && line[col] != ' ') {
           FailAt(file, i, col,
                  std::string("expected a post 'o' or '+', found '") + line[col] + "'");
         }
@@ -169,15 +190,7 @@ Maze ParseMazeText(const std::string& text, const std::string& file) {
     }
   }
 
-  // face the one open side of the start cell; north when there is a choice
-  if (maze.HasWall(maze.start(), Heading::kNorth)) {
-    for (Heading h : {Heading::kEast, Heading::kWest, Heading::kSouth}) {
-      if (!maze.HasWall(maze.start(), h)) {
-        maze.set_start(maze.start(), h);
-        break;
-      }
-    }
-  }
+  FaceStartTowardsItsExit(maze);
   if (!goals.empty()) {
     // south to north, west to east, as CentreCells lists them
     std::sort(goals.begin(), goals.end(),
@@ -186,8 +199,6 @@ Maze ParseMazeText(const std::string& text, const std::string& file) {
   }
   return maze;
 }
-
-Maze LoadMaze(const std::string& path) { return ParseMazeText(ReadTextFile(path), path); }
 
 std::string FormatMazeText(const Maze& maze) {
   std::string out;

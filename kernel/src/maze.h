@@ -60,16 +60,32 @@ class Maze {
   std::vector<Cell> goals_;
 };
 
+/// Turns the start heading towards the start cell's opening: north, as in the classic rules,
+/// unless north is walled, then the first open side of east, west and south.
+void FaceStartTowardsItsExit(Maze& maze);
+
 /// Returns the classic goal: the 1, 2 or 4 cells at the centre.
 std::vector<Cell> CentreCells(int width, int height);
 
-/// Parses the text format of posts ('o' or '+'), '---' and '|' walls, 'S' and 'G' cell markers.
-/// Without 'S' the start is (0, 0); without 'G' the goal is the centre. Throws InputError with
-/// file:line:col.
+/// Parses the text format of posts ('o' or '+', or left out), '---' and '|' walls, 'S' and 'G'
+/// cell markers; free text after the drawing is ignored. Without 'S' the start is (0, 0);
+/// without 'G' the goal is the centre. Throws InputError with file:line:col.
 Maze ParseMazeText(const std::string& text, const std::string& file);
 
-/// Reads a maze file.
-Maze LoadMaze(const std::string& path);
+/// Parses the mms .num format: one "X Y N E S W" line per cell (0/1 for each wall), any order.
+/// Every shared wall must be recorded on both sides. Throws InputError with file:line:col.
+Maze ParseMazeNum(const std::string& text, const std::string& file);
+
+/// Parses a binary .maz: one byte per cell of a square maze (256 bytes for 16 x 16). The
+/// standard layout is column-major from the south-west, bits N=1 E=2 S=4 W=8; other layouts
+/// and bit orders circulate, so every combination is tried and the one that is consistent,
+/// closed, and has the classic start (east wall, open north) wins. `layout` receives a
+/// description of what was inferred.
+Maze ParseMazeBinary(const std::string& bytes, const std::string& file, std::string* layout);
+
+/// Reads a maze file in any of the formats above, told apart by content, not by extension.
+/// `format` (optional) receives what was read: "text", "num" or the binary layout.
+Maze LoadMaze(const std::string& path, std::string* format = nullptr);
 
 /// Writes the text format: 'o' posts, '---' and '|' walls, 'S' on the start, 'G' on every goal
 /// cell; ParseMazeText reads it back to the same maze.

@@ -37,8 +37,8 @@ int main(int argc, char** argv) {
       app.add_subcommand("plugins", "list the component types found and their parameters");
 
   MazeOptions maze;
-  CLI::App* maze_cmd =
-      app.add_subcommand("maze", "maze tools: show, check, solve, explore, convert, generate");
+  CLI::App* maze_cmd = app.add_subcommand(
+      "maze", "maze tools: show, check, solve, explore, plot, convert, generate");
   maze_cmd->require_subcommand(1);
   auto with_files = [&](CLI::App* cmd) {
     cmd->add_option("mazes", maze.files,
@@ -75,6 +75,17 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   explore_cmd->add_option("--turn-time", maze.turn_time_s, "seconds per 90 degree turn")
       ->capture_default_str();
+  explore_cmd->add_option("--plots", maze.plot_dir,
+                          "write a PNG and an SVG of every trip into this directory");
+  CLI::App* plot_cmd = maze_cmd->add_subcommand(
+      "plot", "a top-down picture of a maze and its shortest path, PNG or SVG");
+  plot_cmd->add_option("maze", maze.files, "maze file or bundled maze name")->required();
+  plot_cmd->add_option("--out", maze.out, "FILE.png or FILE.svg")->required();
+  plot_cmd->add_option("--path", maze.path, "modified (blue), traditional (orange), both or none")
+      ->capture_default_str();
+  plot_cmd->add_option("--tie", maze.tie_rule, "tie rule of the traditional flood fill")
+      ->capture_default_str();
+  plot_cmd->add_flag("--costs", maze.costs, "write each cell's distance to the goal in it");
   CLI::App* convert_cmd = maze_cmd->add_subcommand(
       "convert", "read a maze in any format (text, .num, binary .maz) and write the text format");
   convert_cmd->add_option("maze", maze.files, "maze file")->required();
@@ -103,6 +114,7 @@ int main(int argc, char** argv) {
     if (check_cmd_maze->parsed()) return MazeCheck(maze);
     if (solve_cmd->parsed()) return MazeSolve(maze);
     if (explore_cmd->parsed()) return MazeExplore(maze);
+    if (plot_cmd->parsed()) return MazePlot(maze);
     if (convert_cmd->parsed()) return MazeConvert(maze);
     if (generate_cmd->parsed()) return MazeGenerate(maze);
   } catch (const InputError& e) {

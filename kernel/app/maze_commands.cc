@@ -13,6 +13,7 @@
 #include "install_paths.h"
 #include "maze_explorer.h"
 #include "maze_generator.h"
+#include "maze_plot.h"
 #include "maze_solver.h"
 #include "text_file.h"
 #include "unimouse/errors.h"
@@ -299,6 +300,21 @@ int MazeExplore(const MazeOptions& o) {
                      {"best", PathJson(e.best, maze.start_heading())}});
       continue;
     }
+    if (!o.plot_dir.empty()) {
+      // one picture per trip, as figures 5.7-5.13
+      const std::string stem = fs::path(file).stem().string();
+      fs::create_directories(o.plot_dir);
+      for (size_t i = 0; i < e.trips.size(); ++i) {
+        MazePicture picture;
+        picture.maze = &maze;
+        picture.knowledge = &e.knowledge[i];
+        picture.open_path = e.trips[i].open_path;
+        picture.closed_path = e.trips[i].closed_path;
+        const fs::path base = fs::path(o.plot_dir) / (stem + "_trip" + std::to_string(i + 1));
+        WriteMazePicture(picture, base.string() + ".png");
+        WriteMazePicture(picture, base.string() + ".svg");
+      }
+    }
     if (files.size() > 1) continue;
     std::printf("%s (%d x %d): Adachi method 0, modified flood fill\n", file.c_str(), maze.width(),
                 maze.height());
@@ -325,6 +341,40 @@ int MazeExplore(const MazeOptions& o) {
     std::printf("%zu mazes explored, the best path proven in %d\n", files.size(), optimal);
   }
   summary.Write(o.csv);
+  return kExitPassed;
+}
+
+int MazePlot(const MazeOptions& o) {
+  UNIMOUSE_THROW_UNLESS(o.files.size() == 1, "plot takes one maze");
+  UNIMOUSE_THROW_UNLESS(!o.out.empty(), "plot needs --out FILE.png or --out FILE.svg");
+  const Maze maze = LoadMaze(MazeFiles(o.files)[0]);
+  const OpenSides sides(maze);
+  MazePicture picture;
+  picture.maze = &maze;
+  if (o.path == "modified" || o.path == "both") {
+    StateFloodFill fill;
+    fill.Compute(sides, maze.goals());
+    picture.closed_path = fill.PathFrom(sides, maze.start(), maze.start_heading());
+  }
+  CellFloodFill cells;
+  cells.Compute(sides, maze.goals());
+  if (o.path == "traditional" || o.path == "both") {
+    picture.open_path =
+        cells.PathFrom(sides, maze.start(), maze.start_heading(), TieRule::Parse(o.tie_rule));
+  }
+  UNIMOUSE_THROW_UNLESS(
+      o.path == "modified" || o.path == "traditional" || o.path == "both" || o.path == "none",
+      "--path is modified, traditional, both or none");
+  if (o.costs) {
+    for (int y = 0; y < maze.height(); ++y) {
+      for (int x = 0; x < maze.width(); ++x) {
+        const uint16_t d = cells.Distance({x, y});
+        picture.numbers.push_back(d == CellFloodFill::kUnreachable ? -1 : d);
+      }
+    }
+  }
+  WriteMazePicture(picture, o.out);
+  std::printf("%s\n", o.out.c_str());
   return kExitPassed;
 }
 

@@ -21,12 +21,16 @@ struct MazeOptions {
   uint64_t seed = 1;
   double loops = 0;
   std::string out;
+  std::string plot_dir;           ///< explore: pictures of every trip go here
+  std::string path = "modified";  ///< plot: which path to draw
+  bool costs = false;             ///< plot: cell distances to the goal
 };
 
 int MazeShow(const MazeOptions& options);
 int MazeCheck(const MazeOptions& options);
 int MazeSolve(const MazeOptions& options);
 int MazeExplore(const MazeOptions& options);
+int MazePlot(const MazeOptions& options);
 int MazeConvert(const MazeOptions& options);
 int MazeGenerate(const MazeOptions& options);
 

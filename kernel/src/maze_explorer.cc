@@ -107,6 +107,7 @@ Exploration ExploreAdachi(const Maze& truth, const ExploreOptions& options) {
     record.open_cost = BestCost(knowledge.OpenView(), truth, &record.open_path);
     record.closed_cost = BestCost(knowledge.ClosedView(), truth, &record.closed_path);
     out.trips.push_back(record);
+    out.knowledge.push_back(knowledge);
     if (out.goal_unreachable) break;
     if (record.open_cost >= 0 && record.open_cost == record.closed_cost) {
       out.optimal_found = true;

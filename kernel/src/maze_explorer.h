@@ -58,7 +58,8 @@ struct TripRecord {
 
 struct Exploration {
   std::vector<TripRecord> trips;
-  bool optimal_found = false;  ///< open and closed costs matched
+  std::vector<WallKnowledge> knowledge;  ///< what the mouse knew after each trip
+  bool optimal_found = false;            ///< open and closed costs matched
   bool goal_unreachable = false;
   MazePath best;                 ///< the closed path after the last trip
   std::vector<uint8_t> visited;  ///< per cell, row by row from the south-west

@@ -103,3 +103,40 @@ TEST(MazeCommandsTest, BadTieRuleIsABadInput) {
 
 }  // namespace
 }  // namespace unimouse
+
+namespace unimouse {
+namespace {
+
+TEST(MazeCommandsTest, ExploreDrawsEveryTripAndPlotDrawsAMaze) {
+  const fs::path dir = fs::temp_directory_path() / "unimouse_maze_plots";
+  fs::remove_all(dir);
+  auto o = testing::Unimouse("maze explore japan2018 --plots " + dir.string());
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  for (int trip = 1; trip <= 3; ++trip) {
+    EXPECT_TRUE(fs::exists(dir / ("japan2018_trip" + std::to_string(trip) + ".png")));
+    EXPECT_TRUE(fs::exists(dir / ("japan2018_trip" + std::to_string(trip) + ".svg")));
+  }
+  EXPECT_FALSE(fs::exists(dir / "japan2018_trip4.png"));
+  o = testing::Unimouse("maze plot japan2019 --path both --costs --out " +
+                        (dir / "j.svg").string());
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  std::ifstream in(dir / "j.svg");
+  const std::string svg((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(svg.find("class='closed-path'"), std::string::npos);
+  EXPECT_NE(svg.find("class='open-path'"), std::string::npos);
+  EXPECT_EQ(testing::Unimouse("maze plot japan2019 --out " + (dir / "j.gif").string()).exit_code,
+            2);
+  fs::remove_all(dir);
+}
+
+TEST(MazeCommandsTest, ConvertNormalisesANumFileToText) {
+  const fs::path file = fs::temp_directory_path() / "unimouse_convert.num";
+  std::ofstream(file) << "0 0 1 0 1 1\n1 0 1 1 1 0\n";
+  const auto o = testing::Unimouse("maze convert " + file.string());
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  EXPECT_EQ(o.output, "o---o---o\n| S   G |\no---o---o\n");
+  fs::remove(file);
+}
+
+}  // namespace
+}  // namespace unimouse

@@ -159,7 +159,7 @@ int MazeShow(const MazeOptions& o) {
 
 int MazeCheck(const MazeOptions& o) {
   const std::vector<std::string> files = MazeFiles(o.files);
-  Progress progress(files.size());
+  Progress progress(o.json ? 1 : files.size());
   Summary summary{{"file", "width", "height", "status", "reason"}, {}};
   int bad = 0;
   for (const auto& file : files) {
@@ -198,13 +198,20 @@ int MazeCheck(const MazeOptions& o) {
       summary.rows.push_back({file, "", "", status, reason});
     }
     if (status == "error") ++bad;
+    if (o.json) continue;
     if (status != "ok" || files.size() == 1) {
       std::printf("%s: %s%s%s\n", file.c_str(), status.c_str(), reason.empty() ? "" : ": ",
                   reason.c_str());
     }
   }
   summary.Write(o.csv);
-  if (files.size() > 1) {
+  if (o.json) {
+    json all = json::array();
+    for (const auto& row : summary.rows) {
+      all.push_back({{"file", row[0]}, {"status", row[3]}, {"reason", row[4]}});
+    }
+    std::cout << all.dump(2) << "\n";
+  } else if (files.size() > 1) {
     std::printf("%zu mazes checked, %d with errors\n", files.size(), bad);
   }
   return bad > 0 ? kExitBadInput : kExitPassed;

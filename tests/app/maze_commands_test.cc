@@ -140,3 +140,17 @@ TEST(MazeCommandsTest, ConvertNormalisesANumFileToText) {
 
 }  // namespace
 }  // namespace unimouse
+
+namespace unimouse {
+namespace {
+
+TEST(MazeCommandsTest, CheckSpeaksJsonToo) {
+  const auto o = testing::Unimouse("maze check japan2018 japan2019 --json");
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  const nlohmann::json j = nlohmann::json::parse(o.output);
+  ASSERT_EQ(j.size(), 2u);
+  EXPECT_EQ(j[0]["status"], "ok");
+}
+
+}  // namespace
+}  // namespace unimouse

@@ -56,8 +56,7 @@ int main(int argc, char** argv) {
   with_files(check_cmd_maze);
   check_cmd_maze->add_flag("--strict", maze.strict,
                            "treat warnings (open perimeter, unreachable goal) as errors");
-  check_cmd_maze->add_option("--csv", maze.csv,
-                             "write a one-line-per-maze summary to this CSV file");
+  with_outputs(check_cmd_maze);
   CLI::App* solve_cmd = maze_cmd->add_subcommand(
       "solve", "shortest paths by the modified and the traditional flood fill");
   with_files(solve_cmd);

@@ -41,7 +41,12 @@ class MazePlotTest : public ::testing::Test {
  protected:
   const Maze maze_ = ParseMazeText(testing::kSmallMaze, "small.txt");
   const PlotGeometry g_;
-  const std::string png_ = (std::filesystem::temp_directory_path() / "unimouse_plot.png").string();
+  // one file per test: ctest runs tests in parallel processes
+  const std::string png_ =
+      (std::filesystem::temp_directory_path() /
+       ("unimouse_plot_" +
+        std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) + ".png"))
+          .string();
 };
 
 TEST_F(MazePlotTest, PngShowsWallsStartGoalAndPathWhereTheGeometrySays) {

@@ -2,6 +2,7 @@
 #include "plugin_rig.h"
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <sstream>
@@ -51,7 +52,9 @@ std::unique_ptr<Kernel> MakeKernel(const std::string& robot_yaml, const Maze* ma
   static const PluginRegistry registry = BundledComponents();
   // traces of the bundled robot's logger go to a scratch directory, not the working one
   if (options.output_dir == ".") {
-    options.output_dir = (std::filesystem::temp_directory_path() / "unimouse_tests").string();
+    options.output_dir =
+        (std::filesystem::temp_directory_path() / ("unimouse_tests_" + std::to_string(::getpid())))
+            .string();
   }
   return Kernel::Create(ParseRobotSpec(robot_yaml, "robot.yaml"), maze, registry, options);
 }

@@ -8,13 +8,16 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <numbers>
 
 #include "install_paths.h"
 #include "kernel.h"
+#include "real_time_pacer.h"
 #include "text_file.h"
 #include "unimouse/errors.h"
+#include "unimouse/plugin_abi.h"
 
 namespace unimouse {
 namespace {
@@ -41,13 +44,37 @@ int RunCommand(const RunOptions& options) {
   UNIMOUSE_THROW_UNLESS(options.duration_s > 0 && std::isfinite(options.duration_s),
                         "--duration must be a positive number of seconds");
   const std::string robot_file = ResolveDataFile(options.robot, "robots/", ".yaml");
-  const RobotSpec robot = LoadRobotSpec(robot_file);
+  RobotSpec robot = LoadRobotSpec(robot_file);
+  if (!options.link.empty()) {
+    // the firmware drives the robot's inputs through the link, added as the last component
+    robot.components.push_back({"unimouse.link",
+                                "link",
+                                std::nullopt,
+                                ParseYaml("{transport: '" + options.link + "'}", "--link"),
+                                {"--link", 1, 1}});
+  }
   const std::unique_ptr<Maze> maze = LoadMazeOption(options.maze);
   const PluginRegistry registry = LoadRegistry(options.plugin_path);
   std::filesystem::create_directories(options.out_dir);
+
+  // every message goes to the console with its sim time and into the run's log, line by line
+  const std::string log_path = (std::filesystem::path(options.out_dir) / "log.txt").string();
+  std::shared_ptr<std::FILE> log(std::fopen(log_path.c_str(), "w"), [](std::FILE* f) {
+    if (f) std::fclose(f);
+  });
+  UNIMOUSE_THROW_UNLESS(log != nullptr, log_path + ": cannot write the run's log");
   KernelOptions kernel_options;
   kernel_options.seed = options.seed;
   kernel_options.output_dir = options.out_dir;
+  kernel_options.log_sink = [log](double time_s, int level, const std::string& component,
+                                  const std::string& message) {
+    const char* kind = level >= UNIMOUSE_LOG_ERROR     ? "error: "
+                       : level == UNIMOUSE_LOG_WARNING ? "warning: "
+                                                       : "";
+    std::fprintf(stderr, "[%9.3f s] %s: %s%s\n", time_s, component.c_str(), kind, message.c_str());
+    std::fprintf(log.get(), "%.6f\t%s\t%s%s\n", time_s, component.c_str(), kind, message.c_str());
+    std::fflush(log.get());
+  };
   std::unique_ptr<Kernel> kernel = Kernel::Create(robot, maze.get(), registry, kernel_options);
 
   nlohmann::json result;
@@ -57,10 +84,18 @@ int RunCommand(const RunOptions& options) {
   result["duration_s"] = options.duration_s;
 
   const int64_t steps = std::llround(options.duration_s / kernel->timestep_s());
+  const int lockstep_signal = kernel->model().FindSignal("link.lockstep");
+  const bool pace = options.realtime || !options.link.empty();
+  RealTimePacer pacer(kernel->timestep_s());
   const auto start = std::chrono::steady_clock::now();
   std::string fault;
   try {
-    while (kernel->state().step() < steps) kernel->Step();
+    while (kernel->state().step() < steps) {
+      kernel->Step();
+      // hardware runs on the wall clock; firmware in lock-step sets the pace itself
+      const bool lockstep = lockstep_signal >= 0 && kernel->state().signals()[lockstep_signal] != 0;
+      if (pace && !lockstep) pacer.Wait(kernel->state().step());
+    }
   } catch (const RuntimeFault& e) {
     fault = e.what();
   }
@@ -79,6 +114,7 @@ int RunCommand(const RunOptions& options) {
   result["real_time_factor"] = wall_s > 0 ? d.time / wall_s : 0.0;
   result["robot_pose"] = {{"x_m", pose.x_m}, {"y_m", pose.y_m}, {"yaw_rad", pose.yaw_rad}};
   result["collision_proxy_overflows"] = kernel->world().proxy_overflows();
+  if (pace) result["real_time_pacing"] = pacer.Report();
   WriteResult(options.out_dir, result);
 
   std::printf("unimouse run: robot '%s' %s, seed %llu\n", robot.name.c_str(),

@@ -15,6 +15,8 @@ struct RunOptions {
   uint64_t seed = 1;
   std::string out_dir = "out";
   std::string plugin_path;
+  std::string link;  ///< firmware link transport, "" for none: pty, serial:PATH@BAUD, tcp::PORT
+  bool realtime = false;  ///< pace to the wall clock; always on with a link
 };
 
 /// Runs a simulation headless and writes out_dir/result.json; returns the exit code.

@@ -28,6 +28,11 @@ int main(int argc, char** argv) {
   run_cmd->add_option("--seed", run.seed, "seed of every random stream")->capture_default_str();
   run_cmd->add_option("--out", run.out_dir, "directory for result.json and other outputs")
       ->capture_default_str();
+  run_cmd->add_flag("--realtime", run.realtime,
+                    "pace the simulation to the wall clock (always, with --link, until the "
+                    "firmware turns lock-step on)");
+  run_cmd->add_option("--link", run.link,
+                      "connect firmware: pty, pty:LINK, serial:/dev/ttyUSB0@115200 or tcp::5760");
 
   std::string check_robot;
   CLI::App* check_cmd = app.add_subcommand("check", "validate a robot file without running it");

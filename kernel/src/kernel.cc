@@ -271,8 +271,8 @@ void Kernel::Emit(int level, const std::string& component, const std::string& me
         << " s: " << message;
     fault_ = out.str();
   }
-  if (log_sink_) {
-    log_sink_(level, component, message);
+  if (options_.log_sink) {
+    options_.log_sink(state_->data().time, level, component, message);
   } else if (level > UNIMOUSE_LOG_INFO) {
     std::cerr << component << ": " << message << "\n";
   }

@@ -27,18 +27,21 @@
 namespace unimouse {
 
 /// Choices made per run rather than per robot.
+/// Receives every log line at sim time time_s: level (UNIMOUSE_LOG_*), the component's name
+/// and the message.
+using LogSink = std::function<void(double time_s, int level, const std::string& component,
+                                   const std::string& message)>;
+
+/// Choices made per run rather than per robot.
 struct KernelOptions {
   uint64_t seed = 1;
   std::string output_dir = ".";  ///< where components write their files
   std::optional<Pose2D> spawn;   ///< default: the maze's start, or the origin facing north
+  LogSink log_sink;              ///< default: warnings and errors to stderr
 };
 
 class Kernel {
  public:
-  /// Receives every log line: level (UNIMOUSE_LOG_*), the component's name and the message.
-  using LogSink =
-      std::function<void(int level, const std::string& component, const std::string& message)>;
-
   Kernel(const Kernel&) = delete;
   Kernel& operator=(const Kernel&) = delete;
 
@@ -65,7 +68,6 @@ class Kernel {
 
   /// Runs at the start of every tick, before physics; scenario scripts live here.
   void SetBoundaryHook(std::function<void()> hook) { boundary_hook_ = std::move(hook); }
-  void SetLogSink(LogSink sink) { log_sink_ = std::move(sink); }
 
   const Model& model() const { return model_; }
   const mjModel& mj_model() const { return model_.mj(); }
@@ -107,7 +109,6 @@ class Kernel {
   std::vector<int> signal_writer_;
   std::vector<int> signal_first_reader_;
   std::function<void()> boundary_hook_;
-  LogSink log_sink_;
   std::string fault_;
   // the run's messages, oldest first; what each component has already been shown of them
   std::deque<StoredMessage> messages_;

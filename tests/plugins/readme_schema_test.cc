@@ -11,6 +11,7 @@
 #include "dc_motor.h"
 #include "encoder.h"
 #include "h_bridge.h"
+#include "link.h"
 #include "logger.h"
 #include "plugin_registry.h"
 #include "tof_sensor.h"
@@ -68,6 +69,7 @@ TEST(ReadmeSchemaTest, EveryPluginReadmeListsItsParameters) {
   ExpectReadmeMatches("encoder", ComponentType<plugins::Encoder>());
   ExpectReadmeMatches("tof_sensor", ComponentType<plugins::TofSensor>());
   ExpectReadmeMatches("logger", ComponentType<plugins::Logger>());
+  ExpectReadmeMatches("link", ComponentType<link::Link>());
 }
 
 }  // namespace

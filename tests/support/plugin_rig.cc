@@ -11,6 +11,7 @@
 #include "dc_motor.h"
 #include "encoder.h"
 #include "h_bridge.h"
+#include "link.h"
 #include "logger.h"
 #include "tof_sensor.h"
 
@@ -24,6 +25,7 @@ PluginRegistry BundledComponents() {
   registry.AddStatic(ComponentType<plugins::Encoder>());
   registry.AddStatic(ComponentType<plugins::TofSensor>());
   registry.AddStatic(ComponentType<plugins::Logger>());
+  registry.AddStatic(ComponentType<link::Link>());
   return registry;
 }
 

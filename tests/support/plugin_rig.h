@@ -11,7 +11,7 @@
 
 namespace unimouse::testing {
 
-/// Returns a registry with battery, H-bridge, DC motor, encoder, ToF sensor and logger.
+/// Returns a registry with battery, H-bridge, DC motor, encoder, ToF sensor, logger and link.
 PluginRegistry BundledComponents();
 
 /// Robot YAML of the rig: block `base` (1 kg), wheel `rotor` (sphere r 0.016 m, 0.01 kg, no

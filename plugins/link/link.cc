@@ -1,0 +1,212 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "link.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+
+namespace unimouse::link {
+namespace {
+
+// state slots: what the firmware asked for, and when it last spoke
+constexpr int kSensorsOn = 0;
+constexpr int kLockstep = 1;
+constexpr int kLastFrame_s = 2;
+constexpr int kFailsafe = 3;
+constexpr int kUnknownReported = 4;
+
+std::string Sides(uint8_t bits) {
+  std::string out;
+  const char* names[] = {"N", "E", "S", "W"};
+  for (int i = 0; i < 4; ++i) {
+    if (bits >> i & 1) out += (out.empty() ? "" : " ") + std::string(names[i]);
+  }
+  return out.empty() ? "none" : out;
+}
+
+}  // namespace
+
+Link::Link(Params params) : p_(std::move(params)), transport_(OpenTransport(p_.transport)) {}
+
+Link::~Link() = default;
+
+void Link::Bind(BindContext& ctx) {
+  tof_[0] = ctx.ReadSignal(p_.tof_left);
+  tof_[1] = ctx.ReadSignal(p_.tof_right);
+  tof_[2] = ctx.ReadSignal(p_.tof_front);
+  encoder_[0] = ctx.ReadSignal(p_.encoder_left);
+  encoder_[1] = ctx.ReadSignal(p_.encoder_right);
+  motor_[0] = ctx.WriteSignal(p_.motor_left);
+  motor_[1] = ctx.WriteSignal(p_.motor_right);
+  lockstep_ = ctx.WriteSignal(p_.lockstep_out);
+  const double steps = p_.tof_period_s / ctx.period_s();
+  tof_every_n_steps_ = std::max(1, static_cast<int>(std::lround(steps)));
+  UNIMOUSE_THROW_UNLESS(std::fabs(steps - tof_every_n_steps_) < 1e-6 * steps,
+                        "tof_period_s must be a whole number of the link's steps");
+  ctx.SetStateSize(5);
+}
+
+void Link::Reset(const ResetContext& ctx) const {
+  std::span<double> s = ctx.state();
+  s[kSensorsOn] = 1;  // the original streamed from the start
+  s[kLockstep] = 0;
+  s[kLastFrame_s] = 0;
+  s[kFailsafe] = 0;
+  s[kUnknownReported] = 0;
+  ctx.Write(motor_[0], 0);
+  ctx.Write(motor_[1], 0);
+  ctx.Write(lockstep_, 0);
+  decoder_.Reset();
+  ctx.Log("firmware link: " + transport_->Describe());
+}
+
+void Link::Apply(const SenseContext& ctx, const FirmwareFrame& f, bool* step_done) const {
+  std::span<double> s = ctx.state();
+  s[kLastFrame_s] = ctx.time_s();
+  if (s[kFailsafe] != 0) {
+    s[kFailsafe] = 0;
+    ctx.Log("the firmware speaks again");
+  }
+  char text[160];
+  switch (f.id) {
+    case UNIMOUSE_ID_MOTOR_LEFT:
+    case UNIMOUSE_ID_MOTOR_RIGHT:
+      ctx.Write(motor_[f.id - UNIMOUSE_ID_MOTOR_LEFT], f.value);
+      break;
+    case UNIMOUSE_ID_MANAGER:
+      switch (f.value) {
+        case UNIMOUSE_MANAGER_SENSORS_ON:
+        case UNIMOUSE_MANAGER_SENSORS_OFF:
+          s[kSensorsOn] = f.value == UNIMOUSE_MANAGER_SENSORS_ON;
+          break;
+        case UNIMOUSE_MANAGER_STOP:
+          ctx.Write(motor_[0], 0);
+          ctx.Write(motor_[1], 0);
+          break;
+        case UNIMOUSE_MANAGER_START:
+          break;
+        case UNIMOUSE_MANAGER_LOCKSTEP_ON:
+          if (s[kLockstep] == 0) ctx.Log("lock-step on: the simulation waits for the firmware");
+          s[kLockstep] = 1;
+          ctx.Write(lockstep_, 1);
+          break;
+        case UNIMOUSE_MANAGER_STEP_DONE:
+          *step_done = true;
+          break;
+        default:
+          std::snprintf(text, sizeof(text), "unknown manager byte 0x%02x, ignored", f.value);
+          ctx.Warn(text);
+      }
+      break;
+    case UNIMOUSE_ID_LOG:
+      ctx.Log(f.text);
+      break;
+    case UNIMOUSE_ID_DEBUG_WALLS:
+      std::snprintf(text, sizeof(text), "debug walls (%d, %d): %s; known %s", f.data[0], f.data[1],
+                    Sides(f.data[2]).c_str(), Sides(f.data[3]).c_str());
+      ctx.Log(text);
+      break;
+    case UNIMOUSE_ID_DEBUG_VISITED:
+      std::snprintf(text, sizeof(text), "debug visited (%d, %d)", f.data[0], f.data[1]);
+      ctx.Log(text);
+      break;
+    case UNIMOUSE_ID_DEBUG_PATH: {
+      std::string path = "debug path";
+      for (size_t i = 0; i + 1 < f.data.size(); i += 2) {
+        path += " (" + std::to_string(f.data[i]) + ", " + std::to_string(f.data[i + 1]) + ")";
+      }
+      ctx.Log(path);
+      break;
+    }
+    case UNIMOUSE_ID_DEBUG_VALUE:
+      std::snprintf(text, sizeof(text), "debug value %s = %.9g", f.text.c_str(), f.number);
+      ctx.Log(text);
+      break;
+  }
+}
+
+void Link::Receive(const SenseContext& ctx, bool* step_done) const {
+  inbox_.clear();
+  transport_->Read(inbox_);
+  if (transport_->Connected() != was_connected_) {
+    was_connected_ = transport_->Connected();
+    ctx.Log(was_connected_ ? "firmware connected" : "firmware disconnected");
+    if (!was_connected_) decoder_.Reset();
+  }
+  std::vector<FirmwareFrame> frames;
+  decoder_.Feed(inbox_, frames);
+  for (const FirmwareFrame& f : frames) Apply(ctx, f, step_done);
+
+  // each unknown id is reported once; all are counted
+  std::span<double> s = ctx.state();
+  const auto& unknown = decoder_.unknown_ids();
+  for (size_t i = static_cast<size_t>(s[kUnknownReported]); i < unknown.size(); ++i) {
+    char text[96];
+    std::snprintf(text, sizeof(text), "unknown frame id 0x%02x from the firmware: skipped",
+                  unknown[i]);
+    ctx.Warn(text);
+  }
+  s[kUnknownReported] = static_cast<double>(unknown.size());
+}
+
+void Link::Sense(const SenseContext& ctx) const {
+  std::span<double> s = ctx.state();
+  bool step_done = false;
+  Receive(ctx, &step_done);
+
+  // failsafe: a silent board stops its motors
+  if (p_.failsafe_s > 0 && s[kFailsafe] == 0 && ctx.time_s() - s[kLastFrame_s] > p_.failsafe_s &&
+      (ctx.Read(motor_[0]) != 0 || ctx.Read(motor_[1]) != 0)) {
+    ctx.Write(motor_[0], 0);
+    ctx.Write(motor_[1], 0);
+    s[kFailsafe] = 1;
+    char text[96];
+    std::snprintf(text, sizeof(text), "no frame from the firmware for %g s: motors stopped",
+                  p_.failsafe_s);
+    ctx.Warn(text);
+  }
+
+  std::string out;
+  if (s[kSensorsOn] != 0) {
+    PutEncoderFrame(UNIMOUSE_ID_ENCODER_LEFT, std::lround(ctx.Read(encoder_[0])), out);
+    PutEncoderFrame(UNIMOUSE_ID_ENCODER_RIGHT, std::lround(ctx.Read(encoder_[1])), out);
+    if (ctx.step() % tof_every_n_steps_ == 0) {
+      for (int i = 0; i < 3; ++i) {
+        PutTofFrame(static_cast<uint8_t>(UNIMOUSE_ID_TOF_LEFT + i), ctx.Read(tof_[i]),
+                    p_.tof_full_scale_m, out);
+      }
+    }
+  }
+  const bool lockstep = s[kLockstep] != 0;
+  if (lockstep) PutClockFrame(static_cast<uint64_t>(std::llround(ctx.time_s() * 1e6)), out);
+  const auto* bytes = reinterpret_cast<const uint8_t*>(out.data());
+  transport_->Write(std::span<const uint8_t>(bytes, out.size()));
+
+  // lock-step: this step is over when the firmware says so
+  if (!lockstep) return;
+  const auto deadline =
+      std::chrono::steady_clock::now() + std::chrono::duration<double>(p_.lockstep_timeout_s);
+  while (!step_done) {
+    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
+        deadline - std::chrono::steady_clock::now());
+    if (left.count() <= 0 || !transport_->WaitReadable(left)) {
+      char text[160];
+      std::snprintf(text, sizeof(text),
+                    "the firmware did not finish its step at t=%.3f s within %g s (lock-step)",
+                    ctx.time_s(), p_.lockstep_timeout_s);
+      ctx.Fail(text);
+      return;
+    }
+    Receive(ctx, &step_done);
+  }
+}
+
+void Link::Finish(const SenseContext& ctx) const {
+  char text[160];
+  std::snprintf(text, sizeof(text), "link: %llu frames from the firmware, %llu unknown bytes",
+                static_cast<unsigned long long>(decoder_.frames()),
+                static_cast<unsigned long long>(decoder_.unknown_bytes()));
+  ctx.Log(text);
+}
+
+}  // namespace unimouse::link

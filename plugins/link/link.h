@@ -1,0 +1,91 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The hardware-in-the-loop link (docs/protocol.md): the simulator's side of the byte protocol of
+// the original UnimouseSim. Every step it reads the firmware's frames (motor commands into the
+// H-bridge inputs, manager bytes, log lines, debug frames), then sends encoder frames every step
+// and ToF frames every 30 ms. Extensions the firmware can ask for: lock-step (a clock frame
+// after each step's frames, then the simulator waits for the firmware's step-done byte) and
+// debug channels. Failsafe: when no frame arrives for failsafe_s, both commands fall to 0.
+#ifndef UNIMOUSE_PLUGINS_LINK_LINK_H_
+#define UNIMOUSE_PLUGINS_LINK_LINK_H_
+
+#include <memory>
+#include <string>
+
+#include "frame_codec.h"
+#include "transport.h"
+#include "unimouse/component.h"
+
+namespace unimouse::link {
+
+struct LinkParams {
+  std::string transport = "pty";
+  std::string tof_left = "tof.left_m";
+  std::string tof_right = "tof.right_m";
+  std::string tof_front = "tof.front_m";
+  std::string encoder_left = "left.encoder_counts";
+  std::string encoder_right = "right.encoder_counts";
+  std::string motor_left = "left.command";
+  std::string motor_right = "right.command";
+  double tof_full_scale_m = UNIMOUSE_TOF_FULL_SCALE_M;
+  double tof_period_s = 0.03;
+  double failsafe_s = 0.1;
+  double lockstep_timeout_s = 5;
+  std::string lockstep_out = "link.lockstep";
+
+  template <class V>
+  void Visit(V& v) {
+    v("transport", transport, "pty, pty:LINK, serial:PATH@BAUD or tcp::PORT");
+    v("tof_left", tof_left, "signal sent as frame 0: left ToF reading, metres");
+    v("tof_right", tof_right, "signal sent as frame 1: right ToF reading, metres");
+    v("tof_front", tof_front, "signal sent as frame 2: front ToF reading, metres");
+    v("encoder_left", encoder_left, "signal sent as frame 3: left encoder counts per step");
+    v("encoder_right", encoder_right, "signal sent as frame 4: right encoder counts per step");
+    v("motor_left", motor_left, "signal it writes from frame 5: left H-bridge command");
+    v("motor_right", motor_right, "signal it writes from frame 6: right H-bridge command");
+    v("tof_full_scale_m", tof_full_scale_m, "distance sent as 0xFFFF (table 3.8)",
+      param::Positive{});
+    v("tof_period_s", tof_period_s, "how often ToF frames go out", param::Positive{});
+    v("failsafe_s", failsafe_s,
+      "silence after which the motors are stopped; 0 turns the failsafe off, for firmware "
+      "that sends commands only when they change",
+      param::NonNegative{});
+    v("lockstep_timeout_s", lockstep_timeout_s,
+      "how long lock-step waits for the firmware before giving up", param::Positive{});
+    v("lockstep_out", lockstep_out,
+      "signal it writes: 1 once the firmware runs in lock-step (the run stops pacing then)");
+  }
+};
+
+class Link final : public Component {
+ public:
+  static constexpr const char* kTypeName = "unimouse.link";
+  static constexpr const char* kSummary = "hardware-in-the-loop link over pty, serial or TCP";
+  static constexpr double kDefaultPeriod_s = 0;
+  using Params = LinkParams;
+
+  explicit Link(Params params);
+  ~Link() override;
+  void Bind(BindContext& ctx) override;
+  void Reset(const ResetContext& ctx) const override;
+  void Sense(const SenseContext& ctx) const override;
+  void Finish(const SenseContext& ctx) const override;
+
+  const Transport& transport() const { return *transport_; }
+
+ private:
+  void Receive(const SenseContext& ctx, bool* step_done) const;
+  void Apply(const SenseContext& ctx, const FirmwareFrame& frame, bool* step_done) const;
+
+  const Params p_;
+  SignalId tof_[3], encoder_[2], motor_[2], lockstep_;
+  int tof_every_n_steps_ = 30;
+  // the connection is a resource, rebuilt on load, never part of a snapshot
+  std::unique_ptr<Transport> transport_;
+  mutable FrameDecoder decoder_;
+  mutable std::vector<uint8_t> inbox_;
+  mutable bool was_connected_ = false;
+};
+
+}  // namespace unimouse::link
+
+#endif  // UNIMOUSE_PLUGINS_LINK_LINK_H_

@@ -7,10 +7,12 @@
 #include <termios.h>
 #include <unistd.h>
 
+// clang-format off
 // Boost 1.74's asio uses std::exchange without including <utility> in C++20
-#include <boost/asio.hpp>
-#include <filesystem>
 #include <utility>
+#include <boost/asio.hpp>
+// clang-format on
+#include <filesystem>
 
 #include "unimouse/errors.h"
 

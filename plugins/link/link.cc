@@ -149,10 +149,35 @@ void Link::Receive(const SenseContext& ctx, bool* step_done) const {
   s[kUnknownReported] = static_cast<double>(unknown.size());
 }
 
+bool Link::AwaitFirmware(const SenseContext& ctx, bool* step_done, const char* waiting_for) const {
+  const auto deadline =
+      std::chrono::steady_clock::now() + std::chrono::duration<double>(p_.lockstep_timeout_s);
+  const bool for_lockstep = step_done == nullptr;
+  bool ignored = false;
+  while (for_lockstep ? ctx.state()[kLockstep] == 0 : !*step_done) {
+    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
+        deadline - std::chrono::steady_clock::now());
+    if (left.count() <= 0 || !transport_->WaitReadable(left)) {
+      char text[160];
+      std::snprintf(text, sizeof(text),
+                    "the firmware did not %s at t=%.3f s within %g s (lock-step)", waiting_for,
+                    ctx.time_s(), p_.lockstep_timeout_s);
+      ctx.Fail(text);
+      return false;
+    }
+    Receive(ctx, for_lockstep ? &ignored : step_done);
+  }
+  return true;
+}
+
 void Link::Sense(const SenseContext& ctx) const {
   std::span<double> s = ctx.state();
   bool step_done = false;
   Receive(ctx, &step_done);
+  if (p_.start_with_lockstep && ctx.step() == 0 && s[kLockstep] == 0 &&
+      !AwaitFirmware(ctx, nullptr, "ask for lock-step")) {
+    return;
+  }
 
   // failsafe: a silent board stops its motors
   if (p_.failsafe_s > 0 && s[kFailsafe] == 0 && ctx.time_s() - s[kLastFrame_s] > p_.failsafe_s &&

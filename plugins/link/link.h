@@ -30,11 +30,12 @@ struct LinkParams {
   double tof_period_s = 0.03;
   double failsafe_s = 0.1;
   double lockstep_timeout_s = 5;
+  bool start_with_lockstep = false;
   std::string lockstep_out = "link.lockstep";
 
   template <class V>
   void Visit(V& v) {
-    v("transport", transport, "pty, pty:LINK, serial:PATH@BAUD or tcp::PORT");
+    v("transport", transport, "pty, pty:LINK, serial:PATH@BAUD, tcp::PORT or native:PROGRAM");
     v("tof_left", tof_left, "signal sent as frame 0: left ToF reading, metres");
     v("tof_right", tof_right, "signal sent as frame 1: right ToF reading, metres");
     v("tof_front", tof_front, "signal sent as frame 2: front ToF reading, metres");
@@ -51,6 +52,9 @@ struct LinkParams {
       param::NonNegative{});
     v("lockstep_timeout_s", lockstep_timeout_s,
       "how long lock-step waits for the firmware before giving up", param::Positive{});
+    v("start_with_lockstep", start_with_lockstep,
+      "the first step waits until the firmware asks for lock-step, so that runs are identical "
+      "from step 0; for firmware the simulator starts itself");
     v("lockstep_out", lockstep_out,
       "signal it writes: 1 once the firmware runs in lock-step (the run stops pacing then)");
   }
@@ -74,6 +78,8 @@ class Link final : public Component {
 
  private:
   void Receive(const SenseContext& ctx, bool* step_done) const;
+  // waits for the firmware until `done` holds; false (after reporting why) on timeout
+  bool AwaitFirmware(const SenseContext& ctx, bool* step_done, const char* waiting_for) const;
   void Apply(const SenseContext& ctx, const FirmwareFrame& frame, bool* step_done) const;
 
   const Params p_;

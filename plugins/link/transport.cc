@@ -4,6 +4,9 @@
 #include <fcntl.h>
 #include <poll.h>
 #include <pty.h>
+#include <signal.h>
+#include <sys/socket.h>
+#include <sys/wait.h>
 #include <termios.h>
 #include <unistd.h>
 
@@ -245,6 +248,82 @@ class TcpTransport final : public Transport {
   unsigned short port_ = 0;
 };
 
+// a firmware program on this machine, talking on its stdin and stdout; stopped with the run
+class NativeTransport final : public Transport {
+ public:
+  explicit NativeTransport(const std::string& command) : command_(command), stream_(io_) {
+    UNIMOUSE_THROW_UNLESS(!command.empty(), "native needs a program: native:PATH");
+    const std::string program = command.substr(0, command.find(' '));
+    UNIMOUSE_THROW_UNLESS(::access(program.c_str(), X_OK) == 0,
+                          program + ": no such program, or it cannot be run");
+    int sockets[2];
+    UNIMOUSE_THROW_UNLESS(::socketpair(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0, sockets) == 0,
+                          "cannot make a socket pair for the firmware");
+    child_ = ::fork();
+    if (child_ == 0) {
+      ::dup2(sockets[1], 0);
+      ::dup2(sockets[1], 1);
+      // words of the command become the arguments; no shell in between
+      std::vector<std::string> words;
+      for (size_t at = 0; at < command.size();) {
+        const size_t end = std::min(command.find(' ', at), command.size());
+        if (end > at) words.push_back(command.substr(at, end - at));
+        at = end + 1;
+      }
+      std::vector<char*> argv;
+      for (auto& w : words) argv.push_back(w.data());
+      argv.push_back(nullptr);
+      ::execv(argv[0], argv.data());
+      ::_exit(127);
+    }
+    ::close(sockets[1]);
+    UNIMOUSE_THROW_UNLESS(child_ > 0, "cannot start " + program);
+    stream_.assign(sockets[0]);
+    stream_.non_blocking(true);
+  }
+  ~NativeTransport() override {
+    // a firmware never ends by itself: ask it to stop, then insist
+    error_code ec;
+    stream_.close(ec);
+    if (child_ <= 0) return;
+    ::kill(child_, SIGTERM);
+    for (int i = 0; i < 100; ++i) {
+      if (::waitpid(child_, nullptr, WNOHANG) == child_) return;
+      ::usleep(10000);
+    }
+    ::kill(child_, SIGKILL);
+    ::waitpid(child_, nullptr, 0);
+  }
+
+  void Read(std::vector<uint8_t>& out) override {
+    if (!connected_) return;
+    bool lost = false;
+    ReadSome(stream_, out, lost);
+    if (lost) connected_ = false;  // it exited or closed its output
+  }
+  bool WaitReadable(std::chrono::milliseconds timeout) override {
+    return connected_ && WaitFd(stream_.native_handle(), timeout);
+  }
+  size_t Write(std::span<const uint8_t> bytes) override {
+    if (!connected_) return 0;
+    bool lost = false;
+    const size_t n = WriteSome(stream_, bytes, lost);
+    if (lost) connected_ = false;
+    return n;
+  }
+  bool Connected() const override { return connected_; }
+  std::string Describe() const override {
+    return "firmware process " + command_ + " (pid " + std::to_string(child_) + ")";
+  }
+
+ private:
+  std::string command_;
+  asio::io_context io_;
+  asio::posix::stream_descriptor stream_;
+  pid_t child_ = -1;
+  bool connected_ = true;
+};
+
 }  // namespace
 
 std::unique_ptr<Transport> OpenTransport(const std::string& spec) {
@@ -252,6 +331,7 @@ std::unique_ptr<Transport> OpenTransport(const std::string& spec) {
   const std::string kind = spec.substr(0, colon);
   const std::string rest = colon == std::string::npos ? "" : spec.substr(colon + 1);
   if (kind == "pty") return std::make_unique<PtyTransport>(rest);
+  if (kind == "native") return std::make_unique<NativeTransport>(rest);
   if (kind == "serial") {
     const size_t at = rest.rfind('@');
     UNIMOUSE_THROW_UNLESS(!rest.empty(), "serial needs a device: serial:/dev/ttyUSB0@115200");
@@ -278,7 +358,8 @@ std::unique_ptr<Transport> OpenTransport(const std::string& spec) {
     return std::make_unique<TcpTransport>(rest.substr(0, port_at),
                                           static_cast<unsigned short>(port));
   }
-  throw InputError("unknown link '" + spec + "': pty, pty:LINK, serial:PATH@BAUD or tcp::PORT");
+  throw InputError("unknown link '" + spec +
+                   "': pty, pty:LINK, serial:PATH@BAUD, tcp::PORT or native:PROGRAM");
 }
 
 }  // namespace unimouse::link

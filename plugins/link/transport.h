@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Byte transports for the link, on Boost.Asio: a pseudo-terminal whose path a board emulator or
-// terminal program opens, a real serial port, a TCP server. All non-blocking: the simulation
+// terminal program opens, a real serial port, a TCP server, a firmware process on this machine.
+// All non-blocking: the simulation
 // never waits on a board except in lock-step, and then only up to a timeout.
 #ifndef UNIMOUSE_PLUGINS_LINK_TRANSPORT_H_
 #define UNIMOUSE_PLUGINS_LINK_TRANSPORT_H_
@@ -31,7 +32,8 @@ class Transport {
 };
 
 /// Opens a transport from its spec: "pty" or "pty:LINK" (a symlink to the pty for convenience),
-/// "serial:PATH@BAUD", "tcp::PORT" or "tcp:HOST:PORT". Throws InputError.
+/// "serial:PATH@BAUD", "tcp::PORT" or "tcp:HOST:PORT", or "native:PROGRAM [ARGS]" (a firmware
+/// program talking on its stdin and stdout, stopped when the link goes). Throws InputError.
 std::unique_ptr<Transport> OpenTransport(const std::string& spec);
 
 }  // namespace unimouse::link

@@ -1,0 +1,107 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The native link: a firmware program started by the simulator, talking on its stdin and
+// stdout, in lock-step. Deterministic; a firmware that stops answering is caught by the timeout
+// and its process does not outlive the run.
+#include <gtest/gtest.h>
+#include <signal.h>
+
+#include <cerrno>
+#include <cstring>
+#include <regex>
+
+#include "inline_assets.h"
+#include "plugin_rig.h"
+#include "run_program.h"
+#include "unimouse/errors.h"
+
+namespace unimouse {
+namespace {
+
+Maze Corridor() {
+  std::string text = "o---o\n";
+  for (int i = 0; i < 6; ++i) text += i == 5 ? "| S |\no---o\n" : "|   |\no   o\n";
+  return ParseMazeText(text, "corridor.txt");
+}
+
+class NativeLinkTest : public ::testing::Test {
+ protected:
+  std::unique_ptr<Kernel> Make(const std::string& firmware_args, double timeout_s = 5) {
+    const std::string yaml =
+        testing::ReadBundledRobot() +
+        "  - { type: unimouse.link, name: link, params: { transport: 'native:" +
+        std::string(UNIMOUSE_TEST_FIRMWARE) + firmware_args +
+        "', start_with_lockstep: true, lockstep_timeout_s: " + std::to_string(timeout_s) + " } }\n";
+    KernelOptions options;
+    options.seed = 5;
+    options.log_sink = [this](double, int, const std::string&, const std::string& message) {
+      std::smatch m;
+      if (std::regex_search(message, m, std::regex("pid ([0-9]+)"))) pid_ = std::stoi(m[1]);
+      messages_.push_back(message);
+    };
+    return testing::MakeKernel(yaml, &maze_, options);
+  }
+
+  const Maze maze_ = Corridor();
+  int pid_ = -1;
+  std::vector<std::string> messages_;
+};
+
+TEST_F(NativeLinkTest, AFirmwareProcessDrivesTheRobotDeterministically) {
+  std::vector<mjtNum> first;
+  for (int run = 0; run < 2; ++run) {
+    auto kernel = Make("");
+    for (int i = 0; i < 1500; ++i) kernel->Step();
+    const mjData& d = kernel->state().data();
+    std::vector<mjtNum> q(d.qpos, d.qpos + kernel->mj_model().nq);
+    // it drove up the corridor and stopped short of the end wall (face at y = 1.074)
+    EXPECT_GT(q[1], 0.5);
+    EXPECT_LT(q[1] + 0.06, 1.074 - 0.2);
+    if (run == 0) first = q;
+  }
+  EXPECT_NE(std::find(messages_.begin(), messages_.end(), "test firmware ready"), messages_.end());
+  EXPECT_NE(std::find(messages_.begin(), messages_.end(),
+                      "lock-step on: the simulation waits for the firmware"),
+            messages_.end());
+  auto kernel = Make("");
+  for (int i = 0; i < 1500; ++i) kernel->Step();
+  const mjData& d = kernel->state().data();
+  EXPECT_EQ(std::memcmp(first.data(), d.qpos, first.size() * sizeof(mjtNum)), 0);
+}
+
+TEST_F(NativeLinkTest, AFirmwareThatStopsAnsweringIsCaughtAndItsProcessEnds) {
+  auto kernel = Make(" --hang-at 40", 0.3);
+  ASSERT_GT(pid_, 0);
+  try {
+    for (int i = 0; i < 100; ++i) kernel->Step();
+    FAIL() << "the hang went unnoticed";
+  } catch (const RuntimeFault& e) {
+    EXPECT_NE(std::string(e.what()).find("did not finish its step at t=0.04"), std::string::npos)
+        << e.what();
+  }
+  kernel.reset();
+  EXPECT_EQ(::kill(pid_, 0), -1);  // gone, and reaped
+  EXPECT_EQ(errno, ESRCH);
+}
+
+TEST_F(NativeLinkTest, TheRunCommandReportsAHungFirmwareWithExitCode3) {
+  const auto o = testing::Unimouse(
+      "run --maze none --duration 1 --out /tmp/unimouse_native_run "
+      "--link 'native:" +
+      std::string(UNIMOUSE_TEST_FIRMWARE) + " --hang-at 100'");
+  EXPECT_EQ(o.exit_code, 3) << o.output;
+  EXPECT_NE(o.output.find("did not finish its step at t=0.100 s"), std::string::npos) << o.output;
+}
+
+TEST_F(NativeLinkTest, TheRunCommandRunsLockstepFirmwareFasterThanRealTime) {
+  const auto o = testing::Unimouse(
+      "run --maze none --duration 3 --out /tmp/unimouse_native_run "
+      "--link native:" +
+      std::string(UNIMOUSE_TEST_FIRMWARE));
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(o.output, m, std::regex("([0-9.]+) s wall time"))) << o.output;
+  EXPECT_LT(std::stod(m[1]), 3.0);
+}
+
+}  // namespace
+}  // namespace unimouse

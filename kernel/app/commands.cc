@@ -47,11 +47,12 @@ int RunCommand(const RunOptions& options) {
   RobotSpec robot = LoadRobotSpec(robot_file);
   if (!options.link.empty()) {
     // the firmware drives the robot's inputs through the link, added as the last component
-    robot.components.push_back({"unimouse.link",
-                                "link",
-                                std::nullopt,
-                                ParseYaml("{transport: '" + options.link + "'}", "--link"),
-                                {"--link", 1, 1}});
+    // a firmware program the simulator starts is waited for, so that its runs repeat exactly
+    const bool native = options.link.rfind("native:", 0) == 0;
+    const std::string params = "{transport: '" + options.link +
+                               "', start_with_lockstep: " + (native ? "true" : "false") + "}";
+    robot.components.push_back(
+        {"unimouse.link", "link", std::nullopt, ParseYaml(params, "--link"), {"--link", 1, 1}});
   }
   const std::unique_ptr<Maze> maze = LoadMazeOption(options.maze);
   const PluginRegistry registry = LoadRegistry(options.plugin_path);

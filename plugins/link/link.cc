@@ -44,6 +44,13 @@ void Link::Bind(BindContext& ctx) {
   UNIMOUSE_THROW_UNLESS(std::fabs(steps - tof_every_n_steps_) < 1e-6 * steps,
                         "tof_period_s must be a whole number of the link's steps");
   ctx.SetStateSize(5);
+  // a serial port's own rate limits it; pty and TCP go as fast as they are read unless told
+  int baud = p_.baud;
+  const size_t at = p_.transport.rfind('@');
+  if (baud == 0 && p_.transport.rfind("serial:", 0) == 0 && at != std::string::npos) {
+    baud = std::stoi(p_.transport.substr(at + 1));
+  }
+  bytes_per_step_ = baud > 0 ? baud / 10.0 * ctx.period_s() : 0;
 }
 
 void Link::Reset(const ResetContext& ctx) const {
@@ -149,6 +156,36 @@ void Link::Receive(const SenseContext& ctx, bool* step_done) const {
   s[kUnknownReported] = static_cast<double>(unknown.size());
 }
 
+void Link::Send(const SenseContext& ctx, const std::string& frames, bool lockstep) const {
+  // in lock-step the firmware waits for every byte: no line to emulate, nothing to drop
+  if (lockstep || bytes_per_step_ <= 0) {
+    queue_ += frames;
+    const size_t n = transport_->Write(
+        std::span<const uint8_t>(reinterpret_cast<const uint8_t*>(queue_.data()), queue_.size()));
+    queue_.erase(0, n);
+    if (queue_.size() > static_cast<size_t>(p_.queue_bytes)) queue_.clear();
+    return;
+  }
+  // whole frames join the queue while there is room; the line drains it at its baud rate
+  if (queue_.size() + frames.size() <= static_cast<size_t>(p_.queue_bytes)) {
+    queue_ += frames;
+  } else {
+    if (dropped_bytes_ == 0) {
+      ctx.Warn(
+          "the line is slower than the frames: frames dropped (raise the baud rate, or "
+          "turn sensors off while idle)");
+    }
+    dropped_bytes_ += frames.size();
+  }
+  budget_bytes_ = std::min(budget_bytes_ + bytes_per_step_, bytes_per_step_ + 16);
+  const size_t can = std::min(queue_.size(), static_cast<size_t>(budget_bytes_));
+  if (can == 0) return;
+  const size_t n = transport_->Write(
+      std::span<const uint8_t>(reinterpret_cast<const uint8_t*>(queue_.data()), can));
+  queue_.erase(0, n);
+  budget_bytes_ -= static_cast<double>(n);
+}
+
 bool Link::AwaitFirmware(const SenseContext& ctx, bool* step_done, const char* waiting_for) const {
   const auto deadline =
       std::chrono::steady_clock::now() + std::chrono::duration<double>(p_.lockstep_timeout_s);
@@ -204,8 +241,7 @@ void Link::Sense(const SenseContext& ctx) const {
   }
   const bool lockstep = s[kLockstep] != 0;
   if (lockstep) PutClockFrame(static_cast<uint64_t>(std::llround(ctx.time_s() * 1e6)), out);
-  const auto* bytes = reinterpret_cast<const uint8_t*>(out.data());
-  transport_->Write(std::span<const uint8_t>(bytes, out.size()));
+  Send(ctx, out, lockstep);
 
   // lock-step: this step is over when the firmware says so
   if (!lockstep) return;
@@ -228,9 +264,11 @@ void Link::Sense(const SenseContext& ctx) const {
 
 void Link::Finish(const SenseContext& ctx) const {
   char text[160];
-  std::snprintf(text, sizeof(text), "link: %llu frames from the firmware, %llu unknown bytes",
+  std::snprintf(text, sizeof(text),
+                "link: %llu frames from the firmware, %llu unknown bytes; %llu bytes dropped",
                 static_cast<unsigned long long>(decoder_.frames()),
-                static_cast<unsigned long long>(decoder_.unknown_bytes()));
+                static_cast<unsigned long long>(decoder_.unknown_bytes()),
+                static_cast<unsigned long long>(dropped_bytes_));
   ctx.Log(text);
 }
 

@@ -31,6 +31,8 @@ struct LinkParams {
   double failsafe_s = 0.1;
   double lockstep_timeout_s = 5;
   bool start_with_lockstep = false;
+  int baud = 0;
+  int queue_bytes = 1024;
   std::string lockstep_out = "link.lockstep";
 
   template <class V>
@@ -52,6 +54,12 @@ struct LinkParams {
       param::NonNegative{});
     v("lockstep_timeout_s", lockstep_timeout_s,
       "how long lock-step waits for the firmware before giving up", param::Positive{});
+    v("baud", baud,
+      "release bytes no faster than this line would (10 bits a byte, eq. 4.1); 0: as fast as "
+      "the transport takes them, or a serial port's own rate",
+      param::Range{0, 10000000});
+    v("queue_bytes", queue_bytes, "bytes waiting to go out at most; frames beyond are dropped",
+      param::Range{16, 1 << 20});
     v("start_with_lockstep", start_with_lockstep,
       "the first step waits until the firmware asks for lock-step, so that runs are identical "
       "from step 0; for firmware the simulator starts itself");
@@ -78,6 +86,8 @@ class Link final : public Component {
 
  private:
   void Receive(const SenseContext& ctx, bool* step_done) const;
+  // queues frames and releases them no faster than the line's baud rate
+  void Send(const SenseContext& ctx, const std::string& frames, bool lockstep) const;
   // waits for the firmware until `done` holds; false (after reporting why) on timeout
   bool AwaitFirmware(const SenseContext& ctx, bool* step_done, const char* waiting_for) const;
   void Apply(const SenseContext& ctx, const FirmwareFrame& frame, bool* step_done) const;
@@ -90,6 +100,11 @@ class Link final : public Component {
   mutable FrameDecoder decoder_;
   mutable std::vector<uint8_t> inbox_;
   mutable bool was_connected_ = false;
+  // bytes waiting for the line, the line's budget, and what did not fit
+  mutable std::string queue_;
+  mutable double budget_bytes_ = 0;
+  mutable uint64_t dropped_bytes_ = 0;
+  double bytes_per_step_ = 0;
 };
 
 }  // namespace unimouse::link

@@ -85,7 +85,7 @@ TEST_F(NativeLinkTest, AFirmwareThatStopsAnsweringIsCaughtAndItsProcessEnds) {
 
 TEST_F(NativeLinkTest, TheRunCommandReportsAHungFirmwareWithExitCode3) {
   const auto o = testing::Unimouse(
-      "run --maze none --duration 1 --out /tmp/unimouse_native_run "
+      "run --maze none --duration 1 --out /tmp/unimouse_native_hang "
       "--link 'native:" +
       std::string(UNIMOUSE_TEST_FIRMWARE) + " --hang-at 100'");
   EXPECT_EQ(o.exit_code, 3) << o.output;
@@ -94,7 +94,7 @@ TEST_F(NativeLinkTest, TheRunCommandReportsAHungFirmwareWithExitCode3) {
 
 TEST_F(NativeLinkTest, TheRunCommandRunsLockstepFirmwareFasterThanRealTime) {
   const auto o = testing::Unimouse(
-      "run --maze none --duration 3 --out /tmp/unimouse_native_run "
+      "run --maze none --duration 3 --out /tmp/unimouse_native_fast "
       "--link native:" +
       std::string(UNIMOUSE_TEST_FIRMWARE));
   ASSERT_EQ(o.exit_code, 0) << o.output;

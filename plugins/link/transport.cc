@@ -135,16 +135,16 @@ class SerialTransport final : public Transport {
   void Read(std::vector<uint8_t>& out) override {
     if (!port_.is_open() && !Open()) return;
     bool lost = false;
-    ReadSome(port_, out, lost);
+    ReadSome(stream_, out, lost);
     if (lost) Close();  // unplugged: reopened when it comes back
   }
   bool WaitReadable(std::chrono::milliseconds timeout) override {
-    return port_.is_open() && WaitFd(port_.native_handle(), timeout);
+    return port_.is_open() && WaitFd(stream_.native_handle(), timeout);
   }
   size_t Write(std::span<const uint8_t> bytes) override {
     if (!port_.is_open()) return 0;
     bool lost = false;
-    const size_t n = WriteSome(port_, bytes, lost);
+    const size_t n = WriteSome(stream_, bytes, lost);
     if (lost) Close();
     return n;
   }
@@ -174,12 +174,15 @@ class SerialTransport final : public Transport {
     ::tcgetattr(port_.native_handle(), &t);
     ::cfmakeraw(&t);
     ::tcsetattr(port_.native_handle(), TCSANOW, &t);
-    // Boost 1.74's serial_port has no non_blocking(); the descriptor does
-    ::fcntl(port_.native_handle(), F_SETFL, ::fcntl(port_.native_handle(), F_GETFL) | O_NONBLOCK);
+    // Boost 1.74's serial_port reads block however its descriptor is set: configured through
+    // serial_port, the port is read and written through a stream descriptor on the same line
+    stream_.assign(::dup(port_.native_handle()));
+    stream_.non_blocking(true);
     return true;
   }
   void Close() {
     error_code ec;
+    stream_.close(ec);
     port_.close(ec);
   }
 
@@ -187,6 +190,7 @@ class SerialTransport final : public Transport {
   unsigned baud_;
   asio::io_context io_;
   asio::serial_port port_;
+  asio::posix::stream_descriptor stream_{io_};
   std::string error_;
   std::chrono::steady_clock::time_point last_try_{};
 };

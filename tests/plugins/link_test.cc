@@ -17,6 +17,7 @@
 #include "inline_assets.h"
 #include "plugin_rig.h"
 #include "rng.h"
+#include "unimouse/errors.h"
 #include "unimouse_protocol.h"
 
 namespace unimouse {
@@ -216,6 +217,115 @@ TEST_F(LinkTest, LockstepRunsWithTheSameSeedAndBoardAreIdentical) {
   }
   EXPECT_GT(finals[0][1], 0.05);  // it really drove
   EXPECT_EQ(std::memcmp(finals[0].data(), finals[1].data(), finals[0].size() * sizeof(mjtNum)), 0);
+}
+
+}  // namespace
+}  // namespace unimouse
+
+#include <arpa/inet.h>
+#include <netinet/in.h>
+#include <pty.h>
+#include <sys/socket.h>
+
+namespace unimouse {
+namespace {
+
+// a kernel whose link uses `transport`
+std::unique_ptr<Kernel> KernelWithLink(const std::string& transport) {
+  const std::string yaml = testing::ReadBundledRobot() +
+                           "  - { type: unimouse.link, name: link, params: { transport: '" +
+                           transport + "' } }\n";
+  return testing::MakeKernel(yaml);
+}
+
+std::vector<uint8_t> MotorFrames(int16_t left, int16_t right) {
+  std::vector<uint8_t> f = {UNIMOUSE_ID_MOTOR_LEFT, 0, 0, UNIMOUSE_ID_MOTOR_RIGHT, 0, 0};
+  unimouse_put_u16(&f[1], static_cast<uint16_t>(left));
+  unimouse_put_u16(&f[4], static_cast<uint16_t>(right));
+  return f;
+}
+
+size_t ReadAll(int fd) {
+  uint8_t buffer[4096];
+  size_t total = 0;
+  ssize_t n;
+  while ((n = ::read(fd, buffer, sizeof(buffer))) > 0) total += static_cast<size_t>(n);
+  return total;
+}
+
+TEST(LinkTransportTest, ASerialPortCarriesTheProtocolAtItsBaudRate) {
+  // a pty's slave side is a real tty: the link opens it as a serial port, the test is the board
+  int board = -1, slave = -1;
+  char name[256];
+  ASSERT_EQ(::openpty(&board, &slave, name, nullptr, nullptr), 0);
+  termios t{};
+  ::tcgetattr(board, &t);
+  ::cfmakeraw(&t);
+  ::tcsetattr(board, TCSANOW, &t);
+  ::fcntl(board, F_SETFL, O_NONBLOCK);
+  auto kernel = KernelWithLink(std::string("serial:") + name + "@115200");
+  const auto f = MotorFrames(500, 500);
+  ASSERT_EQ(::write(board, f.data(), f.size()), 6);
+  for (int i = 0; i < 100; ++i) kernel->Step();
+  EXPECT_EQ(SignalValue(*kernel, "left.command"), 500);
+  // 100 steps of encoder frames (600 bytes) and 4 sets of ToF frames (36 bytes) fit 115200 baud
+  EXPECT_EQ(ReadAll(board), 636u);
+  ::close(board);
+  ::close(slave);
+}
+
+TEST(LinkTransportTest, ASlowLineDropsWhatItCannotCarry) {
+  int board = -1, slave = -1;
+  char name[256];
+  ASSERT_EQ(::openpty(&board, &slave, name, nullptr, nullptr), 0);
+  ::fcntl(board, F_SETFL, O_NONBLOCK);
+  termios t{};
+  ::tcgetattr(board, &t);
+  ::cfmakeraw(&t);
+  ::tcsetattr(board, TCSANOW, &t);
+  // 9600 baud carries 0.96 bytes a millisecond, the encoders alone want 6
+  auto kernel = KernelWithLink(std::string("serial:") + name + "@9600");
+  for (int i = 0; i < 1000; ++i) kernel->Step();
+  const size_t got = ReadAll(board);
+  EXPECT_LE(got, 960u + 16u);  // never faster than the line
+  EXPECT_GE(got, 900u);        // and it keeps the line busy
+  ::close(board);
+  ::close(slave);
+}
+
+TEST(LinkTransportTest, ATcpClientDrivesTheRobotAndCanComeBack) {
+  const int port = 40000 + ::getpid() % 20000;
+  auto kernel = KernelWithLink("tcp:127.0.0.1:" + std::to_string(port));
+  auto connect_client = [&] {
+    const int s = ::socket(AF_INET, SOCK_STREAM, 0);
+    sockaddr_in a{};
+    a.sin_family = AF_INET;
+    a.sin_port = htons(static_cast<uint16_t>(port));
+    a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    EXPECT_EQ(::connect(s, reinterpret_cast<sockaddr*>(&a), sizeof(a)), 0);
+    return s;
+  };
+  int client = connect_client();
+  const auto f = MotorFrames(450, 450);
+  ASSERT_EQ(::write(client, f.data(), f.size()), 6);
+  for (int i = 0; i < 20; ++i) kernel->Step();
+  EXPECT_EQ(SignalValue(*kernel, "left.command"), 450);
+  ::close(client);
+  for (int i = 0; i < 150; ++i) kernel->Step();
+  EXPECT_EQ(SignalValue(*kernel, "left.command"), 0);  // failsafe
+  client = connect_client();
+  const auto g = MotorFrames(-300, -300);
+  ASSERT_EQ(::write(client, g.data(), g.size()), 6);
+  for (int i = 0; i < 20; ++i) kernel->Step();
+  EXPECT_EQ(SignalValue(*kernel, "left.command"), -300);
+  ::close(client);
+}
+
+TEST(LinkTransportTest, BadTransportSpecsAreBadInput) {
+  EXPECT_THROW(KernelWithLink("carrier-pigeon"), InputError);
+  EXPECT_THROW(KernelWithLink("serial:/dev/no_such_port@115200"), InputError);
+  EXPECT_THROW(KernelWithLink("tcp::99999"), InputError);
+  EXPECT_THROW(KernelWithLink("native:/no/such/program"), InputError);
 }
 
 }  // namespace

@@ -14,6 +14,8 @@
 
 #include "install_paths.h"
 #include "kernel.h"
+#include "maze_explorer.h"
+#include "maze_plot.h"
 #include "real_time_pacer.h"
 #include "text_file.h"
 #include "unimouse/errors.h"
@@ -36,6 +38,31 @@ std::unique_ptr<Maze> LoadMazeOption(const std::string& maze) {
 void WriteResult(const std::string& out_dir, const nlohmann::json& result) {
   std::filesystem::create_directories(out_dir);
   WriteTextFile((std::filesystem::path(out_dir) / "result.json").string(), result.dump(2) + "\n");
+}
+
+// the maze as the firmware reported it on its debug channels: cells it knows (with their true
+// walls dark), cells it visited, the path it last planned
+void DrawFirmwareBeliefs(const Maze& maze, const std::string& out_dir) {
+  const std::filesystem::path file = std::filesystem::path(out_dir) / "firmware_beliefs.json";
+  if (!std::filesystem::exists(file)) return;
+  const nlohmann::json beliefs = nlohmann::json::parse(ReadTextFile(file.string()), nullptr, false);
+  if (beliefs.is_discarded()) return;
+  WallKnowledge knowledge(maze);
+  auto sense = [&](int x, int y) {
+    if (maze.Contains({x, y})) knowledge.Sense(maze, {x, y});
+  };
+  for (const auto& w : beliefs["walls"]) sense(w[0], w[1]);
+  for (const auto& c : beliefs["visited"]) sense(c[0], c[1]);
+  std::vector<Cell> path;
+  for (const auto& c : beliefs["path"]) path.push_back({c[0], c[1]});
+  MazePicture picture;
+  picture.maze = &maze;
+  picture.knowledge = &knowledge;
+  picture.closed_path = DescribeRoute(path, maze.start_heading());
+  const std::filesystem::path base = std::filesystem::path(out_dir) / "maze";
+  WriteMazePicture(picture, base.string() + ".png");
+  WriteMazePicture(picture, base.string() + ".svg");
+  std::printf("  maze as the firmware saw it: %s.png\n", base.string().c_str());
 }
 
 }  // namespace
@@ -101,6 +128,7 @@ int RunCommand(const RunOptions& options) {
     fault = e.what();
   }
   kernel->Finish();
+  if (maze && !options.link.empty()) DrawFirmwareBeliefs(*maze, options.out_dir);
   const double wall_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 

@@ -51,6 +51,7 @@ void Link::Bind(BindContext& ctx) {
     baud = std::stoi(p_.transport.substr(at + 1));
   }
   bytes_per_step_ = baud > 0 ? baud / 10.0 * ctx.period_s() : 0;
+  if (!p_.beliefs_out.empty()) beliefs_path_ = ctx.output_dir() + "/" + p_.beliefs_out;
 }
 
 void Link::Reset(const ResetContext& ctx) const {
@@ -109,15 +110,20 @@ void Link::Apply(const SenseContext& ctx, const FirmwareFrame& f, bool* step_don
       ctx.Log(f.text);
       break;
     case UNIMOUSE_ID_DEBUG_WALLS:
+      beliefs_.walls[{f.data[0], f.data[1]}] = {f.data[2], f.data[3]};
       std::snprintf(text, sizeof(text), "debug walls (%d, %d): %s; known %s", f.data[0], f.data[1],
                     Sides(f.data[2]).c_str(), Sides(f.data[3]).c_str());
       ctx.Log(text);
       break;
     case UNIMOUSE_ID_DEBUG_VISITED:
+      beliefs_.visited.emplace_back(f.data[0], f.data[1]);
       std::snprintf(text, sizeof(text), "debug visited (%d, %d)", f.data[0], f.data[1]);
       ctx.Log(text);
       break;
     case UNIMOUSE_ID_DEBUG_PATH: {
+      beliefs_.path.clear();
+      for (size_t i = 0; i + 1 < f.data.size(); i += 2)
+        beliefs_.path.emplace_back(f.data[i], f.data[i + 1]);
       std::string path = "debug path";
       for (size_t i = 0; i + 1 < f.data.size(); i += 2) {
         path += " (" + std::to_string(f.data[i]) + ", " + std::to_string(f.data[i + 1]) + ")";
@@ -263,6 +269,30 @@ void Link::Sense(const SenseContext& ctx) const {
 }
 
 void Link::Finish(const SenseContext& ctx) const {
+  if (!beliefs_path_.empty()) {
+    std::FILE* f = std::fopen(beliefs_path_.c_str(), "w");
+    if (f == nullptr) {
+      ctx.Warn(beliefs_path_ + ": cannot write the firmware's beliefs");
+    } else {
+      auto cells = [&](const std::vector<std::pair<int, int>>& list) {
+        for (size_t i = 0; i < list.size(); ++i) {
+          std::fprintf(f, "%s[%d, %d]", i ? ", " : "", list[i].first, list[i].second);
+        }
+      };
+      std::fprintf(f, "{\"walls\": [");
+      size_t i = 0;
+      for (const auto& [cell, wk] : beliefs_.walls) {
+        std::fprintf(f, "%s[%d, %d, %d, %d]", i++ ? ", " : "", cell.first, cell.second, wk.first,
+                     wk.second);
+      }
+      std::fprintf(f, "],\n \"visited\": [");
+      cells(beliefs_.visited);
+      std::fprintf(f, "],\n \"path\": [");
+      cells(beliefs_.path);
+      std::fprintf(f, "]}\n");
+      std::fclose(f);
+    }
+  }
   char text[160];
   std::snprintf(text, sizeof(text),
                 "link: %llu frames from the firmware, %llu unknown bytes; %llu bytes dropped",

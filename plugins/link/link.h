@@ -8,6 +8,7 @@
 #ifndef UNIMOUSE_PLUGINS_LINK_LINK_H_
 #define UNIMOUSE_PLUGINS_LINK_LINK_H_
 
+#include <map>
 #include <memory>
 #include <string>
 
@@ -34,6 +35,7 @@ struct LinkParams {
   int baud = 0;
   int queue_bytes = 1024;
   std::string lockstep_out = "link.lockstep";
+  std::string beliefs_out = "firmware_beliefs.json";
 
   template <class V>
   void Visit(V& v) {
@@ -63,6 +65,9 @@ struct LinkParams {
     v("start_with_lockstep", start_with_lockstep,
       "the first step waits until the firmware asks for lock-step, so that runs are identical "
       "from step 0; for firmware the simulator starts itself");
+    v("beliefs_out", beliefs_out,
+      "file in the run's output directory for what the firmware reported on its debug "
+      "channels (walls, visited cells, path), drawn by `unimouse run`; empty for none");
     v("lockstep_out", lockstep_out,
       "signal it writes: 1 once the firmware runs in lock-step (the run stops pacing then)");
   }
@@ -100,6 +105,14 @@ class Link final : public Component {
   mutable FrameDecoder decoder_;
   mutable std::vector<uint8_t> inbox_;
   mutable bool was_connected_ = false;
+  // what the firmware says it believes, for the run's maze picture
+  struct Beliefs {
+    std::map<std::pair<int, int>, std::pair<int, int>> walls;  // cell -> walls, known
+    std::vector<std::pair<int, int>> visited;
+    std::vector<std::pair<int, int>> path;
+  };
+  mutable Beliefs beliefs_;
+  std::string beliefs_path_;
   // bytes waiting for the line, the line's budget, and what did not fit
   mutable std::string queue_;
   mutable double budget_bytes_ = 0;

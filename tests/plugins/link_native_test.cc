@@ -7,11 +7,13 @@
 
 #include <cerrno>
 #include <cstring>
+#include <filesystem>
 #include <regex>
 
 #include "inline_assets.h"
 #include "plugin_rig.h"
 #include "run_program.h"
+#include "text_file.h"
 #include "unimouse/errors.h"
 
 namespace unimouse {
@@ -90,6 +92,27 @@ TEST_F(NativeLinkTest, TheRunCommandReportsAHungFirmwareWithExitCode3) {
       std::string(UNIMOUSE_TEST_FIRMWARE) + " --hang-at 100'");
   EXPECT_EQ(o.exit_code, 3) << o.output;
   EXPECT_NE(o.output.find("did not finish its step at t=0.100 s"), std::string::npos) << o.output;
+}
+
+TEST_F(NativeLinkTest, WhatTheFirmwareReportsIsKeptAndDrawn) {
+  {
+    auto kernel = Make("");
+    for (int i = 0; i < 10; ++i) kernel->Step();
+    kernel->Finish();
+  }
+  const auto o = testing::Unimouse(
+      "run --maze japan2018 --duration 0.2 --out "
+      "/tmp/unimouse_native_beliefs --link native:" +
+      std::string(UNIMOUSE_TEST_FIRMWARE));
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  const std::string beliefs = ReadTextFile("/tmp/unimouse_native_beliefs/firmware_beliefs.json");
+  EXPECT_EQ(beliefs,
+            "{\"walls\": [[0, 0, 14, 15]],\n \"visited\": [[0, 0]],\n \"path\": [[0, 0], [0, 1], "
+            "[0, 2]]}\n");
+  EXPECT_TRUE(std::filesystem::exists("/tmp/unimouse_native_beliefs/maze.png"));
+  EXPECT_NE(ReadTextFile("/tmp/unimouse_native_beliefs/maze.svg").find("class='closed-path'"),
+            std::string::npos);
+  EXPECT_NE(o.output.find("debug path (0, 0) (0, 1) (0, 2)"), std::string::npos) << o.output;
 }
 
 TEST_F(NativeLinkTest, TheRunCommandRunsLockstepFirmwareFasterThanRealTime) {

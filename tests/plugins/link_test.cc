@@ -201,6 +201,7 @@ void LockstepBoard(Board& board, int steps) {
 
 TEST_F(LinkTest, LockstepRunsWithTheSameSeedAndBoardAreIdentical) {
   std::vector<std::vector<mjtNum>> finals;
+  std::vector<std::vector<uint64_t>> traces(2);
   for (int run = 0; run < 2; ++run) {
     if (run == 1) {
       kernel_.reset();
@@ -209,13 +210,17 @@ TEST_F(LinkTest, LockstepRunsWithTheSameSeedAndBoardAreIdentical) {
     Board board(path_);
     board.Send({UNIMOUSE_ID_MANAGER, UNIMOUSE_MANAGER_LOCKSTEP_ON});
     std::thread firmware(LockstepBoard, std::ref(board), 400);
-    Step(400);
+    for (int i = 0; i < 400; ++i) {
+      kernel_->Step();
+      traces[static_cast<size_t>(run)].push_back(kernel_->state().Hash());
+    }
     firmware.join();
     EXPECT_EQ(SignalValue(*kernel_, "link.lockstep"), 1);
     const mjData& d = kernel_->state().data();
     finals.emplace_back(d.qpos, d.qpos + kernel_->mj_model().nq);
   }
-  EXPECT_GT(finals[0][1], 0.05);  // it really drove
+  EXPECT_GT(finals[0][1], 0.05);    // it really drove
+  EXPECT_EQ(traces[0], traces[1]);  // step by step, the whole state
   EXPECT_EQ(std::memcmp(finals[0].data(), finals[1].data(), finals[0].size() * sizeof(mjtNum)), 0);
 }
 

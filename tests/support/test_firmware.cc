@@ -34,6 +34,11 @@ int main(int argc, char** argv) {
   std::vector<uint8_t> log = {UNIMOUSE_ID_LOG};
   log.insert(log.end(), hello, hello + sizeof(hello));  // with its 0x00
   Send(log);
+  // what it believes: the start cell's walls (east, south, west), the cells it expects, a plan
+  Send({UNIMOUSE_ID_DEBUG_WALLS, 0, 0,
+        UNIMOUSE_SIDE_EAST | UNIMOUSE_SIDE_SOUTH | UNIMOUSE_SIDE_WEST, 0x0F});
+  Send({UNIMOUSE_ID_DEBUG_VISITED, 0, 0});
+  Send({UNIMOUSE_ID_DEBUG_PATH, 3, 0, 0, 0, 1, 0, 2});
 
   std::vector<uint8_t> pending;
   uint16_t front = UNIMOUSE_TOF_NO_TARGET;

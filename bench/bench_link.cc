@@ -1,0 +1,87 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The link: how evenly real-time pacing releases 1 kHz steps over 60 s with the full robot
+// simulated, and what a lock-step firmware round trip adds to a step.
+#include <benchmark/benchmark.h>
+
+#include <chrono>
+
+#include "battery.h"
+#include "dc_motor.h"
+#include "encoder.h"
+#include "h_bridge.h"
+#include "kernel.h"
+#include "link.h"
+#include "real_time_pacer.h"
+#include "tof_sensor.h"
+
+namespace {
+
+using namespace unimouse;
+
+PluginRegistry Registry() {
+  PluginRegistry r;
+  r.AddStatic(ComponentType<plugins::Battery>());
+  r.AddStatic(ComponentType<plugins::HBridge>());
+  r.AddStatic(ComponentType<plugins::DcMotor>());
+  r.AddStatic(ComponentType<plugins::Encoder>());
+  r.AddStatic(ComponentType<plugins::TofSensor>());
+  r.AddStatic(ComponentType<link::Link>());
+  return r;
+}
+
+RobotSpec Robot(const std::string& link) {
+  RobotSpec robot = LoadRobotSpec(UNIMOUSE_SOURCE_DIR "/robots/unimouse.yaml");
+  std::erase_if(robot.components,
+                [](const ComponentSpec& c) { return c.type == "unimouse.logger"; });
+  if (!link.empty()) {
+    robot.components.push_back(
+        {"unimouse.link",
+         "link",
+         std::nullopt,
+         ParseYaml("{transport: '" + link + "', start_with_lockstep: true, beliefs_out: ''}",
+                   "bench"),
+         {"bench", 1, 1}});
+  }
+  return robot;
+}
+
+void BM_RealTimePacing60s(benchmark::State& bench) {
+  const PluginRegistry registry = Registry();
+  auto kernel = Kernel::Create(Robot(""), nullptr, registry, 1);
+  kernel->state().signals()[kernel->model().FindSignal("left.command")] = 600;
+  kernel->state().signals()[kernel->model().FindSignal("right.command")] = 600;
+  nlohmann::json report;
+  for (auto _ : bench) {
+    RealTimePacer pacer(kernel->timestep_s());
+    for (int i = 0; i < 60000; ++i) {
+      kernel->Step();
+      pacer.Wait(kernel->state().step());
+    }
+    report = pacer.Report();
+  }
+  bench.counters["p50_us"] = report["lateness_p50_us"].get<double>();
+  bench.counters["p99_us"] = report["lateness_p99_us"].get<double>();
+  bench.counters["max_us"] = report["lateness_max_us"].get<double>();
+  bench.counters["late_steps"] = report["late_steps"].get<double>();
+}
+BENCHMARK(BM_RealTimePacing60s)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
+
+// per step: the full robot driven by a firmware process in lock-step, and by direct commands
+void BM_StepWithLockstepFirmware(benchmark::State& bench) {
+  const PluginRegistry registry = Registry();
+  auto kernel =
+      Kernel::Create(Robot(std::string("native:") + UNIMOUSE_BENCH_FIRMWARE), nullptr, registry, 1);
+  for (auto _ : bench) kernel->Step();
+}
+BENCHMARK(BM_StepWithLockstepFirmware)->Unit(benchmark::kMicrosecond)->Iterations(20000);
+
+void BM_StepWithDirectCommands(benchmark::State& bench) {
+  const PluginRegistry registry = Registry();
+  auto kernel = Kernel::Create(Robot(""), nullptr, registry, 1);
+  kernel->state().signals()[kernel->model().FindSignal("left.command")] = 600;
+  kernel->state().signals()[kernel->model().FindSignal("right.command")] = 600;
+  for (auto _ : bench) kernel->Step();
+}
+BENCHMARK(BM_StepWithDirectCommands)->Unit(benchmark::kMicrosecond)->Iterations(20000);
+
+}  // namespace

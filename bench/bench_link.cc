@@ -5,14 +5,9 @@
 
 #include <chrono>
 
-#include "battery.h"
-#include "dc_motor.h"
-#include "encoder.h"
-#include "h_bridge.h"
+#include "bundled_components.h"
 #include "kernel.h"
-#include "link.h"
 #include "real_time_pacer.h"
-#include "tof_sensor.h"
 
 namespace {
 
@@ -20,12 +15,7 @@ using namespace unimouse;
 
 PluginRegistry Registry() {
   PluginRegistry r;
-  r.AddStatic(ComponentType<plugins::Battery>());
-  r.AddStatic(ComponentType<plugins::HBridge>());
-  r.AddStatic(ComponentType<plugins::DcMotor>());
-  r.AddStatic(ComponentType<plugins::Encoder>());
-  r.AddStatic(ComponentType<plugins::TofSensor>());
-  r.AddStatic(ComponentType<link::Link>());
+  AddBundledComponents(r);
   return r;
 }
 

@@ -11,12 +11,8 @@
 #include <filesystem>
 #include <vector>
 
-#include "battery.h"
-#include "dc_motor.h"
-#include "encoder.h"
-#include "h_bridge.h"
+#include "bundled_components.h"
 #include "kernel.h"
-#include "tof_sensor.h"
 #include "unimouse/component.h"
 
 namespace {
@@ -93,11 +89,7 @@ PluginRegistry BenchRegistry() {
   PluginRegistry registry;
   registry.AddStatic(ComponentType<ConstantTorque>());
   registry.AddStatic(ComponentType<ReplayTorque>());
-  registry.AddStatic(ComponentType<plugins::Battery>());
-  registry.AddStatic(ComponentType<plugins::HBridge>());
-  registry.AddStatic(ComponentType<plugins::DcMotor>());
-  registry.AddStatic(ComponentType<plugins::Encoder>());
-  registry.AddStatic(ComponentType<plugins::TofSensor>());
+  AddBundledComponents(registry);
   return registry;
 }
 

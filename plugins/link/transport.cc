@@ -112,7 +112,6 @@ class PtyTransport final : public Transport {
   std::string Describe() const override {
     return "pty " + slave_path_ + (link_path_.empty() ? "" : " (also " + link_path_ + ")");
   }
-  const std::string& slave_path() const { return slave_path_; }
 
  private:
   asio::io_context io_;

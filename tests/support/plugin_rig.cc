@@ -7,25 +7,13 @@
 #include <filesystem>
 #include <sstream>
 
-#include "battery.h"
-#include "dc_motor.h"
-#include "encoder.h"
-#include "h_bridge.h"
-#include "link.h"
-#include "logger.h"
-#include "tof_sensor.h"
+#include "bundled_components.h"
 
 namespace unimouse::testing {
 
 PluginRegistry BundledComponents() {
   PluginRegistry registry;
-  registry.AddStatic(ComponentType<plugins::Battery>());
-  registry.AddStatic(ComponentType<plugins::HBridge>());
-  registry.AddStatic(ComponentType<plugins::DcMotor>());
-  registry.AddStatic(ComponentType<plugins::Encoder>());
-  registry.AddStatic(ComponentType<plugins::TofSensor>());
-  registry.AddStatic(ComponentType<plugins::Logger>());
-  registry.AddStatic(ComponentType<link::Link>());
+  AddBundledComponents(registry);
   return registry;
 }
 

@@ -17,15 +17,15 @@ extern "C" {
 
 /* frame ids */
 enum {
-  UNIMOUSE_ID_TOF_LEFT = 0,       /* sim -> MCU, uint16: left ToF, 45 degrees */
-  UNIMOUSE_ID_TOF_RIGHT = 1,      /* sim -> MCU, uint16: right ToF, 45 degrees */
-  UNIMOUSE_ID_TOF_FRONT = 2,      /* sim -> MCU, uint16: front ToF */
-  UNIMOUSE_ID_ENCODER_LEFT = 3,   /* sim -> MCU, int16: counts since the previous frame */
-  UNIMOUSE_ID_ENCODER_RIGHT = 4,  /* sim -> MCU, int16 */
-  UNIMOUSE_ID_MOTOR_LEFT = 5,     /* MCU -> sim, int16: H-bridge command, -1023..1023 */
-  UNIMOUSE_ID_MOTOR_RIGHT = 6,    /* MCU -> sim, int16 */
-  UNIMOUSE_ID_MANAGER = 7,        /* MCU -> sim, 1 byte: a UNIMOUSE_MANAGER_* code */
-  UNIMOUSE_ID_LOG = 8,            /* MCU -> sim, text bytes ended by 0x00 */
+  UNIMOUSE_ID_TOF_LEFT = 0,      /* sim -> MCU, uint16: left ToF, 45 degrees */
+  UNIMOUSE_ID_TOF_RIGHT = 1,     /* sim -> MCU, uint16: right ToF, 45 degrees */
+  UNIMOUSE_ID_TOF_FRONT = 2,     /* sim -> MCU, uint16: front ToF */
+  UNIMOUSE_ID_ENCODER_LEFT = 3,  /* sim -> MCU, int16: counts since the previous frame */
+  UNIMOUSE_ID_ENCODER_RIGHT = 4, /* sim -> MCU, int16 */
+  UNIMOUSE_ID_MOTOR_LEFT = 5,    /* MCU -> sim, int16: H-bridge command, -1023..1023 */
+  UNIMOUSE_ID_MOTOR_RIGHT = 6,   /* MCU -> sim, int16 */
+  UNIMOUSE_ID_MANAGER = 7,       /* MCU -> sim, 1 byte: a UNIMOUSE_MANAGER_* code */
+  UNIMOUSE_ID_LOG = 8,           /* MCU -> sim, text bytes ended by 0x00 */
   /* extensions */
   UNIMOUSE_ID_CLOCK = 9,          /* sim -> MCU, uint32: sim time in us; the step's frames are in */
   UNIMOUSE_ID_DEBUG_WALLS = 10,   /* MCU -> sim, 4 bytes: x, y, walls, known (UNIMOUSE_SIDE_*) */
@@ -54,10 +54,10 @@ enum {
   UNIMOUSE_SIDE_WEST = 0x08
 };
 
-#define UNIMOUSE_MOTOR_MAX 1023      /* 10-bit magnitude, sign-magnitude H-bridge */
+#define UNIMOUSE_MOTOR_MAX 1023       /* 10-bit magnitude, sign-magnitude H-bridge */
 #define UNIMOUSE_TOF_NO_TARGET 0xFFFF /* no target, or out of range */
 #define UNIMOUSE_TOF_FULL_SCALE_M 1.2 /* VL53L0X maximum range (dissertation table 3.8) */
-#define UNIMOUSE_LOG_MAX 255         /* longest log line; longer ones are cut there */
+#define UNIMOUSE_LOG_MAX 255          /* longest log line; longer ones are cut there */
 #define UNIMOUSE_FRAME_VARIABLE (-1)
 
 /* Payload bytes of a frame, UNIMOUSE_FRAME_VARIABLE for logs, paths and values, -2 for an id

@@ -104,7 +104,7 @@ std::unique_ptr<Kernel> Kernel::Create(const RobotSpec& robot, const Maze* maze,
                                        const KernelOptions& options) {
   InstallMujocoHandlers();
   std::unique_ptr<Kernel> k(new Kernel(options));
-  k->model_.world = World::Build(robot, maze, options.spawn);
+  k->model_.world = World::Build(robot, maze, options.spawn, options.boxes);
 
   // inputs are written from outside: the firmware link or a scenario
   for (const auto& input : robot.inputs) {

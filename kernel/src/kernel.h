@@ -38,6 +38,7 @@ struct KernelOptions {
   std::string output_dir = ".";  ///< where components write their files
   std::optional<Pose2D> spawn;   ///< default: the maze's start, or the origin facing north
   LogSink log_sink;              ///< default: warnings and errors to stderr
+  std::vector<StaticBox> boxes;  ///< more walls and obstacles, as a scenario adds
 };
 
 class Kernel {

@@ -261,7 +261,8 @@ Pose2D CellCentre(Cell c, Heading h, const MazeDimensions& dims) {
 World::~World() = default;
 
 std::unique_ptr<World> World::Build(const RobotSpec& robot, const Maze* maze,
-                                    std::optional<Pose2D> spawn) {
+                                    std::optional<Pose2D> spawn,
+                                    const std::vector<StaticBox>& boxes) {
   std::unique_ptr<World> w(new World());
   MazeDimensions dims;
   double floor_centre_x = 0, floor_centre_y = 0, floor_half_m = 5;
@@ -276,6 +277,14 @@ std::unique_ptr<World> World::Build(const RobotSpec& robot, const Maze* maze,
     w->spawn_ = {0, 0, std::numbers::pi / 2};
   }
   if (spawn) w->spawn_ = *spawn;
+  for (const StaticBox& b : boxes) {
+    w->scenery_.push_back(b);
+    w->collision_shapes_.push_back(b);
+    const double reach = std::max(std::fabs(b.center_m[0] - floor_centre_x),
+                                  std::fabs(b.center_m[1] - floor_centre_y)) +
+                         std::hypot(b.half_m[0], b.half_m[1]) + 0.5;
+    floor_half_m = std::max(floor_half_m, reach);
+  }
 
   // physics: floor, proxies, robot
   Mjcf x;

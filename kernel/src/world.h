@@ -62,9 +62,11 @@ class World {
   ~World();
 
   /// Builds a robot in a maze (or on an open floor when maze is null), facing the maze's start
-  /// heading in its start cell, or `spawn` when given. Throws InputError.
+  /// heading in its start cell, or `spawn` when given; `boxes` are more walls and obstacles, as a
+  /// scenario adds. Throws InputError.
   static std::unique_ptr<World> Build(const RobotSpec& robot, const Maze* maze,
-                                      std::optional<Pose2D> spawn = std::nullopt);
+                                      std::optional<Pose2D> spawn = std::nullopt,
+                                      const std::vector<StaticBox>& boxes = {});
 
   const mjModel& model() const { return *model_; }
   /// Writable only for the collision proxies and kernel-owned bookkeeping.

@@ -14,6 +14,7 @@
 
 #include "install_paths.h"
 #include "kernel.h"
+#include "lua/scenario.h"
 #include "maze_explorer.h"
 #include "maze_plot.h"
 #include "real_time_pacer.h"
@@ -81,7 +82,32 @@ int RunCommand(const RunOptions& options) {
     robot.components.push_back(
         {"unimouse.link", "link", std::nullopt, ParseYaml(params, "--link"), {"--link", 1, 1}});
   }
-  const std::unique_ptr<Maze> maze = LoadMazeOption(options.maze);
+  // a scenario builds its own world
+  std::unique_ptr<Scenario> scenario;
+  std::unique_ptr<Maze> maze;
+  ScenarioWorld scenario_world;
+  double duration_s = options.duration_s;
+  if (!options.scenario.empty()) {
+    std::map<std::string, std::string> overrides;
+    for (const auto& set : options.sets) {
+      const size_t eq = set.find('=');
+      UNIMOUSE_THROW_UNLESS(eq != std::string::npos && eq > 0,
+                            "--set " + set + ": write name=value");
+      overrides[set.substr(0, eq)] = set.substr(eq + 1);
+    }
+    scenario = Scenario::Load(ResolveDataFile(options.scenario, "scenarios/", ".lua"), overrides,
+                              options.seed);
+    scenario_world = scenario->BuildWorld();
+    maze = std::move(scenario_world.maze);
+    // a second beyond the limit lets the scenario give its own reason
+    if (!options.duration_given && scenario->time_limit_s() > 0) {
+      duration_s = scenario->time_limit_s() + 1;
+    }
+  } else {
+    UNIMOUSE_THROW_UNLESS(options.sets.empty() && options.controller.empty(),
+                          "--set and --controller go with --scenario");
+    maze = LoadMazeOption(options.maze);
+  }
   const PluginRegistry registry = LoadRegistry(options.plugin_path);
   std::filesystem::create_directories(options.out_dir);
 
@@ -94,6 +120,8 @@ int RunCommand(const RunOptions& options) {
   KernelOptions kernel_options;
   kernel_options.seed = options.seed;
   kernel_options.output_dir = options.out_dir;
+  kernel_options.boxes = std::move(scenario_world.boxes);
+  kernel_options.spawn = scenario_world.spawn;
   kernel_options.log_sink = [log](double time_s, int level, const std::string& component,
                                   const std::string& message) {
     const char* kind = level >= UNIMOUSE_LOG_ERROR     ? "error: "
@@ -106,19 +134,22 @@ int RunCommand(const RunOptions& options) {
   std::unique_ptr<Kernel> kernel = Kernel::Create(robot, maze.get(), registry, kernel_options);
 
   nlohmann::json result;
+  if (scenario) scenario->Attach(*kernel, options.controller);
   result["robot"] = robot_file;
-  result["maze"] = maze ? nlohmann::json(ResolveDataFile(options.maze, "mazes/", ".txt")) : nullptr;
+  result["maze"] = maze && !scenario
+                       ? nlohmann::json(ResolveDataFile(options.maze, "mazes/", ".txt"))
+                       : nlohmann::json(nullptr);
   result["seed"] = options.seed;
-  result["duration_s"] = options.duration_s;
+  result["duration_s"] = duration_s;
 
-  const int64_t steps = std::llround(options.duration_s / kernel->timestep_s());
+  const int64_t steps = std::llround(duration_s / kernel->timestep_s());
   const int lockstep_signal = kernel->model().FindSignal("link.lockstep");
   const bool pace = options.realtime || !options.link.empty();
   RealTimePacer pacer(kernel->timestep_s());
   const auto start = std::chrono::steady_clock::now();
   std::string fault;
   try {
-    while (kernel->state().step() < steps) {
+    while (kernel->state().step() < steps && !(scenario && scenario->finished())) {
       kernel->Step();
       // hardware runs on the wall clock; firmware in lock-step sets the pace itself
       const bool lockstep = lockstep_signal >= 0 && kernel->state().signals()[lockstep_signal] != 0;
@@ -143,14 +174,29 @@ int RunCommand(const RunOptions& options) {
   result["real_time_factor"] = wall_s > 0 ? d.time / wall_s : 0.0;
   result["robot_pose"] = {{"x_m", pose.x_m}, {"y_m", pose.y_m}, {"yaw_rad", pose.yaw_rad}};
   result["collision_proxy_overflows"] = kernel->world().proxy_overflows();
+  if (scenario) {
+    ScenarioOutcome outcome = scenario->outcome();
+    if (outcome.status == "running" && fault.empty()) {
+      outcome.status = "failed";
+      outcome.reason = "not decided when the run ended at " + std::to_string(d.time) + " s";
+    }
+    result["scenario"] = {{"name", scenario->name()},
+                          {"file", ResolveDataFile(options.scenario, "scenarios/", ".lua")},
+                          {"params", scenario->params()},
+                          {"status", outcome.status},
+                          {"reason", outcome.reason},
+                          {"scores", outcome.scores},
+                          {"hud", scenario->hud()}};
+  }
   if (pace) result["real_time_pacing"] = pacer.Report();
   WriteResult(options.out_dir, result);
 
-  std::printf("unimouse run: robot '%s' %s, seed %llu\n", robot.name.c_str(),
-              maze ? ("in maze " + options.maze + " (" + std::to_string(maze->width()) + "x" +
-                      std::to_string(maze->height()) + ")")
-                         .c_str()
-                   : "on an open floor",
+  const std::string where = scenario ? "in scenario " + scenario->name()
+                            : maze
+                                ? "in maze " + options.maze + " (" + std::to_string(maze->width()) +
+                                      "x" + std::to_string(maze->height()) + ")"
+                                : std::string("on an open floor");
+  std::printf("unimouse run: robot '%s' %s, seed %llu\n", robot.name.c_str(), where.c_str(),
               static_cast<unsigned long long>(options.seed));
   std::printf("  simulated %.3f s in %lld steps, %.2f s wall time, %.0fx real time\n", d.time,
               static_cast<long long>(kernel->state().step()), wall_s,
@@ -162,6 +208,13 @@ int RunCommand(const RunOptions& options) {
   if (!fault.empty()) {
     std::fprintf(stderr, "unimouse: error: %s\n", fault.c_str());
     return kExitRuntimeFault;
+  }
+  if (scenario) {
+    const std::string status = result["scenario"]["status"];
+    std::printf("  scenario %s: %s%s%s\n", scenario->name().c_str(), status.c_str(),
+                result["scenario"]["reason"].get<std::string>().empty() ? "" : ": ",
+                result["scenario"]["reason"].get<std::string>().c_str());
+    return status == "passed" ? kExitPassed : kExitFailed;
   }
   return kExitPassed;
 }

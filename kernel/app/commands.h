@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 namespace unimouse {
 
@@ -16,7 +17,11 @@ struct RunOptions {
   std::string out_dir = "out";
   std::string plugin_path;
   std::string link;  ///< firmware link transport, "" for none: pty, serial:PATH@BAUD, tcp::PORT
-  bool realtime = false;  ///< pace to the wall clock; always on with a link
+  bool realtime = false;          ///< pace to the wall clock; always on with a link
+  std::string scenario;           ///< scenario file or bundled name; "" for none
+  std::vector<std::string> sets;  ///< scenario parameters, "name=value"
+  std::string controller;         ///< Lua controller file for the scenario; "" for none
+  bool duration_given = false;
 };
 
 /// Runs a simulation headless and writes out_dir/result.json; returns the exit code.

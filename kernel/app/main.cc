@@ -28,6 +28,11 @@ int main(int argc, char** argv) {
   run_cmd->add_option("--seed", run.seed, "seed of every random stream")->capture_default_str();
   run_cmd->add_option("--out", run.out_dir, "directory for result.json and other outputs")
       ->capture_default_str();
+  run_cmd->add_option("--scenario", run.scenario,
+                      "challenge to run: a scenario file or the name of a bundled one");
+  run_cmd->add_option("--set", run.sets, "scenario parameter, name=value (repeatable)");
+  run_cmd->add_option("--controller", run.controller,
+                      "Lua file returning function(time_s) that drives the robot through sim.*");
   run_cmd->add_flag("--realtime", run.realtime,
                     "pace the simulation to the wall clock (always, with --link, until the "
                     "firmware turns lock-step on)");
@@ -111,6 +116,7 @@ int main(int argc, char** argv) {
 
   run.plugin_path = plugin_path;
   try {
+    run.duration_given = run_cmd->get_option("--duration")->count() > 0;
     if (run_cmd->parsed()) return RunCommand(run);
     if (check_cmd->parsed()) return CheckCommand(check_robot, plugin_path);
     if (plugins_cmd->parsed()) return PluginsCommand(plugin_path);

@@ -67,6 +67,11 @@ class Kernel {
   /// once, also after a RuntimeFault; a component failing here is reported, not thrown.
   void Finish();
 
+  /// Logs a line as `source` at the current sim time, as components do.
+  void Log(int level, const std::string& source, const std::string& message) {
+    Emit(level, source, message);
+  }
+
   /// Runs at the start of every tick, before physics; scenario scripts live here.
   void SetBoundaryHook(std::function<void()> hook) { boundary_hook_ = std::move(hook); }
 

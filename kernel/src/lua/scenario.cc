@@ -1,0 +1,518 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "lua/scenario.h"
+
+#include <lua5.4/lauxlib.h>
+#include <lua5.4/lua.h>
+#include <lua5.4/lualib.h>
+
+#include <cmath>
+#include <cstring>
+#include <numbers>
+#include <sstream>
+
+#include "install_paths.h"
+#include "rng.h"
+#include "text_file.h"
+#include "unimouse/errors.h"
+
+namespace unimouse {
+
+// the C functions behind `sim.*`; a struct so that they may reach Scenario's private parts
+struct ScenarioApi {
+  static Scenario& Self(lua_State* L) {
+    lua_getfield(L, LUA_REGISTRYINDEX, "unimouse.scenario");
+    auto* s = static_cast<Scenario*>(lua_touserdata(L, -1));
+    lua_pop(L, 1);
+    return *s;
+  }
+  static Kernel& RunningKernel(lua_State* L, const char* function) {
+    Scenario& s = Self(L);
+    if (s.kernel_ == nullptr)
+      luaL_error(L, "%s works only in run, once the world exists", function);
+    return *s.kernel_;
+  }
+  static double Field(lua_State* L, int table, const char* key, double fallback, bool required) {
+    lua_getfield(L, table, key);
+    if (lua_isnil(L, -1)) {
+      lua_pop(L, 1);
+      if (required) luaL_error(L, "missing field '%s'", key);
+      return fallback;
+    }
+    if (!lua_isnumber(L, -1)) luaL_error(L, "field '%s' must be a number", key);
+    const double v = lua_tonumber(L, -1);
+    lua_pop(L, 1);
+    if (!std::isfinite(v)) luaL_error(L, "field '%s' must be finite", key);
+    return v;
+  }
+  static void NotInRun(lua_State* L, const char* function) {
+    if (Self(L).kernel_ != nullptr)
+      luaL_error(L, "%s works only in world, before the run", function);
+  }
+
+  static int ScenarioTable(lua_State* L) {
+    luaL_checktype(L, 1, LUA_TTABLE);
+    lua_getfield(L, 1, "name");
+    if (!lua_isstring(L, -1)) luaL_error(L, "sim.scenario needs a name");
+    lua_getfield(L, 1, "run");
+    if (!lua_isfunction(L, -1)) luaL_error(L, "sim.scenario needs a run function");
+    lua_settop(L, 1);
+    return 1;
+  }
+
+  static int Time(lua_State* L) {
+    Scenario& s = Self(L);
+    lua_pushnumber(L, s.kernel_ ? s.kernel_->state().data().time : 0.0);
+    return 1;
+  }
+
+  static int RobotGetPose(lua_State* L) {
+    const Kernel& k = RunningKernel(L, "sim.robot_get_pose");
+    const Pose2D p = k.world().RobotPose(k.state().data());
+    lua_createtable(L, 0, 3);
+    lua_pushnumber(L, p.x_m);
+    lua_setfield(L, -2, "x_m");
+    lua_pushnumber(L, p.y_m);
+    lua_setfield(L, -2, "y_m");
+    lua_pushnumber(L, p.yaw_rad);
+    lua_setfield(L, -2, "yaw_rad");
+    return 1;
+  }
+
+  static int RobotGetVelocity(lua_State* L) {
+    const Kernel& k = RunningKernel(L, "sim.robot_get_velocity");
+    const mjData& d = k.state().data();
+    const Pose2D p = k.world().RobotPose(d);
+    const int dof = k.mj_model().body_dofadr[k.world().robot_body()];
+    // free joint: linear velocity in world axes, angular in the body's; the body is level
+    lua_createtable(L, 0, 2);
+    lua_pushnumber(L, d.qvel[dof] * std::cos(p.yaw_rad) + d.qvel[dof + 1] * std::sin(p.yaw_rad));
+    lua_setfield(L, -2, "v_m_per_s");
+    lua_pushnumber(L, d.qvel[dof + 5]);
+    lua_setfield(L, -2, "omega_rad_per_s");
+    return 1;
+  }
+
+  static int RobotPlace(lua_State* L) {
+    luaL_checktype(L, 1, LUA_TTABLE);
+    const Pose2D pose{Field(L, 1, "x_m", 0, true), Field(L, 1, "y_m", 0, true),
+                      Field(L, 1, "yaw_deg", 90, false) * std::numbers::pi / 180};
+    Scenario& s = Self(L);
+    if (s.kernel_ == nullptr) {
+      s.world_.spawn = pose;
+    } else {
+      s.kernel_->world().PlaceRobot(s.kernel_->state().data(), pose);
+    }
+    return 0;
+  }
+
+  static int SignalIndex(lua_State* L, const Kernel& k) {
+    const char* name = luaL_checkstring(L, 1);
+    const int id = k.model().FindSignal(name);
+    if (id < 0) luaL_error(L, "no signal named '%s'", name);
+    return id;
+  }
+  static int SignalGet(lua_State* L) {
+    const Kernel& k = RunningKernel(L, "sim.signal_get");
+    lua_pushnumber(L, k.state().signals()[SignalIndex(L, k)]);
+    return 1;
+  }
+  static int SignalSet(lua_State* L) {
+    Kernel& k = RunningKernel(L, "sim.signal_set");
+    const int id = SignalIndex(L, k);
+    const double v = luaL_checknumber(L, 2);
+    if (!std::isfinite(v)) luaL_error(L, "a signal must be finite");
+    k.state().signals()[id] = v;
+    return 0;
+  }
+
+  static int WallAdd(lua_State* L) {
+    NotInRun(L, "sim.wall_add");
+    luaL_checktype(L, 1, LUA_TTABLE);
+    const double x1 = Field(L, 1, "x1_m", 0, true), y1 = Field(L, 1, "y1_m", 0, true);
+    const double x2 = Field(L, 1, "x2_m", 0, true), y2 = Field(L, 1, "y2_m", 0, true);
+    const double thickness = Field(L, 1, "thickness_m", 0.012, false);
+    const double height = Field(L, 1, "height_m", 0.05, false);
+    const double length = std::hypot(x2 - x1, y2 - y1);
+    if (length <= 0 || thickness <= 0 || height <= 0)
+      luaL_error(L, "a wall needs a length, thickness and height");
+    Self(L).world_.boxes.push_back({StaticBox::Kind::kWall,
+                                    {(x1 + x2) / 2, (y1 + y2) / 2, height / 2},
+                                    {length / 2, thickness / 2, height / 2},
+                                    std::atan2(y2 - y1, x2 - x1)});
+    return 0;
+  }
+
+  static int BoxAdd(lua_State* L) {
+    NotInRun(L, "sim.box_add");
+    luaL_checktype(L, 1, LUA_TTABLE);
+    lua_getfield(L, 1, "size_m");
+    luaL_checktype(L, -1, LUA_TTABLE);
+    double size[3];
+    for (int i = 0; i < 3; ++i) {
+      lua_geti(L, -1, i + 1);
+      size[i] = lua_tonumber(L, -1);
+      if (!(size[i] > 0)) luaL_error(L, "size_m needs three sizes greater than 0");
+      lua_pop(L, 1);
+    }
+    lua_pop(L, 1);
+    Self(L).world_.boxes.push_back(
+        {StaticBox::Kind::kObstacle,
+         {Field(L, 1, "x_m", 0, true), Field(L, 1, "y_m", 0, true), size[2] / 2},
+         {size[0] / 2, size[1] / 2, size[2] / 2},
+         Field(L, 1, "yaw_deg", 0, false) * std::numbers::pi / 180});
+    return 0;
+  }
+
+  static int MazeLoad(lua_State* L) {
+    NotInRun(L, "sim.maze_load");
+    const char* name = luaL_checkstring(L, 1);
+    try {
+      Self(L).world_.maze =
+          std::make_unique<Maze>(LoadMaze(ResolveDataFile(name, "mazes/", ".txt")));
+    } catch (const InputError& e) {
+      return luaL_error(L, "%s", e.what());
+    }
+    return 0;
+  }
+
+  static int HudSet(lua_State* L) {
+    const lua_Integer line = luaL_checkinteger(L, 1);
+    if (line < 1 || line > 16) luaL_error(L, "hud lines are 1 to 16");
+    std::vector<std::string>& hud = Self(L).hud_;
+    if (hud.size() < static_cast<size_t>(line)) hud.resize(static_cast<size_t>(line));
+    hud[static_cast<size_t>(line - 1)] = luaL_checkstring(L, 2);
+    return 0;
+  }
+
+  static int Decide(lua_State* L, const char* status) {
+    Scenario& s = Self(L);
+    if (s.finished()) return 0;
+    s.outcome_.status = status;
+    s.outcome_.reason = luaL_optstring(L, 1, "");
+    if (s.kernel_)
+      s.kernel_->Log(UNIMOUSE_LOG_INFO, "scenario", std::string(status) + ": " + s.outcome_.reason);
+    return 0;
+  }
+  static int Pass(lua_State* L) { return Decide(L, "passed"); }
+  static int Fail(lua_State* L) { return Decide(L, "failed"); }
+
+  static int ScoreSet(lua_State* L) {
+    const char* name = luaL_checkstring(L, 1);
+    Self(L).outcome_.scores[name] = luaL_checknumber(L, 2);
+    return 0;
+  }
+
+  static int Print(lua_State* L) {
+    std::string line;
+    for (int i = 1; i <= lua_gettop(L); ++i) {
+      line += (i > 1 ? "\t" : "") + std::string(luaL_tolstring(L, i, nullptr));
+      lua_pop(L, 1);
+    }
+    Scenario& s = Self(L);
+    if (s.kernel_) {
+      s.kernel_->Log(UNIMOUSE_LOG_INFO, "scenario", line);
+    } else {
+      std::fprintf(stderr, "scenario: %s\n", line.c_str());
+    }
+    return 0;
+  }
+
+  static int Random(lua_State* L) {
+    lua_getfield(L, LUA_REGISTRYINDEX, "unimouse.rng");
+    auto* rng = static_cast<RngStream*>(lua_touserdata(L, -1));
+    lua_pop(L, 1);
+    const double u = rng->Uniform();
+    if (lua_gettop(L) == 0) {
+      lua_pushnumber(L, u);
+      return 1;
+    }
+    lua_Integer lo = 1, hi = luaL_checkinteger(L, 1);
+    if (lua_gettop(L) >= 2) {
+      lo = hi;
+      hi = luaL_checkinteger(L, 2);
+    }
+    if (lo > hi) luaL_error(L, "math.random: interval is empty");
+    lua_pushinteger(L, lo + static_cast<lua_Integer>(u * static_cast<double>(hi - lo + 1)));
+    return 1;
+  }
+};
+
+namespace {
+
+constexpr int kBudget = 20'000'000;  // instructions between two yields
+constexpr int kHookEvery = 1000;
+int instructions = 0;
+
+void CountInstructions(lua_State* L, lua_Debug*) {
+  instructions += kHookEvery;
+  if (instructions > kBudget) {
+    instructions = 0;
+    // where the script is: level 0 in a hook is the running Lua function
+    lua_Debug ar;
+    std::string where;
+    if (lua_getstack(L, 0, &ar) && lua_getinfo(L, "Sl", &ar) && ar.source[0] == '@') {
+      where = std::string(ar.source + 1) + ":" + std::to_string(ar.currentline) + ": ";
+    }
+    lua_pushstring(L, (where + "instruction budget exhausted: a loop that never waits "
+                               "(use sim.wait)?")
+                          .c_str());
+    lua_error(L);
+  }
+}
+
+// waits, in Lua: one yield per tick
+constexpr const char* kPrelude = R"lua(
+local sim, yield = ...
+function sim.next_tick() yield() end
+function sim.wait(seconds)
+  local until_s = sim.time() + seconds - 1e-9
+  while sim.time() < until_s do yield() end
+end
+function sim.wait_until(condition, options)
+  local timeout_s = options and options.timeout_s
+  local start_s = sim.time()
+  while not condition() do
+    if timeout_s and sim.time() - start_s >= timeout_s then return false end
+    yield()
+  end
+  return true
+end
+)lua";
+
+// first line of a Lua error, which starts with file:line
+std::string Headline(const std::string& message) { return message.substr(0, message.find('\n')); }
+
+}  // namespace
+
+Scenario::~Scenario() {
+  if (L_ != nullptr) lua_close(L_);
+}
+
+std::unique_ptr<Scenario> Scenario::Load(const std::string& path,
+                                         const std::map<std::string, std::string>& overrides,
+                                         uint64_t seed) {
+  std::unique_ptr<Scenario> s(new Scenario());
+  s->file_ = path;
+  s->seed_ = seed;
+  const std::string text = ReadTextFile(path);
+  lua_State* L = s->L_ = luaL_newstate();
+  UNIMOUSE_DEMAND(L != nullptr);
+  luaL_openlibs(L);
+  lua_pushlightuserdata(L, s.get());
+  lua_setfield(L, LUA_REGISTRYINDEX, "unimouse.scenario");
+  auto* rng = static_cast<RngStream*>(lua_newuserdatauv(L, sizeof(RngStream), 0));
+  new (rng) RngStream(seed, "scenario");
+  lua_setfield(L, LUA_REGISTRYINDEX, "unimouse.rng");
+  lua_sethook(L, CountInstructions, LUA_MASKCOUNT, kHookEvery);
+
+  // the sandbox: a fresh environment with the safe parts of the standard library
+  lua_newtable(L);
+  const int env = lua_gettop(L);
+  for (const char* name :
+       {"assert",   "error",        "ipairs",       "pairs",  "next",     "select", "tostring",
+        "tonumber", "type",         "pcall",        "xpcall", "rawequal", "rawget", "rawlen",
+        "rawset",   "setmetatable", "getmetatable", "string", "table",    "utf8",   "coroutine"}) {
+    lua_getglobal(L, name);
+    lua_setfield(L, env, name);
+  }
+  lua_newtable(L);  // math, with the seeded random
+  lua_getglobal(L, "math");
+  lua_pushnil(L);
+  while (lua_next(L, -2) != 0) {
+    lua_pushvalue(L, -2);
+    lua_insert(L, -2);
+    lua_settable(L, -5);
+  }
+  lua_pop(L, 1);
+  lua_pushcfunction(L, ScenarioApi::Random);
+  lua_setfield(L, -2, "random");
+  lua_pushnil(L);
+  lua_setfield(L, -2, "randomseed");
+  lua_setfield(L, env, "math");
+  lua_pushcfunction(L, ScenarioApi::Print);
+  lua_setfield(L, env, "print");
+
+  static const luaL_Reg kSim[] = {{"scenario", ScenarioApi::ScenarioTable},
+                                  {"time", ScenarioApi::Time},
+                                  {"robot_get_pose", ScenarioApi::RobotGetPose},
+                                  {"robot_get_velocity", ScenarioApi::RobotGetVelocity},
+                                  {"robot_place", ScenarioApi::RobotPlace},
+                                  {"signal_get", ScenarioApi::SignalGet},
+                                  {"signal_set", ScenarioApi::SignalSet},
+                                  {"wall_add", ScenarioApi::WallAdd},
+                                  {"box_add", ScenarioApi::BoxAdd},
+                                  {"maze_load", ScenarioApi::MazeLoad},
+                                  {"hud_set", ScenarioApi::HudSet},
+                                  {"pass", ScenarioApi::Pass},
+                                  {"fail", ScenarioApi::Fail},
+                                  {"score_set", ScenarioApi::ScoreSet},
+                                  {nullptr, nullptr}};
+  luaL_newlib(L, kSim);
+  const int sim = lua_gettop(L);
+  lua_pushvalue(L, sim);
+  lua_setfield(L, env, "sim");
+  if (luaL_loadbufferx(L, kPrelude, std::strlen(kPrelude), "=prelude", "t") != LUA_OK) {
+    UNIMOUSE_DEMAND(false);
+  }
+  lua_pushvalue(L, sim);
+  lua_getglobal(L, "coroutine");
+  lua_getfield(L, -1, "yield");
+  lua_remove(L, -2);
+  UNIMOUSE_DEMAND(lua_pcall(L, 2, 0, 0) == LUA_OK);
+  lua_pop(L, 1);  // sim
+
+  // the scenario file, in the sandbox, text only
+  if (luaL_loadbufferx(L, text.data(), text.size(), ("@" + path).c_str(), "t") != LUA_OK) {
+    throw RuntimeFault(Headline(lua_tostring(L, -1)));
+  }
+  lua_pushvalue(L, env);
+  lua_setfield(L, LUA_REGISTRYINDEX, "unimouse.env");
+  lua_pushvalue(L, env);
+  lua_setupvalue(L, -2, 1);
+  instructions = 0;
+  if (lua_pcall(L, 0, 1, 0) != LUA_OK) throw RuntimeFault(Headline(lua_tostring(L, -1)));
+  if (!lua_istable(L, -1)) {
+    throw RuntimeFault(path + ": a scenario file returns sim.scenario { name = ..., run = ... }");
+  }
+  lua_getfield(L, -1, "name");
+  s->name_ = lua_tostring(L, -1);
+  lua_pop(L, 1);
+
+  // parameters: the declared defaults, then --set, which must name one and fit its type
+  lua_getfield(L, -1, "params");
+  if (lua_isnil(L, -1)) {
+    lua_pop(L, 1);
+    lua_newtable(L);
+  }
+  std::vector<std::string> declared;
+  lua_pushnil(L);
+  while (lua_next(L, -2) != 0) {
+    declared.push_back(lua_tostring(L, -2));
+    s->param_text_[declared.back()] = luaL_tolstring(L, -1, nullptr);
+    lua_pop(L, 2);
+  }
+  for (const auto& [name, value] : overrides) {
+    lua_getfield(L, -1, name.c_str());
+    const int type = lua_type(L, -1);
+    lua_pop(L, 1);
+    if (type == LUA_TNIL) {
+      std::string known;
+      for (const auto& d : declared) known += (known.empty() ? "" : ", ") + d;
+      throw InputError("--set " + name + ": scenario '" + s->name_ + "' has no parameter '" + name +
+                       "' (it has: " + (known.empty() ? "none" : known) + ")");
+    }
+    if (type == LUA_TNUMBER) {
+      char* end = nullptr;
+      const double v = std::strtod(value.c_str(), &end);
+      if (value.empty() || *end != '\0' || !std::isfinite(v)) {
+        throw InputError("--set " + name + "=" + value + ": '" + name + "' is a number");
+      }
+      lua_pushnumber(L, v);
+    } else if (type == LUA_TBOOLEAN) {
+      if (value != "true" && value != "false") {
+        throw InputError("--set " + name + "=" + value + ": '" + name + "' is true or false");
+      }
+      lua_pushboolean(L, value == "true");
+    } else {
+      lua_pushstring(L, value.c_str());
+    }
+    lua_setfield(L, -2, name.c_str());
+    s->param_text_[name] = value;
+  }
+  lua_getfield(L, -1, "time_limit_s");
+  s->time_limit_s_ = lua_isnumber(L, -1) ? lua_tonumber(L, -1) : 0;
+  lua_pop(L, 1);
+  s->params_ref_ = luaL_ref(L, LUA_REGISTRYINDEX);
+  s->scenario_ref_ = luaL_ref(L, LUA_REGISTRYINDEX);
+  lua_settop(L, 0);
+  return s;
+}
+
+void Scenario::CallWithParams(const char* what) {
+  lua_rawgeti(L_, LUA_REGISTRYINDEX, params_ref_);
+  instructions = 0;
+  lua_getglobal(L_, "debug");
+  lua_getfield(L_, -1, "traceback");
+  lua_remove(L_, -2);
+  lua_insert(L_, -3);
+  if (lua_pcall(L_, 1, 0, -3) != LUA_OK) {
+    const std::string message = lua_tostring(L_, -1);
+    lua_settop(L_, 0);
+    throw RuntimeFault(Headline(message) + " (in " + what + ")");
+  }
+  lua_settop(L_, 0);
+}
+
+ScenarioWorld Scenario::BuildWorld() {
+  lua_rawgeti(L_, LUA_REGISTRYINDEX, scenario_ref_);
+  lua_getfield(L_, -1, "world");
+  lua_remove(L_, -2);
+  if (lua_isfunction(L_, -1)) {
+    CallWithParams("world");
+  } else {
+    lua_settop(L_, 0);
+  }
+  return std::move(world_);
+}
+
+void Scenario::Attach(Kernel& kernel, const std::string& controller) {
+  kernel_ = &kernel;
+  coroutine_ = lua_newthread(L_);
+  coroutine_ref_ = luaL_ref(L_, LUA_REGISTRYINDEX);
+  if (!controller.empty()) {
+    // the controller file runs in the scenario's sandbox, with the same sim API
+    const std::string text = ReadTextFile(controller);
+    if (luaL_loadbufferx(L_, text.data(), text.size(), ("@" + controller).c_str(), "t") != LUA_OK) {
+      throw RuntimeFault(Headline(lua_tostring(L_, -1)));
+    }
+    lua_getfield(L_, LUA_REGISTRYINDEX, "unimouse.env");
+    lua_setupvalue(L_, -2, 1);
+    instructions = 0;
+    if (lua_pcall(L_, 0, 1, 0) != LUA_OK) throw RuntimeFault(Headline(lua_tostring(L_, -1)));
+    if (!lua_isfunction(L_, -1)) {
+      throw RuntimeFault(controller + ": a controller file returns function(time_s) ... end");
+    }
+    controller_ref_ = luaL_ref(L_, LUA_REGISTRYINDEX);
+  }
+  kernel.SetBoundaryHook([this] { Tick(); });
+}
+
+void Scenario::Tick() {
+  if (!finished()) {
+    // the first resume starts run(params); later ones continue it after its yield
+    int nargs = 0;
+    if (!started_) {
+      started_ = true;
+      lua_rawgeti(coroutine_, LUA_REGISTRYINDEX, scenario_ref_);
+      lua_getfield(coroutine_, -1, "run");
+      lua_remove(coroutine_, -2);
+      lua_rawgeti(coroutine_, LUA_REGISTRYINDEX, params_ref_);
+      nargs = 1;
+    }
+    if (lua_status(coroutine_) == LUA_YIELD || nargs == 1) {
+      int nres = 0;
+      instructions = 0;
+      const int status = lua_resume(coroutine_, L_, nargs, &nres);
+      if (status != LUA_OK && status != LUA_YIELD) {
+        throw RuntimeFault(Headline(lua_tostring(coroutine_, -1)) + " (in run)");
+      }
+      lua_pop(coroutine_, nres);
+      if (status == LUA_OK && !finished()) {
+        outcome_.status = "failed";
+        outcome_.reason = "run ended without sim.pass or sim.fail";
+      }
+    }
+  }
+  if (controller_ref_ >= 0) {
+    lua_rawgeti(L_, LUA_REGISTRYINDEX, controller_ref_);
+    lua_pushnumber(L_, kernel_->state().data().time);
+    instructions = 0;
+    if (lua_pcall(L_, 1, 0, 0) != LUA_OK) {
+      const std::string message = lua_tostring(L_, -1);
+      lua_settop(L_, 0);
+      throw RuntimeFault(Headline(message) + " (in the controller)");
+    }
+  }
+}
+
+}  // namespace unimouse

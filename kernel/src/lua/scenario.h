@@ -1,0 +1,98 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Scenarios: Lua 5.4 scripts that build a challenge's world, watch the run and decide pass or
+// fail. A scenario file returns `sim.scenario { name, params, world, run }`:
+//
+//   - params: names with defaults; `unimouse run --set name=value` overrides them;
+//   - world(p): before physics exists, adds walls and boxes, loads a maze, places the robot;
+//   - run(p): a coroutine resumed once per tick at the tick boundary; it waits on sim time
+//     (sim.wait, sim.wait_until), reads the robot and signals, and ends with sim.pass/sim.fail.
+//
+// Sandboxed: no io, os, load, dofile or require; math.random is the run's seeded stream; print
+// goes to the run's log; an instruction budget stops a script that never yields, naming its
+// file:line. A script error stops the run with exit code 3.
+#ifndef UNIMOUSE_KERNEL_LUA_SCENARIO_H_
+#define UNIMOUSE_KERNEL_LUA_SCENARIO_H_
+
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "kernel.h"
+#include "maze.h"
+#include "world.h"
+
+struct lua_State;
+
+namespace unimouse {
+
+/// What a scenario's world phase asked for.
+struct ScenarioWorld {
+  std::unique_ptr<Maze> maze;
+  std::vector<StaticBox> boxes;
+  std::optional<Pose2D> spawn;
+};
+
+/// How a scenario ended.
+struct ScenarioOutcome {
+  std::string status = "running";  ///< passed, failed, or running (not decided)
+  std::string reason;
+  std::map<std::string, double> scores;
+};
+
+class Scenario {
+ public:
+  /// Loads a scenario file with parameter overrides ("name" -> "value" from --set). Throws
+  /// InputError for a missing file or a bad override (exit 2), RuntimeFault for a script error
+  /// (exit 3).
+  static std::unique_ptr<Scenario> Load(const std::string& path,
+                                        const std::map<std::string, std::string>& overrides,
+                                        uint64_t seed);
+  ~Scenario();
+
+  const std::string& name() const { return name_; }
+  /// Runs the world phase.
+  ScenarioWorld BuildWorld();
+  /// Starts the run phase on a kernel: the coroutine runs at each tick boundary from now on.
+  /// `controller`, if given, is a Lua file returning function(sim_time_s) called every tick
+  /// after the scenario, with the same API, to drive the robot (tests, teaching).
+  void Attach(Kernel& kernel, const std::string& controller = "");
+  bool finished() const { return outcome_.status != "running"; }
+  const ScenarioOutcome& outcome() const { return outcome_; }
+  /// Parameters after overrides, as text, for the result.
+  const std::map<std::string, std::string>& params() const { return param_text_; }
+  /// The scenario's time limit (parameter time_limit_s), or 0 for none.
+  double time_limit_s() const { return time_limit_s_; }
+  /// The lines a scenario shows on screen (sim.hud_set).
+  const std::vector<std::string>& hud() const { return hud_; }
+
+ private:
+  Scenario() = default;
+  void Tick();
+  // calls the function on top of the stack with the table of parameters; throws on error
+  void CallWithParams(const char* what);
+
+  lua_State* L_ = nullptr;
+  std::string file_;
+  std::string name_;
+  int scenario_ref_ = -1;    // the returned table
+  int params_ref_ = -1;      // parameters after overrides
+  int coroutine_ref_ = -1;   // the run coroutine
+  int controller_ref_ = -1;  // the controller function
+  lua_State* coroutine_ = nullptr;
+  bool started_ = false;
+  Kernel* kernel_ = nullptr;
+  ScenarioWorld world_;
+  ScenarioOutcome outcome_;
+  std::map<std::string, std::string> param_text_;
+  double time_limit_s_ = 0;
+  std::vector<std::string> hud_;
+  uint64_t seed_ = 1;
+
+  friend struct ScenarioApi;
+};
+
+}  // namespace unimouse
+
+#endif  // UNIMOUSE_KERNEL_LUA_SCENARIO_H_

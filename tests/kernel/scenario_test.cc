@@ -1,0 +1,133 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Scenarios as users run them: the speed-control challenge passes a correct controller and
+// fails wrong ones with the right reason; the sandbox holds; script errors and bad parameters
+// give their location and exit code; the same seed gives the same result.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+
+#include "run_program.h"
+#include "text_file.h"
+
+namespace unimouse {
+namespace {
+
+using testing::Unimouse;
+
+const std::string kTests = UNIMOUSE_SOURCE_DIR "/tests/scenarios/";
+
+struct ScenarioRun {
+  testing::Outcome outcome;
+  nlohmann::json result;
+};
+
+ScenarioRun Scenario(const std::string& arguments) {
+  const std::string out =
+      (std::filesystem::temp_directory_path() /
+       ("unimouse_scenario_" +
+        std::string(::testing::UnitTest::GetInstance()->current_test_info()->name())))
+          .string();
+  std::filesystem::remove_all(out);
+  ScenarioRun run{Unimouse("run --out " + out + " " + arguments), {}};
+  if (std::filesystem::exists(out + "/result.json")) {
+    run.result = nlohmann::json::parse(ReadTextFile(out + "/result.json"));
+  }
+  return run;
+}
+
+TEST(SpeedControlScenarioTest, ACorrectControllerPasses) {
+  const ScenarioRun r =
+      Scenario("--scenario speed_control --controller " + kTests + "speed_controller.lua");
+  EXPECT_EQ(r.outcome.exit_code, 0) << r.outcome.output;
+  EXPECT_EQ(r.result["scenario"]["status"], "passed");
+  EXPECT_GE(r.result["scenario"]["scores"]["held_s"].get<double>(), 5.0);
+  EXPECT_EQ(r.result["scenario"]["params"]["speed_m_per_s"], "1.0");
+}
+
+TEST(SpeedControlScenarioTest, ASlowControllerFailsAsTooSlow) {
+  const ScenarioRun r = Scenario("--scenario speed_control --set time_limit_s=6 --controller " +
+                                 kTests + "too_slow_controller.lua");
+  EXPECT_EQ(r.outcome.exit_code, 1) << r.outcome.output;
+  EXPECT_EQ(r.result["scenario"]["status"], "failed");
+  EXPECT_EQ(r.result["scenario"]["reason"].get<std::string>().rfind("too slow", 0), 0u)
+      << r.result["scenario"]["reason"];
+}
+
+TEST(SpeedControlScenarioTest, TurningClockwiseFailsAsTheWrongWay) {
+  const ScenarioRun r = Scenario("--scenario speed_control --set time_limit_s=6 --controller " +
+                                 kTests + "wrong_way_controller.lua");
+  EXPECT_EQ(r.outcome.exit_code, 1) << r.outcome.output;
+  EXPECT_EQ(r.result["scenario"]["reason"].get<std::string>().rfind("turning the wrong way", 0), 0u)
+      << r.result["scenario"]["reason"];
+}
+
+TEST(SpeedControlScenarioTest, ParametersChangeTheChallenge) {
+  // a 2 s hold at the same speeds is passed sooner
+  const ScenarioRun r = Scenario("--scenario speed_control --set hold_s=2 --controller " + kTests +
+                                 "speed_controller.lua");
+  EXPECT_EQ(r.outcome.exit_code, 0) << r.outcome.output;
+  EXPECT_LT(r.result["sim_time_s"].get<double>(), 4.0);
+}
+
+TEST(ScenarioSandboxTest, TheFileSystemIsOutOfReach) {
+  const ScenarioRun r = Scenario("--scenario " + kTests + "uses_io.lua");
+  EXPECT_EQ(r.outcome.exit_code, 3);
+  EXPECT_NE(r.outcome.output.find(kTests + "uses_io.lua:6: attempt to index a nil value (global "
+                                           "'io')"),
+            std::string::npos)
+      << r.outcome.output;
+}
+
+TEST(ScenarioSandboxTest, AnEndlessLoopIsStoppedWithItsLocation) {
+  const ScenarioRun r = Scenario("--scenario " + kTests + "endless_loop.lua");
+  EXPECT_EQ(r.outcome.exit_code, 3);
+  EXPECT_NE(r.outcome.output.find(kTests + "endless_loop.lua:8: instruction budget exhausted"),
+            std::string::npos)
+      << r.outcome.output;
+}
+
+TEST(ScenarioSandboxTest, SyntaxAndRuntimeErrorsGiveFileLineAndExitCode3) {
+  ScenarioRun r = Scenario("--scenario " + kTests + "syntax_error.lua");
+  EXPECT_EQ(r.outcome.exit_code, 3);
+  EXPECT_NE(r.outcome.output.find(kTests + "syntax_error.lua:5: unexpected symbol near 'then'"),
+            std::string::npos)
+      << r.outcome.output;
+  r = Scenario("--scenario " + kTests + "runtime_error.lua");
+  EXPECT_EQ(r.outcome.exit_code, 3);
+  EXPECT_NE(r.outcome.output.find(kTests + "runtime_error.lua:9: attempt to index a nil value"),
+            std::string::npos)
+      << r.outcome.output;
+  // the run's record survives the error
+  EXPECT_NEAR(r.result["sim_time_s"].get<double>(), 0.5, 0.002);
+}
+
+TEST(ScenarioSandboxTest, BadParametersAreBadInput) {
+  ScenarioRun r = Scenario("--scenario speed_control --set hold_s=long");
+  EXPECT_EQ(r.outcome.exit_code, 2);
+  EXPECT_NE(r.outcome.output.find("--set hold_s=long: 'hold_s' is a number"), std::string::npos);
+  r = Scenario("--scenario speed_control --set holds=3");
+  EXPECT_EQ(r.outcome.exit_code, 2);
+  EXPECT_NE(r.outcome.output.find("has no parameter 'holds'"), std::string::npos);
+  r = Scenario("--scenario speed_control --set hold_s");
+  EXPECT_EQ(r.outcome.exit_code, 2);
+  r = Scenario("--scenario " + kTests + "random_numbers.lua --set enabled=maybe");
+  EXPECT_EQ(r.outcome.exit_code, 2);
+}
+
+TEST(ScenarioSandboxTest, RandomNumbersComeFromTheSeedAndTheSameSeedGivesTheSameResult) {
+  const ScenarioRun a =
+      Scenario("--seed 4 --scenario " + kTests + "random_numbers.lua --set label=x");
+  const ScenarioRun b =
+      Scenario("--seed 4 --scenario " + kTests + "random_numbers.lua --set label=x");
+  const ScenarioRun c =
+      Scenario("--seed 5 --scenario " + kTests + "random_numbers.lua --set label=x");
+  ASSERT_EQ(a.outcome.exit_code, 0) << a.outcome.output;
+  EXPECT_EQ(a.result["scenario"], b.result["scenario"]);
+  EXPECT_EQ(a.result["robot_pose"], b.result["robot_pose"]);
+  EXPECT_NE(a.result["scenario"]["reason"], c.result["scenario"]["reason"]);
+  EXPECT_EQ(a.result["scenario"]["reason"].get<std::string>().rfind("x true ", 0), 0u);
+}
+
+}  // namespace
+}  // namespace unimouse

@@ -1,0 +1,11 @@
+-- SPDX-License-Identifier: GPL-3.0-or-later
+-- Fails at t = 0.5 s on a nil value.
+return sim.scenario {
+  name = "runtime_error",
+  params = { delay_s = 0.5 },
+  run = function(p)
+    sim.wait(p.delay_s)
+    local pose = nil
+    return pose.x_m
+  end,
+}

@@ -131,3 +131,34 @@ TEST(ScenarioSandboxTest, RandomNumbersComeFromTheSeedAndTheSameSeedGivesTheSame
 
 }  // namespace
 }  // namespace unimouse
+
+namespace unimouse {
+namespace {
+
+TEST(WallDistanceScenarioTest, AProportionalControllerOnTheLeftSensorPasses) {
+  const ScenarioRun r =
+      Scenario("--scenario wall_distance --controller " + kTests + "wall_controller.lua");
+  EXPECT_EQ(r.outcome.exit_code, 0) << r.outcome.output;
+  EXPECT_EQ(r.result["scenario"]["status"], "passed");
+  // it ends where it should: within 10 % of 0.5 m from the wall's face at x = 0
+  EXPECT_NEAR(r.result["robot_pose"]["x_m"].get<double>(), 0.5, 0.05);
+}
+
+TEST(WallDistanceScenarioTest, AimingForTheWrongDistanceFails) {
+  const ScenarioRun r = Scenario("--scenario wall_distance --set time_limit_s=15 --controller " +
+                                 kTests + "wrong_distance_controller.lua");
+  EXPECT_EQ(r.outcome.exit_code, 1) << r.outcome.output;
+  EXPECT_EQ(r.result["scenario"]["reason"].get<std::string>().rfind("wrong distance", 0), 0u)
+      << r.result["scenario"]["reason"];
+}
+
+TEST(WallDistanceScenarioTest, StandingStillAtTheRightDistanceIsNotEnough) {
+  const ScenarioRun r = Scenario("--scenario wall_distance --set start_m=0.5 --set time_limit_s=8");
+  EXPECT_EQ(r.outcome.exit_code, 1) << r.outcome.output;
+  EXPECT_EQ(r.result["scenario"]["reason"].get<std::string>().rfind("not moving along the wall", 0),
+            0u)
+      << r.result["scenario"]["reason"];
+}
+
+}  // namespace
+}  // namespace unimouse

@@ -435,6 +435,16 @@ void World::UpdateCollisionProxies(const mjData& d) {
   }
 }
 
+bool World::RobotTouchesScenery(const mjData& d) const {
+  for (int i = 0; i < d.ncon; ++i) {
+    const mjContact& c = d.contact[i];
+    const bool proxy1 = c.geom1 >= first_proxy_ && c.geom1 < first_proxy_ + proxy_count_;
+    const bool proxy2 = c.geom2 >= first_proxy_ && c.geom2 < first_proxy_ + proxy_count_;
+    if ((proxy1 || proxy2) && c.dist <= 0) return true;
+  }
+  return false;
+}
+
 double World::CastRay(const mjData& d, const double origin[3], const double direction[3],
                       double max_m) const {
   const mjtByte world_only[mjNGROUP] = {1, 0, 0, 0, 0, 0};

@@ -90,6 +90,9 @@ class World {
   /// Returns the robot's pose on the floor.
   Pose2D RobotPose(const mjData& d) const;
 
+  /// Returns whether any part of the robot touches a wall, post or obstacle.
+  bool RobotTouchesScenery(const mjData& d) const;
+
   /// Moves the collision proxies onto the static shapes near the robot. A function of the robot's
   /// position alone, called before every step, so it keeps runs deterministic.
   void UpdateCollisionProxies(const mjData& d);

@@ -162,3 +162,48 @@ TEST(WallDistanceScenarioTest, StandingStillAtTheRightDistanceIsNotEnough) {
 
 }  // namespace
 }  // namespace unimouse
+
+namespace unimouse {
+namespace {
+
+TEST(MicromouseScenarioTest, RunsBetweenStartAndGoalAreTimedAndTheBestCounts) {
+  const ScenarioRun r = Scenario("--scenario micromouse --set contest_s=12 --controller " + kTests +
+                                 "scripted_mouse.lua");
+  EXPECT_EQ(r.outcome.exit_code, 0) << r.outcome.output;
+  const auto& scores = r.result["scenario"]["scores"];
+  EXPECT_EQ(scores["runs"], 2);
+  EXPECT_NEAR(scores["best_run_s"].get<double>(), 2.0, 0.002);
+  EXPECT_NEAR(scores["time_used_s"].get<double>(), 12.0, 0.002);
+  // the contest ended at 1 + 12 s, in the middle of run 3 (the scenario sees the controller's
+  // moves a step later, and the run stops the step after the decision)
+  EXPECT_NEAR(r.result["sim_time_s"].get<double>(), 13.0, 0.005);
+  EXPECT_NE(r.result["scenario"]["reason"].get<std::string>().find("the time ran out during run 3"),
+            std::string::npos)
+      << r.result["scenario"]["reason"];
+}
+
+TEST(MicromouseScenarioTest, MaxRunsEndsTheContestEarly) {
+  const ScenarioRun r = Scenario("--scenario micromouse --set max_runs=1 --controller " + kTests +
+                                 "scripted_mouse.lua");
+  EXPECT_EQ(r.outcome.exit_code, 0) << r.outcome.output;
+  EXPECT_EQ(r.result["scenario"]["scores"]["runs"], 1);
+  EXPECT_NEAR(r.result["scenario"]["scores"]["best_run_s"].get<double>(), 3.0, 0.002);
+}
+
+TEST(MicromouseScenarioTest, ARobotThatNeverLeavesTheStartFails) {
+  const ScenarioRun r = Scenario("--scenario micromouse --set start_within_s=2");
+  EXPECT_EQ(r.outcome.exit_code, 1) << r.outcome.output;
+  EXPECT_EQ(r.result["scenario"]["reason"], "never left the start cell in 2 s");
+}
+
+TEST(MicromouseScenarioTest, NeverReachingTheGoalFails) {
+  const ScenarioRun r = Scenario("--scenario micromouse --set contest_s=2.5 --controller " +
+                                 kTests + "scripted_mouse.lua");
+  EXPECT_EQ(r.outcome.exit_code, 1) << r.outcome.output;
+  EXPECT_EQ(r.result["scenario"]["reason"].get<std::string>().rfind("no run reached the goal", 0),
+            0u)
+      << r.result["scenario"]["reason"];
+}
+
+}  // namespace
+}  // namespace unimouse

@@ -92,6 +92,46 @@ struct ScenarioApi {
     return 1;
   }
 
+  static int RobotGetCell(lua_State* L) {
+    const Kernel& k = RunningKernel(L, "sim.robot_get_cell");
+    const Pose2D p = k.world().RobotPose(k.state().data());
+    const MazeDimensions dims;
+    lua_createtable(L, 0, 2);
+    lua_pushinteger(L, static_cast<lua_Integer>(std::floor(p.x_m / dims.cell_m)));
+    lua_setfield(L, -2, "x");
+    lua_pushinteger(L, static_cast<lua_Integer>(std::floor(p.y_m / dims.cell_m)));
+    lua_setfield(L, -2, "y");
+    return 1;
+  }
+
+  static int RobotIsTouchingWall(lua_State* L) {
+    const Kernel& k = RunningKernel(L, "sim.robot_is_touching_wall");
+    lua_pushboolean(L, k.world().RobotTouchesScenery(k.state().data()));
+    return 1;
+  }
+
+  static int MazeIsGoal(lua_State* L) {
+    Scenario& s = Self(L);
+    const Cell c{static_cast<int>(luaL_checkinteger(L, 1)),
+                 static_cast<int>(luaL_checkinteger(L, 2))};
+    bool goal = false;
+    if (s.maze_goals_) {
+      for (const Cell& g : *s.maze_goals_) goal = goal || g == c;
+    }
+    lua_pushboolean(L, goal);
+    return 1;
+  }
+
+  static int MazeGetStart(lua_State* L) {
+    Scenario& s = Self(L);
+    lua_createtable(L, 0, 2);
+    lua_pushinteger(L, s.maze_start_.x);
+    lua_setfield(L, -2, "x");
+    lua_pushinteger(L, s.maze_start_.y);
+    lua_setfield(L, -2, "y");
+    return 1;
+  }
+
   static int RobotPlace(lua_State* L) {
     luaL_checktype(L, 1, LUA_TTABLE);
     const Pose2D pose{Field(L, 1, "x_m", 0, true), Field(L, 1, "y_m", 0, true),
@@ -167,8 +207,10 @@ struct ScenarioApi {
     NotInRun(L, "sim.maze_load");
     const char* name = luaL_checkstring(L, 1);
     try {
-      Self(L).world_.maze =
-          std::make_unique<Maze>(LoadMaze(ResolveDataFile(name, "mazes/", ".txt")));
+      Scenario& s = Self(L);
+      s.world_.maze = std::make_unique<Maze>(LoadMaze(ResolveDataFile(name, "mazes/", ".txt")));
+      s.maze_goals_ = std::make_unique<std::vector<Cell>>(s.world_.maze->goals());
+      s.maze_start_ = s.world_.maze->start();
     } catch (const InputError& e) {
       return luaL_error(L, "%s", e.what());
     }
@@ -337,6 +379,10 @@ std::unique_ptr<Scenario> Scenario::Load(const std::string& path,
                                   {"robot_get_pose", ScenarioApi::RobotGetPose},
                                   {"robot_get_velocity", ScenarioApi::RobotGetVelocity},
                                   {"robot_place", ScenarioApi::RobotPlace},
+                                  {"robot_get_cell", ScenarioApi::RobotGetCell},
+                                  {"robot_is_touching_wall", ScenarioApi::RobotIsTouchingWall},
+                                  {"maze_is_goal", ScenarioApi::MazeIsGoal},
+                                  {"maze_get_start", ScenarioApi::MazeGetStart},
                                   {"signal_get", ScenarioApi::SignalGet},
                                   {"signal_set", ScenarioApi::SignalSet},
                                   {"wall_add", ScenarioApi::WallAdd},

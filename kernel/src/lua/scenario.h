@@ -89,6 +89,8 @@ class Scenario {
   double time_limit_s_ = 0;
   std::vector<std::string> hud_;
   uint64_t seed_ = 1;
+  std::unique_ptr<std::vector<Cell>> maze_goals_;  // of the maze the world loaded
+  Cell maze_start_;
 
   friend struct ScenarioApi;
 };

@@ -1,0 +1,79 @@
+-- SPDX-License-Identifier: GPL-3.0-or-later
+-- The micromouse contest (dissertation section 5.1.4, with the rules the original did not
+-- implement): a maze, 10 minutes in total from the moment the robot first leaves the start
+-- cell; a run starts when it leaves the start cell and ends when it enters a goal cell; back in
+-- the start cell, the next run may begin; the best run counts. Wall contacts are counted.
+return sim.scenario {
+  name = "micromouse",
+  params = {
+    maze = "japan2018",
+    contest_s = 600,       -- the whole contest, from the first departure
+    start_within_s = 60,   -- a robot that has not left the start cell by then is out
+    max_runs = 0,          -- stop after this many completed runs; 0: use the whole time
+    time_limit_s = 660,    -- start_within_s + contest_s: how long the simulation may run
+  },
+
+  world = function(p)
+    sim.maze_load(p.maze)
+  end,
+
+  run = function(p)
+    local start = sim.maze_get_start()
+    local function at_start(c) return c.x == start.x and c.y == start.y end
+    local runs, best_s = {}, nil
+    local contest_from, run_from, may_start = nil, nil, false
+    local touching, contacts = false, 0
+    local ended_mid_run = false
+
+    while true do
+      local now, cell = sim.time(), sim.robot_get_cell()
+      local touch = sim.robot_is_touching_wall()
+      if touch and not touching then contacts = contacts + 1 end
+      touching = touch
+
+      if not contest_from then
+        if not at_start(cell) then
+          contest_from, run_from = now, now
+          print("the contest starts: run 1")
+        elseif now >= p.start_within_s then
+          sim.fail(string.format("never left the start cell in %g s", p.start_within_s))
+          return
+        end
+      elseif run_from and sim.maze_is_goal(cell.x, cell.y) then
+        runs[#runs + 1] = now - run_from
+        best_s = math.min(best_s or math.huge, runs[#runs])
+        print(string.format("run %d: %.3f s", #runs, runs[#runs]))
+        run_from = nil
+        if p.max_runs > 0 and #runs >= p.max_runs then break end
+      elseif not run_from and at_start(cell) then
+        may_start = true
+      elseif not run_from and may_start and not at_start(cell) then
+        run_from, may_start = now, false
+        print(string.format("run %d starts", #runs + 1))
+      end
+      if contest_from and now - contest_from >= p.contest_s then
+        ended_mid_run = run_from ~= nil
+        break
+      end
+
+      sim.hud_set(1, string.format("time %6.1f s of %g s", contest_from and now - contest_from or 0, p.contest_s))
+      sim.hud_set(2, string.format("run %d  best %s", #runs + (run_from and 1 or 0),
+                                   best_s and string.format("%.3f s", best_s) or "-"))
+      sim.next_tick()
+    end
+
+    local used_s = math.min(sim.time() - contest_from, p.contest_s)
+    sim.score_set("runs", #runs)
+    sim.score_set("time_used_s", used_s)
+    sim.score_set("wall_contacts", contacts)
+    if best_s then sim.score_set("best_run_s", best_s) end
+    local tail = ended_mid_run and string.format("; the time ran out during run %d", #runs + 1) or ""
+    if #runs > 0 then
+      sim.pass(string.format("%d run%s, best %.3f s, %.1f s used, %d wall contacts%s", #runs,
+                             #runs == 1 and "" or "s", best_s, used_s, contacts, tail))
+    else
+      sim.fail(string.format("no run reached the goal in %.1f s (%d wall contacts)%s", used_s,
+                             contacts, tail))
+    end
+  end,
+}

@@ -37,9 +37,7 @@ class LoggerTest : public ::testing::Test {
     registry_ = testing::BundledComponents();
     registry_.AddStatic(ComponentType<testing::Talker>());
   }
-  void TearDown() override {
-    if (!getenv("KEEP")) fs::remove_all(dir_);
-  }
+  void TearDown() override { fs::remove_all(dir_); }
 
   // runs the bundled robot with a talker and a logger for `steps`, driving both wheels
   void RunRobot(const std::string& logger_params, int steps) {

@@ -207,3 +207,44 @@ TEST(MicromouseScenarioTest, NeverReachingTheGoalFails) {
 
 }  // namespace
 }  // namespace unimouse
+
+namespace unimouse {
+namespace {
+
+TEST(TimeTrialScenarioTest, LapsCountedCounterClockwiseWithTheirTimes) {
+  const ScenarioRun r =
+      Scenario("--scenario time_trial --set laps=2 --controller " + kTests + "lap_controller.lua");
+  EXPECT_EQ(r.outcome.exit_code, 0) << r.outcome.output;
+  const auto& scores = r.result["scenario"]["scores"];
+  // a 0.8 m lane round a 1.9 m centre radius: 2 x 2.5 m + 2 pi 1.9 m = 16.9 m a lap at ~0.6 m/s
+  EXPECT_GT(scores["lap_1_s"].get<double>(), 20);
+  EXPECT_LT(scores["lap_1_s"].get<double>(), 40);
+  EXPECT_DOUBLE_EQ(scores["best_lap_s"].get<double>(),
+                   std::min(scores["lap_1_s"].get<double>(), scores["lap_2_s"].get<double>()));
+  EXPECT_FALSE(scores.contains("lap_3_s"));
+}
+
+TEST(TimeTrialScenarioTest, DrivingClockwiseFailsAsTheWrongDirection) {
+  // the same controller, turned round
+  std::string controller = ReadTextFile(kTests + "lap_controller.lua");
+  controller.replace(controller.find("local direction = 1"), 19, "local direction = -1");
+  const std::string path =
+      (std::filesystem::temp_directory_path() / "unimouse_wrong_way_laps.lua").string();
+  WriteTextFile(path, controller);
+  const ScenarioRun r = Scenario("--scenario time_trial --controller " + path);
+  EXPECT_EQ(r.outcome.exit_code, 1) << r.outcome.output;
+  EXPECT_EQ(r.result["scenario"]["reason"].get<std::string>().rfind("wrong direction", 0), 0u)
+      << r.result["scenario"]["reason"];
+}
+
+TEST(TimeTrialScenarioTest, TooFewLapsInTheTimeFails) {
+  const ScenarioRun r = Scenario(
+      "--scenario time_trial --set laps=3 --set time_limit_s=40 "
+      "--controller " +
+      kTests + "lap_controller.lua");
+  EXPECT_EQ(r.outcome.exit_code, 1) << r.outcome.output;
+  EXPECT_EQ(r.result["scenario"]["reason"], "1 of 3 laps in 40 s");
+}
+
+}  // namespace
+}  // namespace unimouse

@@ -5,6 +5,7 @@
 #include <exception>
 
 #include "commands.h"
+#include "lua/scenario.h"
 #include "maze_commands.h"
 #include "unimouse/errors.h"
 
@@ -45,6 +46,9 @@ int main(int argc, char** argv) {
 
   CLI::App* plugins_cmd =
       app.add_subcommand("plugins", "list the component types found and their parameters");
+
+  CLI::App* api_cmd =
+      app.add_subcommand("scenario-api", "list the sim.* functions scenarios can call");
 
   MazeOptions maze;
   CLI::App* maze_cmd = app.add_subcommand(
@@ -120,6 +124,10 @@ int main(int argc, char** argv) {
     if (run_cmd->parsed()) return RunCommand(run);
     if (check_cmd->parsed()) return CheckCommand(check_robot, plugin_path);
     if (plugins_cmd->parsed()) return PluginsCommand(plugin_path);
+    if (api_cmd->parsed()) {
+      std::fputs(DescribeScenarioApi().c_str(), stdout);
+      return kExitPassed;
+    }
     if (show_cmd->parsed()) return MazeShow(maze);
     if (check_cmd_maze->parsed()) return MazeCheck(maze);
     if (solve_cmd->parsed()) return MazeSolve(maze);

@@ -248,3 +248,38 @@ TEST(TimeTrialScenarioTest, TooFewLapsInTheTimeFails) {
 
 }  // namespace
 }  // namespace unimouse
+
+namespace unimouse {
+namespace {
+
+TEST(ScenarioApiTest, TheApiMatchesItsGoldenListing) {
+  // an API change is deliberate: update tests/golden/scenario_api.txt, and the level for
+  // removals or changed signatures
+  const auto o = Unimouse("scenario-api");
+  ASSERT_EQ(o.exit_code, 0);
+  EXPECT_EQ(o.output, ReadTextFile(UNIMOUSE_SOURCE_DIR "/tests/golden/scenario_api.txt"));
+}
+
+TEST(ScenarioApiTest, EveryListedFunctionExistsInTheSandbox) {
+  const std::string listing = ReadTextFile(UNIMOUSE_SOURCE_DIR "/tests/golden/scenario_api.txt");
+  std::string checks;
+  int count = 0;
+  for (size_t at = listing.find("sim."); at != std::string::npos;
+       at = listing.find("\nsim.", at + 1)) {
+    const size_t begin = listing.find("sim.", at) + 4;
+    const size_t end = listing.find_first_of("({", begin);
+    checks += "  assert(type(sim." + listing.substr(begin, end - begin) + ") == 'function', '" +
+              listing.substr(begin, end - begin) + "')\n";
+    ++count;
+  }
+  EXPECT_EQ(count, 21);
+  const std::string path =
+      (std::filesystem::temp_directory_path() / "unimouse_api_complete.lua").string();
+  WriteTextFile(path, "return sim.scenario { name = 'api_complete', run = function()\n" + checks +
+                          "  sim.pass('all there')\nend }\n");
+  const ScenarioRun r = Scenario("--scenario " + path);
+  EXPECT_EQ(r.outcome.exit_code, 0) << r.outcome.output;
+}
+
+}  // namespace
+}  // namespace unimouse

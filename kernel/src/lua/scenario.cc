@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <iterator>
 #include <numbers>
 #include <sstream>
 
@@ -281,6 +282,56 @@ struct ScenarioApi {
 
 namespace {
 
+// THE list of the scenario API: every function with the API level it appeared in, its
+// signature and what it does. Removing one or changing a signature breaks scenarios: the golden
+// test (tests/golden/scenario_api.txt) makes that a deliberate change. Verbs: get, set, add,
+// place, load, is; nouns: robot, maze, signal, hud, score, wall, box.
+struct ApiEntry {
+  const char* name;
+  lua_CFunction fn;  // null: defined in Lua, in the prelude
+  int since;
+  const char* signature;
+  const char* summary;
+};
+
+constexpr ApiEntry kApi[] = {
+    {"scenario", ScenarioApi::ScenarioTable, 1, "scenario{name, params?, world?, run} -> table",
+     "declares the scenario a file returns"},
+    {"time", ScenarioApi::Time, 1, "time() -> seconds", "sim time"},
+    {"next_tick", nullptr, 1, "next_tick()", "waits one physics step"},
+    {"wait", nullptr, 1, "wait(seconds)", "waits sim time"},
+    {"wait_until", nullptr, 1, "wait_until(condition, {timeout_s?}) -> boolean",
+     "waits until condition() is true; false on timeout"},
+    {"robot_get_pose", ScenarioApi::RobotGetPose, 1, "robot_get_pose() -> {x_m, y_m, yaw_rad}",
+     "where the robot is"},
+    {"robot_get_velocity", ScenarioApi::RobotGetVelocity, 1,
+     "robot_get_velocity() -> {v_m_per_s, omega_rad_per_s}",
+     "forward speed and yaw rate, counter-clockwise positive"},
+    {"robot_get_cell", ScenarioApi::RobotGetCell, 1, "robot_get_cell() -> {x, y}",
+     "the maze cell under the robot's centre"},
+    {"robot_is_touching_wall", ScenarioApi::RobotIsTouchingWall, 1,
+     "robot_is_touching_wall() -> boolean", "whether the robot touches a wall, post or obstacle"},
+    {"robot_place", ScenarioApi::RobotPlace, 1, "robot_place{x_m, y_m, yaw_deg?}",
+     "puts the robot there at rest; in world, its start"},
+    {"maze_load", ScenarioApi::MazeLoad, 1, "maze_load(name_or_file)", "builds a maze (world)"},
+    {"maze_is_goal", ScenarioApi::MazeIsGoal, 1, "maze_is_goal(x, y) -> boolean",
+     "whether a cell is a goal cell of the loaded maze"},
+    {"maze_get_start", ScenarioApi::MazeGetStart, 1, "maze_get_start() -> {x, y}",
+     "the loaded maze's start cell"},
+    {"wall_add", ScenarioApi::WallAdd, 1,
+     "wall_add{x1_m, y1_m, x2_m, y2_m, thickness_m?, height_m?}", "a straight wall (world)"},
+    {"box_add", ScenarioApi::BoxAdd, 1, "box_add{x_m, y_m, size_m = {x, y, z}, yaw_deg?}",
+     "a box standing on the floor (world)"},
+    {"signal_get", ScenarioApi::SignalGet, 1, "signal_get(name) -> number",
+     "a robot signal: a sensor reading, a command"},
+    {"signal_set", ScenarioApi::SignalSet, 1, "signal_set(name, value)",
+     "writes a robot signal: drives the robot, injects a fault"},
+    {"hud_set", ScenarioApi::HudSet, 1, "hud_set(line, text)", "a line of on-screen text, 1-16"},
+    {"score_set", ScenarioApi::ScoreSet, 1, "score_set(name, value)", "a number for the result"},
+    {"pass", ScenarioApi::Pass, 1, "pass(reason?)", "ends the challenge: passed"},
+    {"fail", ScenarioApi::Fail, 1, "fail(reason?)", "ends the challenge: failed"},
+};
+
 constexpr int kBudget = 20'000'000;  // instructions between two yields
 constexpr int kHookEvery = 1000;
 int instructions = 0;
@@ -325,6 +376,15 @@ end
 std::string Headline(const std::string& message) { return message.substr(0, message.find('\n')); }
 
 }  // namespace
+
+std::string DescribeScenarioApi() {
+  std::string out = "scenario API level " + std::to_string(kScenarioApiLevel) + "\n";
+  for (const ApiEntry& e : kApi) {
+    out += "sim." + std::string(e.signature) + "  -- " + e.summary + " [since " +
+           std::to_string(e.since) + "]\n";
+  }
+  return out;
+}
 
 Scenario::~Scenario() {
   if (L_ != nullptr) lua_close(L_);
@@ -374,26 +434,12 @@ std::unique_ptr<Scenario> Scenario::Load(const std::string& path,
   lua_pushcfunction(L, ScenarioApi::Print);
   lua_setfield(L, env, "print");
 
-  static const luaL_Reg kSim[] = {{"scenario", ScenarioApi::ScenarioTable},
-                                  {"time", ScenarioApi::Time},
-                                  {"robot_get_pose", ScenarioApi::RobotGetPose},
-                                  {"robot_get_velocity", ScenarioApi::RobotGetVelocity},
-                                  {"robot_place", ScenarioApi::RobotPlace},
-                                  {"robot_get_cell", ScenarioApi::RobotGetCell},
-                                  {"robot_is_touching_wall", ScenarioApi::RobotIsTouchingWall},
-                                  {"maze_is_goal", ScenarioApi::MazeIsGoal},
-                                  {"maze_get_start", ScenarioApi::MazeGetStart},
-                                  {"signal_get", ScenarioApi::SignalGet},
-                                  {"signal_set", ScenarioApi::SignalSet},
-                                  {"wall_add", ScenarioApi::WallAdd},
-                                  {"box_add", ScenarioApi::BoxAdd},
-                                  {"maze_load", ScenarioApi::MazeLoad},
-                                  {"hud_set", ScenarioApi::HudSet},
-                                  {"pass", ScenarioApi::Pass},
-                                  {"fail", ScenarioApi::Fail},
-                                  {"score_set", ScenarioApi::ScoreSet},
-                                  {nullptr, nullptr}};
-  luaL_newlib(L, kSim);
+  lua_createtable(L, 0, static_cast<int>(std::size(kApi)));
+  for (const ApiEntry& e : kApi) {
+    if (e.fn == nullptr) continue;  // written in Lua, in the prelude
+    lua_pushcfunction(L, e.fn);
+    lua_setfield(L, -2, e.name);
+  }
   const int sim = lua_gettop(L);
   lua_pushvalue(L, sim);
   lua_setfield(L, env, "sim");

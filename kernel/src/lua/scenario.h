@@ -27,6 +27,12 @@ struct lua_State;
 
 namespace unimouse {
 
+/// The scenario API's level: new functions carry the level they came with.
+inline constexpr int kScenarioApiLevel = 1;
+
+/// Returns every `sim.*` function with its signature, meaning and level, a line each.
+std::string DescribeScenarioApi();
+
 /// What a scenario's world phase asked for.
 struct ScenarioWorld {
   std::unique_ptr<Maze> maze;

@@ -272,13 +272,46 @@ TEST(ScenarioApiTest, EveryListedFunctionExistsInTheSandbox) {
               listing.substr(begin, end - begin) + "')\n";
     ++count;
   }
-  EXPECT_EQ(count, 21);
+  EXPECT_EQ(count, 23);
   const std::string path =
       (std::filesystem::temp_directory_path() / "unimouse_api_complete.lua").string();
   WriteTextFile(path, "return sim.scenario { name = 'api_complete', run = function()\n" + checks +
                           "  sim.pass('all there')\nend }\n");
   const ScenarioRun r = Scenario("--scenario " + path);
   EXPECT_EQ(r.outcome.exit_code, 0) << r.outcome.output;
+}
+
+}  // namespace
+}  // namespace unimouse
+
+namespace unimouse {
+namespace {
+
+TEST(SlalomScenarioTest, WeavingThroughPasses) {
+  const ScenarioRun r =
+      Scenario("--scenario slalom --controller " + kTests + "slalom_controller.lua");
+  EXPECT_EQ(r.outcome.exit_code, 0) << r.outcome.output;
+  EXPECT_EQ(r.result["scenario"]["scores"]["posts_passed"], 4);
+}
+
+TEST(SlalomScenarioTest, DrivingIntoAPostFailsOnTheWallContactEvent) {
+  const ScenarioRun r =
+      Scenario("--scenario slalom --controller " + kTests + "straight_controller.lua");
+  EXPECT_EQ(r.outcome.exit_code, 1) << r.outcome.output;
+  EXPECT_EQ(r.result["scenario"]["reason"].get<std::string>().rfind("touched a post", 0), 0u)
+      << r.result["scenario"]["reason"];
+}
+
+TEST(SlalomScenarioTest, PassingAPostOnTheWrongSideFailsOnTheGateEvent) {
+  // the first post is passed on its right: the gate of post 2 comes first
+  std::string controller = ReadTextFile(kTests + "slalom_controller.lua");
+  controller.replace(controller.find("{ -0.3, 0.6 }"), 13, "{ 0.3, 0.6 }, { 0.3, 1.0 }");
+  const std::string path =
+      (std::filesystem::temp_directory_path() / "unimouse_wrong_side.lua").string();
+  WriteTextFile(path, controller);
+  const ScenarioRun r = Scenario("--scenario slalom --controller " + path);
+  EXPECT_EQ(r.outcome.exit_code, 1) << r.outcome.output;
+  EXPECT_EQ(r.result["scenario"]["reason"], "passed post 1 on the wrong side");
 }
 
 }  // namespace

@@ -328,6 +328,10 @@ constexpr ApiEntry kApi[] = {
      "writes a robot signal: drives the robot, injects a fault"},
     {"hud_set", ScenarioApi::HudSet, 1, "hud_set(line, text)", "a line of on-screen text, 1-16"},
     {"score_set", ScenarioApi::ScoreSet, 1, "score_set(name, value)", "a number for the result"},
+    {"on", nullptr, 1, "on(kind, handler)",
+     "calls handler(event) on cell_entered {x, y}, wall_contact, gate_crossed {name, direction}"},
+    {"gate_add", nullptr, 1, "gate_add{name, x1_m, y1_m, x2_m, y2_m}",
+     "a line whose crossings raise gate_crossed, direction +1 from its right to its left"},
     {"pass", ScenarioApi::Pass, 1, "pass(reason?)", "ends the challenge: passed"},
     {"fail", ScenarioApi::Fail, 1, "fail(reason?)", "ends the challenge: failed"},
 };
@@ -357,6 +361,57 @@ void CountInstructions(lua_State* L, lua_Debug*) {
 constexpr const char* kPrelude = R"lua(
 local sim, yield = ...
 function sim.next_tick() yield() end
+
+-- events, checked once a tick at the boundary, before run resumes, in the order added
+local handlers, gates = {}, {}
+function sim.on(kind, handler)
+  assert(kind == "cell_entered" or kind == "wall_contact" or kind == "gate_crossed",
+         "sim.on: unknown event '" .. tostring(kind) .. "'")
+  handlers[kind] = handlers[kind] or {}
+  table.insert(handlers[kind], handler)
+end
+function sim.gate_add(g)
+  assert(type(g) == "table" and g.name and g.x1_m and g.y1_m and g.x2_m and g.y2_m,
+         "sim.gate_add{name, x1_m, y1_m, x2_m, y2_m}")
+  table.insert(gates, g)
+end
+local last_cell, touching, last_pose
+local function fire(kind, event)
+  for _, handler in ipairs(handlers[kind] or {}) do handler(event) end
+end
+local function dispatch()
+  local now = sim.time()
+  if handlers.cell_entered then
+    local c = sim.robot_get_cell()
+    if not last_cell or c.x ~= last_cell.x or c.y ~= last_cell.y then
+      fire("cell_entered", { x = c.x, y = c.y, time_s = now })
+    end
+    last_cell = c
+  end
+  if handlers.wall_contact then
+    local t = sim.robot_is_touching_wall()
+    if t and not touching then fire("wall_contact", { time_s = now }) end
+    touching = t
+  end
+  if handlers.gate_crossed then
+    local p = sim.robot_get_pose()
+    for _, g in ipairs(last_pose and gates or {}) do
+      -- the centre's path since the last tick against the gate: which side before and after
+      local gx, gy = g.x2_m - g.x1_m, g.y2_m - g.y1_m
+      local before = gx * (last_pose.y_m - g.y1_m) - gy * (last_pose.x_m - g.x1_m)
+      local after = gx * (p.y_m - g.y1_m) - gy * (p.x_m - g.x1_m)
+      if (before < 0) ~= (after < 0) then
+        local mx, my = p.x_m - last_pose.x_m, p.y_m - last_pose.y_m
+        local t0 = ((g.x1_m - last_pose.x_m) * my - (g.y1_m - last_pose.y_m) * mx) / (mx * gy - my * gx)
+        if t0 >= 0 and t0 <= 1 then
+          -- +1 when crossing from the gate's right side to its left, looking from 1 to 2
+          fire("gate_crossed", { name = g.name, direction = after > 0 and 1 or -1, time_s = now })
+        end
+      end
+    end
+    last_pose = p
+  end
+end
 function sim.wait(seconds)
   local until_s = sim.time() + seconds - 1e-9
   while sim.time() < until_s do yield() end
@@ -370,6 +425,7 @@ function sim.wait_until(condition, options)
   end
   return true
 end
+return dispatch
 )lua";
 
 // first line of a Lua error, which starts with file:line
@@ -444,13 +500,18 @@ std::unique_ptr<Scenario> Scenario::Load(const std::string& path,
   lua_pushvalue(L, sim);
   lua_setfield(L, env, "sim");
   if (luaL_loadbufferx(L, kPrelude, std::strlen(kPrelude), "=prelude", "t") != LUA_OK) {
-    UNIMOUSE_DEMAND(false);
+    std::fprintf(stderr, "%s\n", lua_tostring(L, -1));
+    UNIMOUSE_DEMAND(!"the scenario prelude compiles");
   }
   lua_pushvalue(L, sim);
   lua_getglobal(L, "coroutine");
   lua_getfield(L, -1, "yield");
   lua_remove(L, -2);
-  UNIMOUSE_DEMAND(lua_pcall(L, 2, 0, 0) == LUA_OK);
+  if (lua_pcall(L, 2, 1, 0) != LUA_OK) {
+    std::fprintf(stderr, "%s\n", lua_tostring(L, -1));
+    UNIMOUSE_DEMAND(!"the scenario prelude runs");
+  }
+  s->dispatch_ref_ = luaL_ref(L, LUA_REGISTRYINDEX);
   lua_pop(L, 1);  // sim
 
   // the scenario file, in the sandbox, text only
@@ -570,6 +631,15 @@ void Scenario::Attach(Kernel& kernel, const std::string& controller) {
 }
 
 void Scenario::Tick() {
+  if (!finished() && started_) {
+    lua_rawgeti(L_, LUA_REGISTRYINDEX, dispatch_ref_);
+    instructions = 0;
+    if (lua_pcall(L_, 0, 0, 0) != LUA_OK) {
+      const std::string message = lua_tostring(L_, -1);
+      lua_settop(L_, 0);
+      throw RuntimeFault(Headline(message) + " (in an event handler)");
+    }
+  }
   if (!finished()) {
     // the first resume starts run(params); later ones continue it after its yield
     int nargs = 0;

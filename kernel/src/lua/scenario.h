@@ -86,6 +86,7 @@ class Scenario {
   int params_ref_ = -1;      // parameters after overrides
   int coroutine_ref_ = -1;   // the run coroutine
   int controller_ref_ = -1;  // the controller function
+  int dispatch_ref_ = -1;    // the prelude's event dispatcher
   lua_State* coroutine_ = nullptr;
   bool started_ = false;
   Kernel* kernel_ = nullptr;

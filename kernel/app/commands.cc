@@ -124,7 +124,7 @@ int RunCommand(const RunOptions& options) {
   kernel_options.spawn = scenario_world.spawn;
   kernel_options.log_sink = [log](double time_s, int level, const std::string& component,
                                   const std::string& message) {
-    const char* kind = level >= UNIMOUSE_LOG_ERROR     ? "error: "
+    const char* kind = level == UNIMOUSE_LOG_ERROR     ? "error: "
                        : level == UNIMOUSE_LOG_WARNING ? "warning: "
                                                        : "";
     std::fprintf(stderr, "[%9.3f s] %s: %s%s\n", time_s, component.c_str(), kind, message.c_str());

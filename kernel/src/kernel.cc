@@ -265,12 +265,13 @@ void Kernel::RunHook(int index, void (*hook)(const void*, const unimouse_tick*))
 void Kernel::Emit(int level, const std::string& component, const std::string& message) {
   // stored only: views are added between hooks, so a hook's view array never moves under it
   messages_.push_back({state_->data().time, level, component, message});
-  if (level >= UNIMOUSE_LOG_ERROR && fault_.empty()) {
+  if (level == UNIMOUSE_LOG_ERROR && fault_.empty()) {
     std::ostringstream out;
     out << "component '" << component << "' failed at t=" << state_->data().time
         << " s: " << message;
     fault_ = out.str();
   }
+  for (const auto& listener : listeners_) listener(state_->data().time, level, component, message);
   if (options_.log_sink) {
     options_.log_sink(state_->data().time, level, component, message);
   } else if (level > UNIMOUSE_LOG_INFO) {

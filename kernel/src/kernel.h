@@ -72,6 +72,9 @@ class Kernel {
     Emit(level, source, message);
   }
 
+  /// Also hands every logged line to `listener` (a scenario's events), besides the log sink.
+  void AddMessageListener(LogSink listener) { listeners_.push_back(std::move(listener)); }
+
   /// Runs at the start of every tick, before physics; scenario scripts live here.
   void SetBoundaryHook(std::function<void()> hook) { boundary_hook_ = std::move(hook); }
 
@@ -115,6 +118,7 @@ class Kernel {
   std::vector<int> signal_writer_;
   std::vector<int> signal_first_reader_;
   std::function<void()> boundary_hook_;
+  std::vector<LogSink> listeners_;
   std::string fault_;
   // the run's messages, oldest first; what each component has already been shown of them
   std::deque<StoredMessage> messages_;

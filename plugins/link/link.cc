@@ -107,7 +107,7 @@ void Link::Apply(const SenseContext& ctx, const FirmwareFrame& f, bool* step_don
       }
       break;
     case UNIMOUSE_ID_LOG:
-      ctx.Log(f.text);
+      ctx.Firmware(f.text);
       break;
     case UNIMOUSE_ID_DEBUG_WALLS:
       beliefs_.walls[{f.data[0], f.data[1]}] = {f.data[2], f.data[3]};

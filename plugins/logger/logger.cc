@@ -38,7 +38,15 @@ std::string CsvString(const std::string& text) {
 }
 
 const char* LevelName(int level) {
-  return level == UNIMOUSE_LOG_ERROR ? "error" : level == UNIMOUSE_LOG_WARNING ? "warning" : "info";
+  switch (level) {
+    case UNIMOUSE_LOG_ERROR:
+      return "error";
+    case UNIMOUSE_LOG_WARNING:
+      return "warning";
+    case UNIMOUSE_LOG_FIRMWARE:
+      return "firmware";
+  }
+  return "info";
 }
 
 }  // namespace

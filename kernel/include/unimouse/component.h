@@ -107,6 +107,10 @@ class TickContext {
   void Warn(const std::string& message) const {
     t_.log(t_.ctx, UNIMOUSE_LOG_WARNING, message.c_str());
   }
+  /// Logs a line of the firmware's own text (what a link receives on its log channel).
+  void Firmware(const std::string& message) const {
+    t_.log(t_.ctx, UNIMOUSE_LOG_FIRMWARE, message.c_str());
+  }
   /// Stops the run with exit code 3 once the hook returns.
   void Fail(const std::string& message) const {
     t_.log(t_.ctx, UNIMOUSE_LOG_ERROR, message.c_str());

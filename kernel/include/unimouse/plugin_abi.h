@@ -44,7 +44,12 @@ typedef struct unimouse_param {
 typedef struct unimouse_config unimouse_config;
 
 /* log levels; an error stops the run with exit code 3 once the hook returns */
-enum { UNIMOUSE_LOG_INFO = 0, UNIMOUSE_LOG_WARNING = 1, UNIMOUSE_LOG_ERROR = 2 };
+enum {
+  UNIMOUSE_LOG_INFO = 0,
+  UNIMOUSE_LOG_WARNING = 1,
+  UNIMOUSE_LOG_ERROR = 2,
+  UNIMOUSE_LOG_FIRMWARE = 3 /* a line of the firmware's own log (link frame 8) */
+};
 
 /* Services the kernel offers while a component is being created. */
 typedef struct unimouse_host {

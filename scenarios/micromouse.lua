@@ -10,6 +10,7 @@ return sim.scenario {
     contest_s = 600,       -- the whole contest, from the first departure
     start_within_s = 60,   -- a robot that has not left the start cell by then is out
     max_runs = 0,          -- stop after this many completed runs; 0: use the whole time
+    end_on_log = "",       -- stop when the firmware logs exactly this line; "": never
     time_limit_s = 660,    -- start_within_s + contest_s: how long the simulation may run
   },
 
@@ -23,7 +24,10 @@ return sim.scenario {
     local runs, best_s = {}, nil
     local contest_from, run_from, may_start = nil, nil, false
     local touching, contacts = false, 0
-    local ended_mid_run = false
+    local ended_mid_run, firmware_done = false, false
+    sim.on("firmware_log", function(line)
+      if p.end_on_log ~= "" and line.text == p.end_on_log then firmware_done = true end
+    end)
 
     while true do
       local now, cell = sim.time(), sim.robot_get_cell()
@@ -53,6 +57,11 @@ return sim.scenario {
       end
       if contest_from and now - contest_from >= p.contest_s then
         ended_mid_run = run_from ~= nil
+        break
+      end
+      if firmware_done then
+        print(string.format("the firmware logged '%s': the contest ends", p.end_on_log))
+        if not contest_from then contest_from = now end
         break
       end
 

@@ -196,6 +196,33 @@ TEST(MicromouseScenarioTest, ARobotThatNeverLeavesTheStartFails) {
   EXPECT_EQ(r.result["scenario"]["reason"], "never left the start cell in 2 s");
 }
 
+TEST(MicromouseScenarioTest, TheFirmwareCanEndTheContestByLoggingALine) {
+  // the test firmware greets at start, before the robot moves: the contest ends with no runs
+  const ScenarioRun r =
+      Scenario("--scenario micromouse --set 'end_on_log=test firmware ready' --link native:" +
+               std::string(UNIMOUSE_TEST_FIRMWARE));
+  EXPECT_EQ(r.outcome.exit_code, 1) << r.outcome.output;
+  EXPECT_LT(r.result["sim_time_s"].get<double>(), 0.1);
+  EXPECT_EQ(r.result["scenario"]["reason"].get<std::string>().rfind("no run reached the goal", 0),
+            0u)
+      << r.result["scenario"]["reason"];
+}
+
+TEST(ScenarioEventTest, FirmwareLogLinesArriveAsEvents) {
+  const ScenarioRun r = Scenario("--scenario " + kTests + "firmware_hello.lua --link native:" +
+                                 std::string(UNIMOUSE_TEST_FIRMWARE));
+  EXPECT_EQ(r.outcome.exit_code, 0) << r.outcome.output;
+  EXPECT_EQ(r.result["scenario"]["reason"].get<std::string>().rfind(
+                "heard 'test firmware ready' at 0.0", 0),
+            0u)
+      << r.result["scenario"]["reason"];
+  // and a line that is not what the scenario expects fails it
+  const ScenarioRun wrong =
+      Scenario("--scenario " + kTests + "firmware_hello.lua --set expect=hello --link native:" +
+               std::string(UNIMOUSE_TEST_FIRMWARE));
+  EXPECT_EQ(wrong.outcome.exit_code, 1) << wrong.outcome.output;
+}
+
 TEST(MicromouseScenarioTest, NeverReachingTheGoalFails) {
   const ScenarioRun r = Scenario("--scenario micromouse --set contest_s=2.5 --controller " +
                                  kTests + "scripted_mouse.lua");

@@ -260,6 +260,22 @@ struct ScenarioApi {
     return 0;
   }
 
+  // the firmware's log lines since the last call, as {text, time_s}; for the event dispatcher
+  static int TakeFirmwareLines(lua_State* L) {
+    std::vector<std::pair<double, std::string>>& lines = Self(L).firmware_lines_;
+    lua_createtable(L, static_cast<int>(lines.size()), 0);
+    for (size_t i = 0; i < lines.size(); ++i) {
+      lua_createtable(L, 0, 2);
+      lua_pushstring(L, lines[i].second.c_str());
+      lua_setfield(L, -2, "text");
+      lua_pushnumber(L, lines[i].first);
+      lua_setfield(L, -2, "time_s");
+      lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
+    }
+    lines.clear();
+    return 1;
+  }
+
   static int Random(lua_State* L) {
     lua_getfield(L, LUA_REGISTRYINDEX, "unimouse.rng");
     auto* rng = static_cast<RngStream*>(lua_touserdata(L, -1));
@@ -329,7 +345,8 @@ constexpr ApiEntry kApi[] = {
     {"hud_set", ScenarioApi::HudSet, 1, "hud_set(line, text)", "a line of on-screen text, 1-16"},
     {"score_set", ScenarioApi::ScoreSet, 1, "score_set(name, value)", "a number for the result"},
     {"on", nullptr, 1, "on(kind, handler)",
-     "calls handler(event) on cell_entered {x, y}, wall_contact, gate_crossed {name, direction}"},
+     "calls handler(event) on cell_entered {x, y}, wall_contact, gate_crossed {name, direction}, "
+     "firmware_log {text}"},
     {"gate_add", nullptr, 1, "gate_add{name, x1_m, y1_m, x2_m, y2_m}",
      "a line whose crossings raise gate_crossed, direction +1 from its right to its left"},
     {"pass", ScenarioApi::Pass, 1, "pass(reason?)", "ends the challenge: passed"},
@@ -359,13 +376,14 @@ void CountInstructions(lua_State* L, lua_Debug*) {
 
 // waits, in Lua: one yield per tick
 constexpr const char* kPrelude = R"lua(
-local sim, yield = ...
+local sim, yield, take_firmware_lines = ...
 function sim.next_tick() yield() end
 
 -- events, checked once a tick at the boundary, before run resumes, in the order added
 local handlers, gates = {}, {}
 function sim.on(kind, handler)
-  assert(kind == "cell_entered" or kind == "wall_contact" or kind == "gate_crossed",
+  assert(kind == "cell_entered" or kind == "wall_contact" or kind == "gate_crossed"
+         or kind == "firmware_log",
          "sim.on: unknown event '" .. tostring(kind) .. "'")
   handlers[kind] = handlers[kind] or {}
   table.insert(handlers[kind], handler)
@@ -381,6 +399,7 @@ local function fire(kind, event)
 end
 local function dispatch()
   local now = sim.time()
+  for _, line in ipairs(take_firmware_lines()) do fire("firmware_log", line) end
   if handlers.cell_entered then
     local c = sim.robot_get_cell()
     if not last_cell or c.x ~= last_cell.x or c.y ~= last_cell.y then
@@ -507,7 +526,8 @@ std::unique_ptr<Scenario> Scenario::Load(const std::string& path,
   lua_getglobal(L, "coroutine");
   lua_getfield(L, -1, "yield");
   lua_remove(L, -2);
-  if (lua_pcall(L, 2, 1, 0) != LUA_OK) {
+  lua_pushcfunction(L, ScenarioApi::TakeFirmwareLines);
+  if (lua_pcall(L, 3, 1, 0) != LUA_OK) {
     std::fprintf(stderr, "%s\n", lua_tostring(L, -1));
     UNIMOUSE_DEMAND(!"the scenario prelude runs");
   }
@@ -627,6 +647,10 @@ void Scenario::Attach(Kernel& kernel, const std::string& controller) {
     }
     controller_ref_ = luaL_ref(L_, LUA_REGISTRYINDEX);
   }
+  kernel.AddMessageListener(
+      [this](double time_s, int level, const std::string&, const std::string& message) {
+        if (level == UNIMOUSE_LOG_FIRMWARE) firmware_lines_.emplace_back(time_s, message);
+      });
   kernel.SetBoundaryHook([this] { Tick(); });
 }
 

@@ -17,6 +17,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "kernel.h"
@@ -98,6 +99,7 @@ class Scenario {
   uint64_t seed_ = 1;
   std::unique_ptr<std::vector<Cell>> maze_goals_;  // of the maze the world loaded
   Cell maze_start_;
+  std::vector<std::pair<double, std::string>> firmware_lines_;  // not yet handed to events
 
   friend struct ScenarioApi;
 };

@@ -19,12 +19,10 @@ return sim.scenario {
     end
     for _, x in ipairs { -2.4, -1.4, 1.4, 2.4 } do wall(x, straight_from, x, straight_to) end
     -- each half circle as 25 straight pieces of 7.2 degrees
-    for _, arc in ipairs { { y = straight_to, from = 0 }, { y = straight_from, from = math.pi } } do
+    for _, arc in ipairs { { y = straight_to, from = 0 }, { y = straight_from, from = 180 } } do
       for _, r in ipairs { 1.4, 2.4 } do
-        for i = 0, 24 do
-          local a, b = arc.from + i * math.pi / 25, arc.from + (i + 1) * math.pi / 25
-          wall(r * math.cos(a), arc.y + r * math.sin(a), r * math.cos(b), arc.y + r * math.sin(b))
-        end
+        sim.wall_arc { cx_m = 0, cy_m = arc.y, radius_m = r, from_deg = arc.from,
+                       to_deg = arc.from + 180, segments = 25, thickness_m = 0.2, height_m = 0.15 }
       end
     end
     sim.robot_place { x_m = 1.921, y_m = -3.054, yaw_deg = 90 }

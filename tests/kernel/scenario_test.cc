@@ -4,6 +4,7 @@
 // give their location and exit code; the same seed gives the same result.
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
@@ -287,6 +288,26 @@ TEST(ScenarioApiTest, TheApiMatchesItsGoldenListing) {
   EXPECT_EQ(o.output, ReadTextFile(UNIMOUSE_SOURCE_DIR "/tests/golden/scenario_api.txt"));
 }
 
+TEST(ScenarioApiTest, ArcAndPolylineWallsStopTheRobotAndResetReturnsItToItsStart) {
+  const ScenarioRun r = Scenario("--scenario " + kTests + "pen.lua");
+  ASSERT_EQ(r.outcome.exit_code, 0) << r.outcome.output;
+  double touched_y = 0, back_x = 1, back_y = 1;
+  ASSERT_EQ(std::sscanf(r.result["scenario"]["reason"].get<std::string>().c_str(),
+                        "touched at y=%lf; reset to x=%lf y=%lf", &touched_y, &back_x, &back_y),
+            3)
+      << r.result["scenario"]["reason"];
+  // the arc's inner face is at 0.294 m: the robot's front touches it with its centre short of it
+  EXPECT_GT(touched_y, 0.15);
+  EXPECT_LT(touched_y, 0.294);
+  // reset: the start pose given in world
+  EXPECT_NEAR(back_x, 0, 1e-3);
+  EXPECT_NEAR(back_y, -0.1, 1e-3);
+  // without the walls it drives on untouched
+  const ScenarioRun open = Scenario("--scenario " + kTests + "pen.lua --set pen=false");
+  EXPECT_EQ(open.outcome.exit_code, 1) << open.outcome.output;
+  EXPECT_EQ(open.result["scenario"]["reason"], "drove 3 s without touching a wall");
+}
+
 TEST(ScenarioApiTest, EveryListedFunctionExistsInTheSandbox) {
   const std::string listing = ReadTextFile(UNIMOUSE_SOURCE_DIR "/tests/golden/scenario_api.txt");
   std::string checks;
@@ -299,7 +320,7 @@ TEST(ScenarioApiTest, EveryListedFunctionExistsInTheSandbox) {
               listing.substr(begin, end - begin) + "')\n";
     ++count;
   }
-  EXPECT_EQ(count, 23);
+  EXPECT_EQ(count, 26);
   const std::string path =
       (std::filesystem::temp_directory_path() / "unimouse_api_complete.lua").string();
   WriteTextFile(path, "return sim.scenario { name = 'api_complete', run = function()\n" + checks +

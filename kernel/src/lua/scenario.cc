@@ -146,6 +146,13 @@ struct ScenarioApi {
     return 0;
   }
 
+  static int RobotReset(lua_State* L) {
+    Scenario& s = Self(L);
+    if (s.kernel_ == nullptr) return luaL_error(L, "sim.robot_reset: only in run");
+    s.kernel_->world().PlaceRobot(s.kernel_->state().data(), s.kernel_->world().spawn());
+    return 0;
+  }
+
   static int SignalIndex(lua_State* L, const Kernel& k) {
     const char* name = luaL_checkstring(L, 1);
     const int id = k.model().FindSignal(name);
@@ -329,6 +336,8 @@ constexpr ApiEntry kApi[] = {
      "robot_is_touching_wall() -> boolean", "whether the robot touches a wall, post or obstacle"},
     {"robot_place", ScenarioApi::RobotPlace, 1, "robot_place{x_m, y_m, yaw_deg?}",
      "puts the robot there at rest; in world, its start"},
+    {"robot_reset", ScenarioApi::RobotReset, 1, "robot_reset()",
+     "puts the robot back at its start, at rest (run)"},
     {"maze_load", ScenarioApi::MazeLoad, 1, "maze_load(name_or_file)", "builds a maze (world)"},
     {"maze_is_goal", ScenarioApi::MazeIsGoal, 1, "maze_is_goal(x, y) -> boolean",
      "whether a cell is a goal cell of the loaded maze"},
@@ -336,6 +345,12 @@ constexpr ApiEntry kApi[] = {
      "the loaded maze's start cell"},
     {"wall_add", ScenarioApi::WallAdd, 1,
      "wall_add{x1_m, y1_m, x2_m, y2_m, thickness_m?, height_m?}", "a straight wall (world)"},
+    {"wall_arc", nullptr, 1,
+     "wall_arc{cx_m, cy_m, radius_m, from_deg, to_deg, segments?, thickness_m?, height_m?}",
+     "an arc of straight walls, counter-clockwise from from_deg to to_deg (world)"},
+    {"wall_polyline", nullptr, 1,
+     "wall_polyline{points = {{x_m, y_m}, ...}, thickness_m?, height_m?}",
+     "straight walls joining the points in turn (world)"},
     {"box_add", ScenarioApi::BoxAdd, 1, "box_add{x_m, y_m, size_m = {x, y, z}, yaw_deg?}",
      "a box standing on the floor (world)"},
     {"signal_get", ScenarioApi::SignalGet, 1, "signal_get(name) -> number",
@@ -378,6 +393,28 @@ void CountInstructions(lua_State* L, lua_Debug*) {
 constexpr const char* kPrelude = R"lua(
 local sim, yield, take_firmware_lines = ...
 function sim.next_tick() yield() end
+
+-- walls from many straight pieces
+function sim.wall_polyline(w)
+  assert(type(w) == "table" and type(w.points) == "table" and #w.points >= 2,
+         "sim.wall_polyline{points = {{x_m, y_m}, ...}}: at least two points")
+  for i = 1, #w.points - 1 do
+    local a, b = w.points[i], w.points[i + 1]
+    sim.wall_add { x1_m = a[1], y1_m = a[2], x2_m = b[1], y2_m = b[2],
+                   thickness_m = w.thickness_m, height_m = w.height_m }
+  end
+end
+function sim.wall_arc(w)
+  assert(type(w) == "table" and w.cx_m and w.cy_m and w.radius_m and w.from_deg and w.to_deg,
+         "sim.wall_arc{cx_m, cy_m, radius_m, from_deg, to_deg}")
+  local n = w.segments or math.max(1, math.ceil(math.abs(w.to_deg - w.from_deg) / 10))
+  local points = {}
+  for i = 0, n do
+    local a = math.rad(w.from_deg + (w.to_deg - w.from_deg) * i / n)
+    points[#points + 1] = { w.cx_m + w.radius_m * math.cos(a), w.cy_m + w.radius_m * math.sin(a) }
+  end
+  sim.wall_polyline { points = points, thickness_m = w.thickness_m, height_m = w.height_m }
+end
 
 -- events, checked once a tick at the boundary, before run resumes, in the order added
 local handlers, gates = {}, {}

@@ -187,6 +187,7 @@ int RunCommand(const RunOptions& options) {
                           {"reason", outcome.reason},
                           {"scores", outcome.scores},
                           {"hud", scenario->hud()}};
+    if (!scenario->traceback().empty()) result["scenario"]["traceback"] = scenario->traceback();
   }
   if (pace) result["real_time_pacing"] = pacer.Report();
   WriteResult(options.out_dir, result);

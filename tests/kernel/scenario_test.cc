@@ -96,11 +96,15 @@ TEST(ScenarioSandboxTest, SyntaxAndRuntimeErrorsGiveFileLineAndExitCode3) {
       << r.outcome.output;
   r = Scenario("--scenario " + kTests + "runtime_error.lua");
   EXPECT_EQ(r.outcome.exit_code, 3);
-  EXPECT_NE(r.outcome.output.find(kTests + "runtime_error.lua:9: attempt to index a nil value"),
+  EXPECT_NE(r.outcome.output.find(kTests + "runtime_error.lua:4: attempt to index a nil value"),
             std::string::npos)
       << r.outcome.output;
-  // the run's record survives the error
+  // the run's record survives the error, with the whole Lua traceback: the helper, and run's call
   EXPECT_NEAR(r.result["sim_time_s"].get<double>(), 0.5, 0.002);
+  const std::string traceback = r.result["scenario"].value("traceback", "");
+  EXPECT_NE(traceback.find("stack traceback:"), std::string::npos) << traceback;
+  EXPECT_NE(traceback.find("runtime_error.lua:4: in "), std::string::npos) << traceback;
+  EXPECT_NE(traceback.find("runtime_error.lua:11: in "), std::string::npos) << traceback;
 }
 
 TEST(ScenarioSandboxTest, BadParametersAreBadInput) {

@@ -638,19 +638,25 @@ std::unique_ptr<Scenario> Scenario::Load(const std::string& path,
   return s;
 }
 
-void Scenario::CallWithParams(const char* what) {
-  lua_rawgeti(L_, LUA_REGISTRYINDEX, params_ref_);
-  instructions = 0;
+void Scenario::Call(int nargs, const char* what) {
   lua_getglobal(L_, "debug");
   lua_getfield(L_, -1, "traceback");
   lua_remove(L_, -2);
-  lua_insert(L_, -3);
-  if (lua_pcall(L_, 1, 0, -3) != LUA_OK) {
+  const int handler = lua_gettop(L_) - nargs - 1;
+  lua_insert(L_, handler);
+  instructions = 0;
+  if (lua_pcall(L_, nargs, 0, handler) != LUA_OK) {
     const std::string message = lua_tostring(L_, -1);
     lua_settop(L_, 0);
-    throw RuntimeFault(Headline(message) + " (in " + what + ")");
+    Throw(message, what);
   }
   lua_settop(L_, 0);
+}
+
+void Scenario::Throw(const std::string& traceback, const char* what) {
+  traceback_ = traceback;
+  if (kernel_ != nullptr) kernel_->Log(UNIMOUSE_LOG_INFO, "scenario", traceback);
+  throw RuntimeFault(Headline(traceback) + " (in " + what + ")");
 }
 
 ScenarioWorld Scenario::BuildWorld() {
@@ -658,7 +664,8 @@ ScenarioWorld Scenario::BuildWorld() {
   lua_getfield(L_, -1, "world");
   lua_remove(L_, -2);
   if (lua_isfunction(L_, -1)) {
-    CallWithParams("world");
+    lua_rawgeti(L_, LUA_REGISTRYINDEX, params_ref_);
+    Call(1, "world");
   } else {
     lua_settop(L_, 0);
   }
@@ -694,12 +701,7 @@ void Scenario::Attach(Kernel& kernel, const std::string& controller) {
 void Scenario::Tick() {
   if (!finished() && started_) {
     lua_rawgeti(L_, LUA_REGISTRYINDEX, dispatch_ref_);
-    instructions = 0;
-    if (lua_pcall(L_, 0, 0, 0) != LUA_OK) {
-      const std::string message = lua_tostring(L_, -1);
-      lua_settop(L_, 0);
-      throw RuntimeFault(Headline(message) + " (in an event handler)");
-    }
+    Call(0, "an event handler");
   }
   if (!finished()) {
     // the first resume starts run(params); later ones continue it after its yield
@@ -717,7 +719,10 @@ void Scenario::Tick() {
       instructions = 0;
       const int status = lua_resume(coroutine_, L_, nargs, &nres);
       if (status != LUA_OK && status != LUA_YIELD) {
-        throw RuntimeFault(Headline(lua_tostring(coroutine_, -1)) + " (in run)");
+        luaL_traceback(L_, coroutine_, lua_tostring(coroutine_, -1), 0);
+        const std::string traceback = lua_tostring(L_, -1);
+        lua_settop(L_, 0);
+        Throw(traceback, "run");
       }
       lua_pop(coroutine_, nres);
       if (status == LUA_OK && !finished()) {
@@ -729,12 +734,7 @@ void Scenario::Tick() {
   if (controller_ref_ >= 0) {
     lua_rawgeti(L_, LUA_REGISTRYINDEX, controller_ref_);
     lua_pushnumber(L_, kernel_->state().data().time);
-    instructions = 0;
-    if (lua_pcall(L_, 1, 0, 0) != LUA_OK) {
-      const std::string message = lua_tostring(L_, -1);
-      lua_settop(L_, 0);
-      throw RuntimeFault(Headline(message) + " (in the controller)");
-    }
+    Call(1, "the controller");
   }
 }
 

@@ -73,12 +73,16 @@ class Scenario {
   double time_limit_s() const { return time_limit_s_; }
   /// The lines a scenario shows on screen (sim.hud_set).
   const std::vector<std::string>& hud() const { return hud_; }
+  /// The Lua traceback of the error that stopped the run; empty when none did.
+  const std::string& traceback() const { return traceback_; }
 
  private:
   Scenario() = default;
   void Tick();
-  // calls the function on top of the stack with the table of parameters; throws on error
-  void CallWithParams(const char* what);
+  // calls the function under its `nargs` arguments on the stack; a Lua error throws Throw's fault
+  void Call(int nargs, const char* what);
+  // keeps and logs a Lua error's traceback, then throws its first line (file:line) as the fault
+  [[noreturn]] void Throw(const std::string& traceback, const char* what);
 
   lua_State* L_ = nullptr;
   std::string file_;
@@ -99,6 +103,7 @@ class Scenario {
   uint64_t seed_ = 1;
   std::unique_ptr<std::vector<Cell>> maze_goals_;  // of the maze the world loaded
   Cell maze_start_;
+  std::string traceback_;
   std::vector<std::pair<double, std::string>> firmware_lines_;  // not yet handed to events
 
   friend struct ScenarioApi;

@@ -155,6 +155,7 @@ int RunCommand(const RunOptions& options) {
       const bool lockstep = lockstep_signal >= 0 && kernel->state().signals()[lockstep_signal] != 0;
       if (pace && !lockstep) pacer.Wait(kernel->state().step());
     }
+    if (scenario) scenario->Finish();
   } catch (const RuntimeFault& e) {
     fault = e.what();
   }

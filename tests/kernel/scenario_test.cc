@@ -134,6 +134,37 @@ TEST(ScenarioSandboxTest, RandomNumbersComeFromTheSeedAndTheSameSeedGivesTheSame
   EXPECT_EQ(a.result["scenario"]["reason"].get<std::string>().rfind("x true ", 0), 0u);
 }
 
+TEST(ScenarioLifecycleTest, FinishSeesHowTheRunEndedAndMayDecideAnUndecidedOne) {
+  const ScenarioRun timed_out = Scenario("--scenario " + kTests + "finish_hook.lua");
+  EXPECT_EQ(timed_out.outcome.exit_code, 0) << timed_out.outcome.output;
+  EXPECT_EQ(timed_out.result["scenario"]["reason"], "decided in finish");
+  EXPECT_EQ(timed_out.result["scenario"]["scores"]["was_decided"], 0);
+  // the run lasts time_limit_s plus the second a scenario has to give its own reason
+  EXPECT_NEAR(timed_out.result["scenario"]["scores"]["finished_at_s"].get<double>(), 2.0, 0.002);
+
+  const ScenarioRun decided =
+      Scenario("--scenario " + kTests + "finish_hook.lua --set decide_in_run=true");
+  EXPECT_EQ(decided.outcome.exit_code, 0) << decided.outcome.output;
+  EXPECT_EQ(decided.result["scenario"]["reason"], "decided in run");
+  EXPECT_EQ(decided.result["scenario"]["scores"]["was_decided"], 1);
+  EXPECT_NEAR(decided.result["scenario"]["scores"]["finished_at_s"].get<double>(), 0.25, 0.003);
+}
+
+TEST(ScenarioSandboxTest, TheSameSeedGivesTheSameResultJsonButForTheWallClock) {
+  // a run with physics, contacts, gates and events: everything but the wall-clock fields repeats
+  auto run = [] {
+    ScenarioRun r =
+        Scenario("--seed 9 --scenario slalom --controller " + kTests + "slalom_controller.lua");
+    EXPECT_EQ(r.outcome.exit_code, 0) << r.outcome.output;
+    EXPECT_GT(r.result.value("wall_time_s", -1.0), 0);
+    r.result.erase("wall_time_s");
+    r.result.erase("real_time_factor");
+    return r.result;
+  };
+  const nlohmann::json first = run();
+  EXPECT_EQ(first, run());
+}
+
 }  // namespace
 }  // namespace unimouse
 

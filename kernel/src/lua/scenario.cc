@@ -56,6 +56,9 @@ struct ScenarioApi {
     if (!lua_isstring(L, -1)) luaL_error(L, "sim.scenario needs a name");
     lua_getfield(L, 1, "run");
     if (!lua_isfunction(L, -1)) luaL_error(L, "sim.scenario needs a run function");
+    lua_getfield(L, 1, "finish");
+    if (!lua_isnil(L, -1) && !lua_isfunction(L, -1))
+      luaL_error(L, "sim.scenario: finish is a function");
     lua_settop(L, 1);
     return 1;
   }
@@ -318,7 +321,8 @@ struct ApiEntry {
 };
 
 constexpr ApiEntry kApi[] = {
-    {"scenario", ScenarioApi::ScenarioTable, 1, "scenario{name, params?, world?, run} -> table",
+    {"scenario", ScenarioApi::ScenarioTable, 1,
+     "scenario{name, params?, world?, run, finish?} -> table",
      "declares the scenario a file returns"},
     {"time", ScenarioApi::Time, 1, "time() -> seconds", "sim time"},
     {"next_tick", nullptr, 1, "next_tick()", "waits one physics step"},
@@ -736,6 +740,27 @@ void Scenario::Tick() {
     lua_pushnumber(L_, kernel_->state().data().time);
     Call(1, "the controller");
   }
+}
+
+void Scenario::Finish() {
+  if (finish_called_) return;
+  finish_called_ = true;
+  lua_rawgeti(L_, LUA_REGISTRYINDEX, scenario_ref_);
+  lua_getfield(L_, -1, "finish");
+  lua_remove(L_, -2);
+  if (!lua_isfunction(L_, -1)) {
+    lua_settop(L_, 0);
+    return;
+  }
+  lua_rawgeti(L_, LUA_REGISTRYINDEX, params_ref_);
+  lua_createtable(L_, 0, 3);
+  lua_pushstring(L_, outcome_.status.c_str());
+  lua_setfield(L_, -2, "status");
+  lua_pushstring(L_, outcome_.reason.c_str());
+  lua_setfield(L_, -2, "reason");
+  lua_pushnumber(L_, kernel_->state().data().time);
+  lua_setfield(L_, -2, "time_s");
+  Call(2, "finish");
 }
 
 }  // namespace unimouse

@@ -75,6 +75,10 @@ class Scenario {
   const std::vector<std::string>& hud() const { return hud_; }
   /// The Lua traceback of the error that stopped the run; empty when none did.
   const std::string& traceback() const { return traceback_; }
+  /// Once the run is over (decided, or out of time), calls the scenario's finish(params,
+  /// {status, reason, time_s}) if it has one: it may add scores and decide an undecided run.
+  /// Throws RuntimeFault on a script error.
+  void Finish();
 
  private:
   Scenario() = default;
@@ -94,6 +98,7 @@ class Scenario {
   int dispatch_ref_ = -1;    // the prelude's event dispatcher
   lua_State* coroutine_ = nullptr;
   bool started_ = false;
+  bool finish_called_ = false;
   Kernel* kernel_ = nullptr;
   ScenarioWorld world_;
   ScenarioOutcome outcome_;

@@ -1,0 +1,90 @@
+// SPDX-License-Identifier: MIT
+// A micromouse maze as the robot knows it (dissertation section 3.5.3): one byte per cell, the
+// size fixed at compile time so that nothing is allocated. The low nibble holds the walls and the
+// high nibble which sides the robot has seen, with the UNIMOUSE_SIDE_* bits of the protocol, so
+// that a cell goes to the simulator's debug channel as it is. (The dissertation's class ordered
+// the wall bits up, right, left, down and left the high nibble unused.)
+#ifndef UNIMOUSE_SIM_MAZE_H_
+#define UNIMOUSE_SIM_MAZE_H_
+
+#include <stdint.h>
+
+#include "unimouse_protocol.h"
+
+/// A compass direction in the maze: north is +y, east is +x. Turning right adds one.
+enum class Direction : uint8_t { North = 0, East = 1, South = 2, West = 3 };
+
+inline Direction turnRight(Direction d) {
+  return static_cast<Direction>((static_cast<uint8_t>(d) + 1) & 3);
+}
+inline Direction turnLeft(Direction d) {
+  return static_cast<Direction>((static_cast<uint8_t>(d) + 3) & 3);
+}
+inline Direction turnAround(Direction d) {
+  return static_cast<Direction>((static_cast<uint8_t>(d) + 2) & 3);
+}
+/// The cell one step away in direction d (it may be outside the maze).
+inline int8_t stepX(Direction d) {
+  return d == Direction::East ? 1 : d == Direction::West ? -1 : 0;
+}
+inline int8_t stepY(Direction d) {
+  return d == Direction::North ? 1 : d == Direction::South ? -1 : 0;
+}
+/// The protocol's side bit for a direction.
+inline uint8_t sideBit(Direction d) { return static_cast<uint8_t>(1u << static_cast<uint8_t>(d)); }
+
+template <uint8_t W, uint8_t H>
+class Maze {
+ public:
+  static const uint8_t kWidth = W;
+  static const uint8_t kHeight = H;
+
+  /// A maze with only its outer walls, which every contest maze has.
+  Maze() { clear(); }
+
+  /// Forgets every inner wall; the outer walls stay.
+  void clear() {
+    for (uint8_t x = 0; x < W; ++x) {
+      for (uint8_t y = 0; y < H; ++y) {
+        // an outer wall: there, and known
+        uint8_t walls = 0;
+        if (y == H - 1) walls |= sideBit(Direction::North);
+        if (x == W - 1) walls |= sideBit(Direction::East);
+        if (y == 0) walls |= sideBit(Direction::South);
+        if (x == 0) walls |= sideBit(Direction::West);
+        cells_[x][y] = static_cast<uint8_t>(walls | walls << 4);
+      }
+    }
+  }
+
+  bool contains(int x, int y) const { return x >= 0 && y >= 0 && x < W && y < H; }
+
+  /// Puts a wall on side d of cell (x, y), and on the matching side of the neighbour.
+  void placeWall(uint8_t x, uint8_t y, Direction d) { set(x, y, d, true); }
+  /// Takes the wall away (it is then known to be open), on both cells that share it.
+  void removeWall(uint8_t x, uint8_t y, Direction d) { set(x, y, d, false); }
+  /// Whether side d of cell (x, y) has a wall; an unseen side has none until placed.
+  bool hasWall(uint8_t x, uint8_t y, Direction d) const { return (cells_[x][y] & sideBit(d)) != 0; }
+  /// Whether the wall on side d of (x, y) has been placed or removed, that is, seen.
+  bool isKnown(uint8_t x, uint8_t y, Direction d) const {
+    return (cells_[x][y] & (sideBit(d) << 4)) != 0;
+  }
+  /// The cell's byte: walls in the low nibble, known sides in the high one (UNIMOUSE_SIDE_*).
+  uint8_t cell(uint8_t x, uint8_t y) const { return cells_[x][y]; }
+
+ private:
+  void set(uint8_t x, uint8_t y, Direction d, bool wall) {
+    const int nx = x + stepX(d), ny = y + stepY(d);
+    if (!contains(nx, ny)) return;  // the outer walls stay
+    mark(x, y, d, wall);
+    mark(static_cast<uint8_t>(nx), static_cast<uint8_t>(ny), turnAround(d), wall);
+  }
+  void mark(uint8_t x, uint8_t y, Direction d, bool wall) {
+    uint8_t& c = cells_[x][y];
+    c = static_cast<uint8_t>((c & ~sideBit(d)) | (wall ? sideBit(d) : 0) | sideBit(d) << 4);
+  }
+
+  uint8_t cells_[W][H];
+};
+
+#endif  // UNIMOUSE_SIM_MAZE_H_

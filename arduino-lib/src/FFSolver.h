@@ -22,8 +22,10 @@ class FFSolver {
   explicit FFSolver(const Maze<W, H>& maze) : maze_(maze) {}
 
   /// Costs to the goal area: every cell of the rectangle from (x0, y0) to (x1, y1), inclusive,
-  /// reached in any heading. The classic goal is the 2 x 2 centre.
-  void calculateCosts(uint8_t x0, uint8_t y0, uint8_t x1, uint8_t y1) {
+  /// reached in any heading. The classic goal is the 2 x 2 centre. Sides not yet seen count as
+  /// open, or as walls with `unseenIsWall` (the "closed" maze of Adachi's method).
+  void calculateCosts(uint8_t x0, uint8_t y0, uint8_t x1, uint8_t y1, bool unseenIsWall = false) {
+    unseenIsWall_ = unseenIsWall;
     for (uint16_t s = 0; s < kStates; ++s) cost_[s] = UNREACHABLE;
     uint16_t head = 0, tail = 0;
     for (uint8_t x = x0; x <= x1; ++x) {
@@ -44,7 +46,7 @@ class FFSolver {
       const uint16_t next = cost_[s] + 1;
       reach(state(x, y, turnLeft(d)), next, &tail);
       reach(state(x, y, turnRight(d)), next, &tail);
-      if (!maze_.hasWall(x, y, turnAround(d))) {
+      if (!blocked(x, y, turnAround(d))) {
         reach(state(static_cast<uint8_t>(x - stepX(d)), static_cast<uint8_t>(y - stepY(d)), d),
               next, &tail);
       }
@@ -59,8 +61,8 @@ class FFSolver {
   Action bestAction(uint8_t x, uint8_t y, Direction d) const {
     const uint16_t here = cost(x, y, d);
     if (here == 0 || here == UNREACHABLE) return Action::None;
-    if (!maze_.hasWall(x, y, d) && cost(static_cast<uint8_t>(x + stepX(d)),
-                                        static_cast<uint8_t>(y + stepY(d)), d) == here - 1) {
+    if (!blocked(x, y, d) && cost(static_cast<uint8_t>(x + stepX(d)),
+                                  static_cast<uint8_t>(y + stepY(d)), d) == here - 1) {
       return Action::Forward;
     }
     if (cost(x, y, turnLeft(d)) == here - 1) return Action::TurnLeft;
@@ -77,6 +79,10 @@ class FFSolver {
   static uint8_t cellY(uint16_t s) { return static_cast<uint8_t>((s >> 2) / W); }
   static Direction heading(uint16_t s) { return static_cast<Direction>(s & 3); }
 
+  bool blocked(uint8_t x, uint8_t y, Direction d) const {
+    return maze_.hasWall(x, y, d) || (unseenIsWall_ && !maze_.isKnown(x, y, d));
+  }
+
   void reach(uint16_t s, uint16_t c, uint16_t* tail) {
     if (cost_[s] != UNREACHABLE) return;
     cost_[s] = c;
@@ -84,6 +90,7 @@ class FFSolver {
   }
 
   const Maze<W, H>& maze_;
+  bool unseenIsWall_ = false;
   uint16_t cost_[kStates];
   uint16_t queue_[kStates];  // each state enters once
 };

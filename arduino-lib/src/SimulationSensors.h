@@ -1,0 +1,148 @@
+// SPDX-License-Identifier: MIT
+// The simulator's sensor frames on the firmware side (dissertation tables 3.10 and 3.11): a
+// sensor manager reads a Stream and hands each whole frame to the sensor registered for its id.
+// Unlike the original it never waits for the rest of a frame (a partial frame is kept for the
+// next call), skips frames of ids nobody registered, and steps over bytes that are no frame id
+// at all, so garbage on the line costs a few readings, never a hang.
+#ifndef UNIMOUSE_SIM_SIMULATION_SENSORS_H_
+#define UNIMOUSE_SIM_SIMULATION_SENSORS_H_
+
+#include <Arduino.h>
+#include <stdint.h>
+
+#include "unimouse_protocol.h"
+
+/// A sensor that the simulator sends frames for.
+class ISimulationSensor {
+ public:
+  virtual uint8_t getId() const = 0;
+  /// Takes a whole frame's payload (unimouse_payload_size(getId()) bytes).
+  virtual void notify(const uint8_t* payload) = 0;
+
+ protected:
+  ~ISimulationSensor() = default;
+};
+
+class ISimulationSensorManager {
+ public:
+  /// Reads what has arrived and notifies sensors of every whole frame; returns at once.
+  virtual void updateSensors() = 0;
+
+ protected:
+  ~ISimulationSensorManager() = default;
+};
+
+/// Reads frames from a Stream for up to N sensors.
+template <uint8_t N>
+class StreamSimulationSensorManager : public ISimulationSensorManager {
+ public:
+  explicit StreamSimulationSensorManager(Stream& stream) : stream_(stream) {}
+
+  /// Registers a sensor; false when N are registered already.
+  bool addSensor(ISimulationSensor& sensor) {
+    if (count_ == N) return false;
+    sensors_[count_++] = &sensor;
+    return true;
+  }
+
+  void updateSensors() override {
+    while (stream_.available() > 0) {
+      const int byte = stream_.read();
+      if (byte < 0) return;
+      if (have_ == 0) {
+        // a frame's id: sim -> MCU frames have a fixed size; anything else is not a frame
+        const int size = unimouse_payload_size(static_cast<uint8_t>(byte));
+        if (size < 0 || size > static_cast<int>(sizeof(payload_))) {
+          ++skippedBytes_;
+          continue;
+        }
+        id_ = static_cast<uint8_t>(byte);
+        need_ = static_cast<uint8_t>(size);
+        have_ = 1;
+      } else {
+        payload_[have_++ - 1] = static_cast<uint8_t>(byte);
+      }
+      if (have_ == need_ + 1) {
+        have_ = 0;
+        deliver();
+      }
+    }
+  }
+
+  /// Bytes stepped over because they could not start a frame.
+  uint32_t skippedBytes() const { return skippedBytes_; }
+  /// Whole frames of ids no sensor is registered for.
+  uint32_t unclaimedFrames() const { return unclaimedFrames_; }
+
+ private:
+  void deliver() {
+    for (uint8_t i = 0; i < count_; ++i) {
+      if (sensors_[i]->getId() == id_) {
+        sensors_[i]->notify(payload_);
+        return;
+      }
+    }
+    ++unclaimedFrames_;
+  }
+
+  Stream& stream_;
+  ISimulationSensor* sensors_[N] = {};
+  uint8_t count_ = 0;
+  uint8_t id_ = 0, need_ = 0, have_ = 0;  // have_: bytes of the current frame, id included
+  uint8_t payload_[4] = {};
+  uint32_t skippedBytes_ = 0, unclaimedFrames_ = 0;
+};
+
+/// A time-of-flight sensor: the latest distance in metres.
+class DistanceSensor : public ISimulationSensor {
+ public:
+  explicit DistanceSensor(uint8_t id) : id_(id) {}
+  uint8_t getId() const override { return id_; }
+  void notify(const uint8_t* payload) override {
+    counts_ = unimouse_get_u16(payload);
+    fresh_ = true;
+  }
+  /// Metres; UNIMOUSE_TOF_FULL_SCALE_M (1.2 m, table 3.8) when nothing is in range.
+  float distance() const {
+    return static_cast<float>(unimouse_tof_to_metres(counts_, UNIMOUSE_TOF_FULL_SCALE_M));
+  }
+  /// Whether a reading came since the last call.
+  bool hasNewData() {
+    const bool f = fresh_;
+    fresh_ = false;
+    return f;
+  }
+
+ private:
+  uint8_t id_;
+  uint16_t counts_ = UNIMOUSE_TOF_NO_TARGET;
+  bool fresh_ = false;
+};
+
+/// A wheel encoder: frames carry counts since the previous frame; this keeps a 32-bit running
+/// total (the original's 16-bit one overflowed within seconds) and the counts since readReset.
+class EncoderSensor : public ISimulationSensor {
+ public:
+  explicit EncoderSensor(uint8_t id) : id_(id) {}
+  uint8_t getId() const override { return id_; }
+  void notify(const uint8_t* payload) override {
+    const int16_t delta = static_cast<int16_t>(unimouse_get_u16(payload));
+    total_ = static_cast<int32_t>(static_cast<uint32_t>(total_) +
+                                  static_cast<uint32_t>(static_cast<int32_t>(delta)));
+  }
+  /// Counts since the start, wrapping around at 32 bits.
+  int32_t count() const { return total_; }
+  /// Counts since the previous readReset.
+  int32_t readReset() {
+    const int32_t since =
+        static_cast<int32_t>(static_cast<uint32_t>(total_) - static_cast<uint32_t>(read_));
+    read_ = total_;
+    return since;
+  }
+
+ private:
+  uint8_t id_;
+  int32_t total_ = 0, read_ = 0;
+};
+
+#endif  // UNIMOUSE_SIM_SIMULATION_SENSORS_H_

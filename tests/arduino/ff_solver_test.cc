@@ -7,6 +7,7 @@
 
 #include "FFSolver.h"
 #include "Maze.h"
+#include "headings.h"
 #include "maze.h"
 #include "maze_generator.h"
 #include "maze_solver.h"
@@ -16,20 +17,6 @@ namespace {
 
 using FirmwareMaze = ::Maze<16, 16>;
 using FirmwareSolver = ::FFSolver<16, 16>;
-
-Direction ToDirection(Heading h) {
-  switch (h) {
-    case Heading::kNorth:
-      return Direction::North;
-    case Heading::kEast:
-      return Direction::East;
-    case Heading::kSouth:
-      return Direction::South;
-    case Heading::kWest:
-      return Direction::West;
-  }
-  return Direction::North;
-}
 
 void CopyWalls(const unimouse::Maze& from, FirmwareMaze* to) {
   for (int x = 0; x < from.width(); ++x) {

@@ -9,6 +9,7 @@
 #include "FFSolver.h"
 #include "Maze.h"
 #include "PathManager.h"
+#include "headings.h"
 #include "maze.h"
 #include "maze_explorer.h"
 
@@ -16,20 +17,6 @@ namespace unimouse {
 namespace {
 
 using FirmwareMaze = ::Maze<16, 16>;
-
-Heading ToHeading(Direction d) {
-  switch (d) {
-    case Direction::North:
-      return Heading::kNorth;
-    case Direction::East:
-      return Heading::kEast;
-    case Direction::South:
-      return Heading::kSouth;
-    case Direction::West:
-      return Heading::kWest;
-  }
-  return Heading::kNorth;
-}
 
 struct Outcome {
   int exploring_trips = 0;

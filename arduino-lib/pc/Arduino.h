@@ -26,4 +26,8 @@ class Stream {
   virtual void flush() {}
 };
 
+/// Milliseconds and microseconds since the start; on the PC, of sim time once lock-step is on.
+unsigned long millis();
+unsigned long micros();
+
 #endif  // UNIMOUSE_PC_ARDUINO_H_

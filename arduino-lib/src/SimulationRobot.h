@@ -1,0 +1,112 @@
+// SPDX-License-Identifier: MIT
+// The facade students program against (dissertation figure 3.16, listing 3.1): the robot's three
+// distance sensors, two encoders, two motors and the log over one Stream, usually Serial.
+//
+//   SimulationRobot robot(Serial);
+//   void setup() { Serial.begin(115200); robot.begin(); }
+//   void loop() { robot.update(); robot.motorLeft(robot.frontDistance() > 0.3 ? 500 : 0); ... }
+//
+// begin() never blocks (the original waited for the first readings). In lock-step
+// (begin(true), for the simulator only) each update() first tells the simulator that the
+// previous step is done, so everything loop() sent after it counts for that step.
+#ifndef UNIMOUSE_SIM_SIMULATION_ROBOT_H_
+#define UNIMOUSE_SIM_SIMULATION_ROBOT_H_
+
+#include <Arduino.h>
+#include <stdint.h>
+
+#include "SimulationActuators.h"
+#include "SimulationSensors.h"
+#include "unimouse_protocol.h"
+
+/// The simulator's clock frames (lock-step): sim time in microseconds.
+class ClockSensor : public ISimulationSensor {
+ public:
+  uint8_t getId() const override { return UNIMOUSE_ID_CLOCK; }
+  void notify(const uint8_t* payload) override {
+    timeUs_ = unimouse_get_u32(payload);
+    ticked_ = true;
+  }
+  uint32_t timeUs() const { return timeUs_; }
+  /// Whether a clock frame came since the last call.
+  bool ticked() {
+    const bool t = ticked_;
+    ticked_ = false;
+    return t;
+  }
+
+ private:
+  uint32_t timeUs_ = 0;
+  bool ticked_ = false;
+};
+
+class SimulationRobot {
+ public:
+  explicit SimulationRobot(Stream& stream) : sensors_(stream), actuators_(stream) {
+    sensors_.addSensor(left_);
+    sensors_.addSensor(right_);
+    sensors_.addSensor(front_);
+    sensors_.addSensor(leftEncoder_);
+    sensors_.addSensor(rightEncoder_);
+    sensors_.addSensor(clock_);
+  }
+
+  /// Asks the simulator for sensor frames and, with `lockstep`, to run step by step with the
+  /// firmware. Returns at once.
+  void begin(bool lockstep = false) {
+    manager(UNIMOUSE_MANAGER_SENSORS_ON);
+    if (lockstep) manager(UNIMOUSE_MANAGER_LOCKSTEP_ON);
+  }
+
+  /// Reads what the simulator sent and resends steady motor commands; call it every loop().
+  void update() {
+    if (stepPending_) {
+      manager(UNIMOUSE_MANAGER_STEP_DONE);
+      stepPending_ = false;
+    }
+    sensors_.updateSensors();
+    if (clock_.ticked()) stepPending_ = true;
+    const uint32_t now = nowMs();
+    leftMotor_.refresh(now);
+    rightMotor_.refresh(now);
+  }
+
+  /// Metres to what each sensor sees; 1.2 m when nothing is in range.
+  float leftDistance() const { return left_.distance(); }
+  float rightDistance() const { return right_.distance(); }
+  float frontDistance() const { return front_.distance(); }
+  /// Encoder counts since the previous call (the original's readReset behaviour).
+  int32_t leftEncoder() { return leftEncoder_.readReset(); }
+  int32_t rightEncoder() { return rightEncoder_.readReset(); }
+  /// Encoder counts since the start, for the PoseEstimator.
+  int32_t leftEncoderTotal() const { return leftEncoder_.count(); }
+  int32_t rightEncoderTotal() const { return rightEncoder_.count(); }
+  /// H-bridge commands, -1023..1023 (clamped); positive drives the wheel forward.
+  void motorLeft(int32_t command) { leftMotor_.setCommand(command, nowMs()); }
+  void motorRight(int32_t command) { rightMotor_.setCommand(command, nowMs()); }
+  /// A line for the simulator's log (never Serial.print: it would corrupt the protocol).
+  void log(const char* text) { logger_.log(text); }
+  /// Sim time of the latest clock frame, in microseconds (lock-step only).
+  uint32_t simMicros() const { return clock_.timeUs(); }
+
+  /// The frame reader, for its counts of skipped bytes and unclaimed frames.
+  const StreamSimulationSensorManager<6>& sensorManager() const { return sensors_; }
+
+ private:
+  // millis() is an unsigned long, 64 bits on the PC: counted in 32 bits, it wraps as on boards
+  static uint32_t nowMs() { return static_cast<uint32_t>(millis()); }
+  void manager(uint8_t code) { actuators_.send(UNIMOUSE_ID_MANAGER, &code, 1); }
+
+  StreamSimulationSensorManager<6> sensors_;
+  StreamActuatorManager actuators_;
+  DistanceSensor left_{UNIMOUSE_ID_TOF_LEFT}, right_{UNIMOUSE_ID_TOF_RIGHT},
+      front_{UNIMOUSE_ID_TOF_FRONT};
+  EncoderSensor leftEncoder_{UNIMOUSE_ID_ENCODER_LEFT}, rightEncoder_{UNIMOUSE_ID_ENCODER_RIGHT};
+  ClockSensor clock_;
+  MotorActuator leftMotor_{actuators_, UNIMOUSE_ID_MOTOR_LEFT};
+  MotorActuator rightMotor_{actuators_, UNIMOUSE_ID_MOTOR_RIGHT};
+  SimulationLogger logger_{actuators_};
+  bool stepPending_ = false;
+};
+
+#endif  // UNIMOUSE_SIM_SIMULATION_ROBOT_H_

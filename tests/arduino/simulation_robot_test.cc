@@ -1,0 +1,88 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The firmware library's facade on the PC, byte for byte: begin() asks for sensors (and
+// lock-step) without waiting; update() delivers readings; in lock-step the commands loop() sends
+// after a clock frame go out before that step's done byte, which the next update() sends.
+#include <gtest/gtest.h>
+
+#include <deque>
+#include <vector>
+
+#include "UnimouseSim.h"
+
+namespace {
+unsigned long now_ms = 0;
+}  // namespace
+
+unsigned long millis() { return now_ms; }
+unsigned long micros() { return now_ms * 1000; }
+
+namespace unimouse {
+namespace {
+
+class LoopbackStream : public Stream {
+ public:
+  void Arrive(const std::vector<uint8_t>& bytes) {
+    in.insert(in.end(), bytes.begin(), bytes.end());
+  }
+  int available() override { return static_cast<int>(in.size()); }
+  int read() override {
+    if (in.empty()) return -1;
+    const int b = in.front();
+    in.pop_front();
+    return b;
+  }
+  size_t write(uint8_t byte) override {
+    out.push_back(byte);
+    return 1;
+  }
+  std::deque<uint8_t> in;
+  std::vector<uint8_t> out;
+};
+
+TEST(FirmwareSimulationRobotTest, BeginAsksForSensorsAndLockStepWithoutWaiting) {
+  LoopbackStream stream;
+  SimulationRobot robot(stream);
+  robot.begin(true);
+  EXPECT_EQ(stream.out, (std::vector<uint8_t>{7, 0x02, 7, 0x10}));
+  EXPECT_FLOAT_EQ(robot.frontDistance(), 1.2f);  // nothing yet: the full scale
+}
+
+TEST(FirmwareSimulationRobotTest, InLockStepTheCommandsOfAStepComeBeforeItsDoneByte) {
+  LoopbackStream stream;
+  SimulationRobot robot(stream);
+  robot.begin(true);
+  stream.out.clear();
+  // step 1: sensor frames, then the clock at 1 ms
+  stream.Arrive({2, 0x00, 0x80, 3, 10, 0, 4, 12, 0, 9, 0xE8, 0x03, 0, 0});
+  robot.update();
+  EXPECT_TRUE(stream.out.empty());  // nothing is done before loop() had its say
+  EXPECT_NEAR(robot.frontDistance(), 0x8000 * 1.2 / 65535, 1e-6);
+  EXPECT_EQ(robot.leftEncoder(), 10);
+  EXPECT_EQ(robot.rightEncoder(), 12);
+  EXPECT_EQ(robot.simMicros(), 1000u);
+  robot.motorLeft(300);
+  robot.motorRight(-300);
+  robot.update();  // the next loop(): step 1 is done
+  EXPECT_EQ(stream.out, (std::vector<uint8_t>{5, 0x2C, 0x01, 6, 0xD4, 0xFE, 7, 0x11}));
+  stream.out.clear();
+  robot.update();  // no new clock frame: nothing more to say
+  EXPECT_TRUE(stream.out.empty());
+}
+
+TEST(FirmwareSimulationRobotTest, WithoutLockStepSteadyCommandsAreResent) {
+  LoopbackStream stream;
+  SimulationRobot robot(stream);
+  robot.begin();
+  now_ms = 1000;
+  robot.motorLeft(100);
+  stream.out.clear();
+  now_ms = 1049;
+  robot.update();
+  EXPECT_TRUE(stream.out.empty());
+  now_ms = 1050;
+  robot.update();
+  EXPECT_EQ(stream.out, (std::vector<uint8_t>{5, 100, 0}));
+}
+
+}  // namespace
+}  // namespace unimouse

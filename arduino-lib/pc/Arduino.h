@@ -26,8 +26,34 @@ class Stream {
   virtual void flush() {}
 };
 
-/// Milliseconds and microseconds since the start; on the PC, of sim time once lock-step is on.
+/// The board's serial port; on the PC, the program's stdin and stdout, which `unimouse run
+/// --link native:PROGRAM` connects to the simulator. Output goes out whenever input is looked
+/// for. End of input (the simulator went away) ends the program.
+class HardwareSerial : public Stream {
+ public:
+  void begin(unsigned long) {}
+  int available() override;
+  int read() override;
+  size_t write(uint8_t byte) override;
+  void flush() override;
+};
+extern HardwareSerial Serial;
+
+/// Milliseconds and microseconds since the start: on the PC, sim time from the simulator's clock
+/// frames once they come (lock-step), wall time before.
 unsigned long millis();
 unsigned long micros();
+/// Waits on the wall clock. In lock-step sim time only moves while the firmware answers, so
+/// wait with SimulationRobot::delay instead.
+void delay(unsigned long ms);
+
+/// The sketch.
+void setup();
+void loop();
+
+/// Builds for the PC define this; the library then hands the simulator's clock frames to the
+/// core's millis() and micros().
+#define UNIMOUSE_PC_CORE 1
+void unimousePcClock(uint32_t simMicros);
 
 #endif  // UNIMOUSE_PC_ARDUINO_H_

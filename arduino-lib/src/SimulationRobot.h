@@ -26,6 +26,9 @@ class ClockSensor : public ISimulationSensor {
   void notify(const uint8_t* payload) override {
     timeUs_ = unimouse_get_u32(payload);
     ticked_ = true;
+#ifdef UNIMOUSE_PC_CORE
+    unimousePcClock(timeUs_);  // millis() and micros() of a PC build are sim time
+#endif
   }
   uint32_t timeUs() const { return timeUs_; }
   /// Whether a clock frame came since the last call.
@@ -51,9 +54,15 @@ class SimulationRobot {
     sensors_.addSensor(clock_);
   }
 
+#ifdef UNIMOUSE_PC_CORE
+  static const bool kLockstepByDefault = true;  // a PC build is driven step by step
+#else
+  static const bool kLockstepByDefault = false;
+#endif
+
   /// Asks the simulator for sensor frames and, with `lockstep`, to run step by step with the
   /// firmware. Returns at once.
-  void begin(bool lockstep = false) {
+  void begin(bool lockstep = kLockstepByDefault) {
     manager(UNIMOUSE_MANAGER_SENSORS_ON);
     if (lockstep) manager(UNIMOUSE_MANAGER_LOCKSTEP_ON);
   }
@@ -88,6 +97,13 @@ class SimulationRobot {
   void log(const char* text) { logger_.log(text); }
   /// Sim time of the latest clock frame, in microseconds (lock-step only).
   uint32_t simMicros() const { return clock_.timeUs(); }
+
+  /// Waits `ms` milliseconds while keeping up with the simulator (update() all along).
+  void delay(uint32_t ms) {
+    const uint32_t start = nowMs();
+    do update();
+    while (nowMs() - start < ms);
+  }
 
   /// The frame reader, for its counts of skipped bytes and unclaimed frames.
   const StreamSimulationSensorManager<6>& sensorManager() const { return sensors_; }

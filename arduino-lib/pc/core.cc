@@ -1,0 +1,90 @@
+// SPDX-License-Identifier: MIT
+// The PC Arduino core: Serial on stdin/stdout, the clock, and main() calling setup() and loop().
+#include <poll.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <chrono>
+#include <cstdlib>
+#include <thread>
+#include <vector>
+
+#include "Arduino.h"
+
+HardwareSerial Serial;
+
+namespace {
+
+std::vector<uint8_t> out;
+uint8_t in[4096];
+size_t in_pos = 0, in_len = 0;
+
+bool clock_seen = false;
+uint64_t sim_us = 0;  // unwrapped from the frames' 32 bits
+const auto started = std::chrono::steady_clock::now();
+
+void WriteOut() {
+  size_t done = 0;
+  while (done < out.size()) {
+    const ssize_t n = ::write(1, out.data() + done, out.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) std::exit(0);  // the simulator went away
+    done += static_cast<size_t>(n);
+  }
+  out.clear();
+}
+
+}  // namespace
+
+int HardwareSerial::available() {
+  WriteOut();
+  if (in_pos < in_len) return static_cast<int>(in_len - in_pos);
+  pollfd p{0, POLLIN, 0};
+  if (::poll(&p, 1, 0) <= 0) return 0;
+  const ssize_t n = ::read(0, in, sizeof(in));
+  if (n == 0) std::exit(0);  // end of input: the run is over
+  if (n < 0) return 0;
+  in_pos = 0;
+  in_len = static_cast<size_t>(n);
+  return static_cast<int>(in_len);
+}
+
+int HardwareSerial::read() {
+  if (available() == 0) return -1;
+  return in[in_pos++];
+}
+
+size_t HardwareSerial::write(uint8_t byte) {
+  out.push_back(byte);
+  return 1;
+}
+
+void HardwareSerial::flush() { WriteOut(); }
+
+void unimousePcClock(uint32_t us) {
+  if (!clock_seen) {
+    sim_us = us;
+    clock_seen = true;
+  } else {
+    sim_us += static_cast<uint32_t>(us - static_cast<uint32_t>(sim_us));
+  }
+}
+
+unsigned long micros() {
+  if (clock_seen) return static_cast<unsigned long>(sim_us);
+  return static_cast<unsigned long>(std::chrono::duration_cast<std::chrono::microseconds>(
+                                        std::chrono::steady_clock::now() - started)
+                                        .count());
+}
+
+unsigned long millis() { return micros() / 1000; }
+
+void delay(unsigned long ms) {
+  Serial.flush();
+  std::this_thread::sleep_for(std::chrono::milliseconds(ms));
+}
+
+int main() {
+  setup();
+  for (;;) loop();
+}

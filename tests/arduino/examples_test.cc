@@ -1,0 +1,45 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The library's examples, built for the PC, drive the simulated robot through the native link in
+// lock-step and pass their scenarios; the same run twice gives the same result.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+
+#include "run_program.h"
+#include "text_file.h"
+
+namespace unimouse {
+namespace {
+
+struct ExampleRun {
+  testing::Outcome outcome;
+  nlohmann::json result;
+};
+
+ExampleRun RunExample(const std::string& example, const std::string& scenario,
+                      const std::string& out_name) {
+  const std::string out = (std::filesystem::temp_directory_path() / out_name).string();
+  std::filesystem::remove_all(out);
+  ExampleRun run{testing::Unimouse("run --out " + out + " --scenario " + scenario +
+                                   " --link native:" + UNIMOUSE_FIRMWARE_DIR "/" + example),
+                 {}};
+  if (std::filesystem::exists(out + "/result.json")) {
+    run.result = nlohmann::json::parse(ReadTextFile(out + "/result.json"));
+    run.result.erase("wall_time_s");
+    run.result.erase("real_time_factor");
+    run.result.erase("real_time_pacing");
+  }
+  return run;
+}
+
+TEST(ArduinoExamplesTest, WallDistancePassesItsScenarioTheSameWayEveryTime) {
+  const ExampleRun a = RunExample("wall_distance", "wall_distance", "unimouse_example_wd");
+  ASSERT_EQ(a.outcome.exit_code, 0) << a.outcome.output;
+  EXPECT_EQ(a.result["scenario"]["status"], "passed") << a.result["scenario"]["reason"];
+  const ExampleRun b = RunExample("wall_distance", "wall_distance", "unimouse_example_wd");
+  EXPECT_EQ(a.result, b.result);
+}
+
+}  // namespace
+}  // namespace unimouse

@@ -9,6 +9,8 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#define PI 3.1415926535897932384626433832795
+
 /// A byte stream, as Arduino's: a board's Serial is one.
 class Stream {
  public:

@@ -41,5 +41,11 @@ TEST(ArduinoExamplesTest, WallDistancePassesItsScenarioTheSameWayEveryTime) {
   EXPECT_EQ(a.result, b.result);
 }
 
+TEST(ArduinoExamplesTest, SpeedControlPassesItsScenario) {
+  const ExampleRun r = RunExample("speed_control", "speed_control", "unimouse_example_sc");
+  ASSERT_EQ(r.outcome.exit_code, 0) << r.outcome.output;
+  EXPECT_EQ(r.result["scenario"]["status"], "passed") << r.result["scenario"]["reason"];
+}
+
 }  // namespace
 }  // namespace unimouse

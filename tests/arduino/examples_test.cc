@@ -47,5 +47,12 @@ TEST(ArduinoExamplesTest, SpeedControlPassesItsScenario) {
   EXPECT_EQ(r.result["scenario"]["status"], "passed") << r.result["scenario"]["reason"];
 }
 
+TEST(ArduinoExamplesTest, TimeTrialDrivesThreeLapsTheRightWay) {
+  const ExampleRun r = RunExample("time_trial", "time_trial", "unimouse_example_tt");
+  ASSERT_EQ(r.outcome.exit_code, 0) << r.outcome.output;
+  EXPECT_EQ(r.result["scenario"]["status"], "passed") << r.result["scenario"]["reason"];
+  EXPECT_EQ(r.result["scenario"]["scores"].count("lap_3_s"), 1u);
+}
+
 }  // namespace
 }  // namespace unimouse

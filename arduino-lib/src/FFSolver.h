@@ -16,6 +16,8 @@ enum class Action : uint8_t { Forward, TurnLeft, TurnRight, None };
 
 template <uint8_t W, uint8_t H>
 class FFSolver {
+  static_assert(static_cast<uint32_t>(W) * H * 4 < 0xFFFF, "states are counted in 16 bits");
+
  public:
   static const uint16_t UNREACHABLE = 0xFFFF;
 

@@ -95,6 +95,11 @@ class SimulationRobot {
   void motorRight(int32_t command) { rightMotor_.setCommand(command, nowMs()); }
   /// A line for the simulator's log (never Serial.print: it would corrupt the protocol).
   void log(const char* text) { logger_.log(text); }
+  /// A debug frame for the simulator's maze view (UNIMOUSE_ID_DEBUG_*; docs/protocol.md).
+  void debug(uint8_t id, const uint8_t* payload, uint16_t size) {
+    actuators_.send(id, payload, size);
+  }
+
   /// Sim time of the latest clock frame, in microseconds (lock-step only).
   uint32_t simMicros() const { return clock_.timeUs(); }
 

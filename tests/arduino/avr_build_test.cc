@@ -16,7 +16,7 @@ TEST(AvrBuildTest, EveryExampleFitsTheAtmega2560) {
   if (!std::filesystem::exists(dir)) {
     GTEST_SKIP() << "no AVR build: gcc-avr and arduino-core-avr are not installed";
   }
-  for (const char* example : {"speed_control", "time_trial", "wall_distance"}) {
+  for (const char* example : {"micromouse", "speed_control", "time_trial", "wall_distance"}) {
     const std::string size_file = dir + "/" + example + ".size.txt";
     ASSERT_TRUE(std::filesystem::exists(size_file)) << size_file;
     const std::string report = ReadTextFile(size_file);

@@ -54,5 +54,19 @@ TEST(ArduinoExamplesTest, TimeTrialDrivesThreeLapsTheRightWay) {
   EXPECT_EQ(r.result["scenario"]["scores"].count("lap_3_s"), 1u);
 }
 
+TEST(ArduinoExamplesTest, MicromouseExploresJapan2018AndSpeedRunsThePathOfCost108) {
+  const std::string out = (std::filesystem::temp_directory_path() / "unimouse_example_mm").string();
+  const ExampleRun r =
+      RunExample("micromouse", "micromouse --set end_on_log=done", "unimouse_example_mm");
+  ASSERT_EQ(r.outcome.exit_code, 0) << r.outcome.output;
+  EXPECT_EQ(r.result["scenario"]["status"], "passed") << r.result["scenario"]["reason"];
+  // within the 10-minute contest, at least one whole run, ended by the firmware's "done"
+  EXPECT_GE(r.result["scenario"]["scores"]["runs"].get<int>(), 1);
+  EXPECT_LT(r.result["scenario"]["scores"]["time_used_s"].get<double>(), 600);
+  const std::string log = ReadTextFile(out + "/log.txt");
+  EXPECT_NE(log.find("speed run 1: path cost 108"), std::string::npos) << log;
+  EXPECT_NE(log.find("the firmware logged 'done'"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace unimouse

@@ -3,17 +3,12 @@
 // do a speed run along the best path found, one cell or one quarter turn at a time.
 //  - Moving one cell (algorithm 6): both motors forward, the pose estimated from the encoders
 //    (eq. 3.29-3.31); the heading is held on the estimate and, between two side walls, centred on
-//    them; the move ends 0.18 m on, or at the right distance from a wall ahead.
+//    them; the move ends at the next cell's centre, or near enough a wall ahead. At rest the
+//    estimate is put back in the middle of the corridor, facing straight along it.
 //  - Turning (algorithm 5): the motors opposite until the estimated heading has turned 90 degrees.
-//  - Walls: while crossing into a cell, the 45-degree sensors see its side walls; at its centre
-//    the front sensor sees the wall ahead.
-// It logs "done" after its speed run; `--set end_on_log=done` ends the contest there.
-//
-// Status: work in progress. In 3D it explores the first cells of japan2018 correctly, then the
-// robot stalls (the slow start command does not overcome friction, and once stopped all three
-// sensors read nothing, as if it were tipped); the wheels then spin in place and the encoder
-// estimate runs away from the robot. It logs every decision ("at x y heading do action") to
-// compare with the trace. Not yet tested end to end.
+//  - Walls: while crossing into a cell, the 45-degree sensors see its side walls and the front
+//    sensor the wall beyond it (the sensor is blind nearer than 3 cm).
+// It logs the speed run's path cost and "done"; `--set end_on_log=done` ends the contest there.
 #include <UnimouseSim.h>
 #include <stdio.h>
 
@@ -26,17 +21,18 @@ PathManager<16, 16> paths(solver, 0, 0, Direction::North, 7, 7, 8, 8);
 
 const float kCell = 0.18f;         // m
 const float kSideWall = 0.10f;     // m, a 45-degree reading below this is a side wall
-const float kFrontWall = 0.10f;    // m, a front reading below this, at a cell's centre
-const float kFrontStop = 0.030f;   // m, the front reading at a cell's centre with a wall ahead
+const float kFrontWall = 0.15f;    // m, a front reading below this, half a cell before the centre
+const float kFrontStop = 0.035f;   // m, stop here before a wall (the sensor is blind below 0.03)
 const float kCentred = 0.0509f;    // m, a 45-degree reading when centred between walls
-const int kForward = 300, kSlow = 150, kTurn = 180;
+const bool kTraceDecisions = false;  // log "at x y heading do action" for every decision
+const int kForward = 300, kSlow = 150, kTurn = 130;
 
 enum class Mode : uint8_t { Decide, Forward, Turn, Settle, Done };
 Mode mode = Mode::Decide;
 uint8_t x = 0, y = 0;
 Direction heading = Direction::North;
 Action action = Action::None;
-float startX = 0, startY = 0, targetTheta = 0, minLeft = 9, minRight = 9;
+float targetX = 0, targetY = 0, startToGo = 0, targetTheta = 0, minLeft = 9, minRight = 9, minFront = 9;
 uint32_t settleUntil = 0;
 uint16_t speedRuns = 0;
 
@@ -54,11 +50,15 @@ void drive(int left, int right) {
   robot.motorRight(right);
 }
 
-// at rest in a cell's centre, facing `heading`: where the estimate should be
+// at rest in a cell: sideways in its middle and facing `heading` exactly, as the walls keep
+// the robot; along the heading the estimate stays, so that a move's overshoot is made good
 void snap() {
-  Pose p;
-  p.x = (x + 0.5f) * kCell;
-  p.y = (y + 0.5f) * kCell;
+  Pose p = pose.getPose();
+  if (heading == Direction::North || heading == Direction::South) {
+    p.x = (x + 0.5f) * kCell;
+  } else {
+    p.y = (y + 0.5f) * kCell;
+  }
   p.theta = headingAngle(heading);
   pose.setPose(p, robot.leftEncoderTotal(), robot.rightEncoderTotal());
 }
@@ -89,7 +89,10 @@ void setup() {
   // the classic start cell: open to the north only
   maze.placeWall(0, 0, Direction::East);
   maze.removeWall(0, 0, Direction::North);
-  snap();
+  Pose start;
+  start.x = start.y = kCell / 2;
+  start.theta = headingAngle(heading);
+  pose.setPose(start);
 }
 
 void loop() {
@@ -101,7 +104,7 @@ void loop() {
       const PathManager<16, 16>::Phase before = paths.phase();
       const uint16_t trips = paths.trips();
       action = paths.nextAction(x, y, heading);
-      {
+      if (kTraceDecisions) {
         char dbg[40];
         snprintf(dbg, sizeof(dbg), "at %u %u %u do %u", x, y, static_cast<unsigned>(heading),
                  static_cast<unsigned>(action));
@@ -124,9 +127,11 @@ void loop() {
         mode = Mode::Done;
         drive(0, 0);
       } else if (action == Action::Forward) {
-        startX = p.x;
-        startY = p.y;
-        minLeft = minRight = 9;
+        // the next cell's centre
+        targetX = (x + stepX(heading) + 0.5f) * kCell;
+        targetY = (y + stepY(heading) + 0.5f) * kCell;
+        startToGo = (targetX - p.x) * stepX(heading) + (targetY - p.y) * stepY(heading);
+        minLeft = minRight = minFront = 9;
         mode = Mode::Forward;
       } else {
         targetTheta = headingAngle(action == Action::TurnLeft ? turnLeft(heading) : turnRight(heading));
@@ -135,15 +140,18 @@ void loop() {
       break;
     }
     case Mode::Forward: {
-      const float travelled = hypotf(p.x - startX, p.y - startY);
-      const float toGo = kCell - travelled;
+      // along the heading, to the next cell's centre
+      const float toGo = (targetX - p.x) * stepX(heading) + (targetY - p.y) * stepY(heading);
+      const float travelled = startToGo - toGo;
       // the side walls of the cell ahead pass the 45-degree sensors about half a cell before it
       if (toGo < 0.11f && toGo > 0.07f) {
         minLeft = fminf(minLeft, robot.leftDistance());
         minRight = fminf(minRight, robot.rightDistance());
       }
-      const bool wallAhead = robot.frontDistance() < kFrontWall;
-      if (toGo <= 0.002f || (wallAhead && robot.frontDistance() <= kFrontStop)) {
+      // the wall ahead of the cell, seen before the sensor gets too near to see it
+      if (toGo < 0.09f && toGo > 0.04f) minFront = fminf(minFront, robot.frontDistance());
+      const bool wallAhead = minFront < kFrontWall;
+      if (toGo <= 0.002f || (robot.frontDistance() <= kFrontStop)) {
         x = static_cast<uint8_t>(x + stepX(heading));
         y = static_cast<uint8_t>(y + stepY(heading));
         recordWall(turnLeft(heading), minLeft < kSideWall);

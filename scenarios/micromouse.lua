@@ -20,8 +20,21 @@ return sim.scenario {
 
   run = function(p)
     local start = sim.maze_get_start()
+    -- a run's turn-aware cost (as tables 5.1-5.4 count it): one per cell moved, one per quarter
+    -- turn, from the start facing north; nil if the robot skipped a cell
+    local function path_cost(cells)
+      local hx, hy, cost = 0, 1, 0
+      for i = 2, #cells do
+        local dx, dy = cells[i].x - cells[i - 1].x, cells[i].y - cells[i - 1].y
+        if math.abs(dx) + math.abs(dy) ~= 1 then return nil end
+        local turns = (dx == hx and dy == hy) and 0 or (dx == -hx and dy == -hy) and 2 or 1
+        cost, hx, hy = cost + turns + 1, dx, dy
+      end
+      return cost
+    end
     local function at_start(c) return c.x == start.x and c.y == start.y end
-    local runs, best_s = {}, nil
+    local runs, best_s, best_cost = {}, nil, nil
+    local cells  -- of the current run, the start cell first
     local contest_from, run_from, may_start = nil, nil, false
     local touching, contacts = false, 0
     local ended_mid_run, firmware_done = false, false
@@ -38,6 +51,7 @@ return sim.scenario {
       if not contest_from then
         if not at_start(cell) then
           contest_from, run_from = now, now
+          cells = { start }
           print("the contest starts: run 1")
         elseif now >= p.start_within_s then
           sim.fail(string.format("never left the start cell in %g s", p.start_within_s))
@@ -45,15 +59,22 @@ return sim.scenario {
         end
       elseif run_from and sim.maze_is_goal(cell.x, cell.y) then
         runs[#runs + 1] = now - run_from
-        best_s = math.min(best_s or math.huge, runs[#runs])
-        print(string.format("run %d: %.3f s", #runs, runs[#runs]))
+        cells[#cells + 1] = cell
+        local cost = path_cost(cells)
+        if not best_s or runs[#runs] < best_s then best_s, best_cost = runs[#runs], cost end
+        print(string.format("run %d: %.3f s, path cost %s", #runs, runs[#runs], cost or "unknown"))
         run_from = nil
         if p.max_runs > 0 and #runs >= p.max_runs then break end
       elseif not run_from and at_start(cell) then
         may_start = true
       elseif not run_from and may_start and not at_start(cell) then
         run_from, may_start = now, false
+        cells = { start }
         print(string.format("run %d starts", #runs + 1))
+      end
+      if run_from and cells then
+        local last = cells[#cells]
+        if cell.x ~= last.x or cell.y ~= last.y then cells[#cells + 1] = cell end
       end
       if contest_from and now - contest_from >= p.contest_s then
         ended_mid_run = run_from ~= nil
@@ -76,10 +97,12 @@ return sim.scenario {
     sim.score_set("time_used_s", used_s)
     sim.score_set("wall_contacts", contacts)
     if best_s then sim.score_set("best_run_s", best_s) end
+    if best_cost then sim.score_set("best_run_path_cost", best_cost) end
     local tail = ended_mid_run and string.format("; the time ran out during run %d", #runs + 1) or ""
     if #runs > 0 then
-      sim.pass(string.format("%d run%s, best %.3f s, %.1f s used, %d wall contacts%s", #runs,
-                             #runs == 1 and "" or "s", best_s, used_s, contacts, tail))
+      sim.pass(string.format("%d run%s, best %.3f s (path cost %s), %.1f s used, %d wall contacts%s",
+                             #runs, #runs == 1 and "" or "s", best_s, best_cost or "unknown", used_s,
+                             contacts, tail))
     else
       sim.fail(string.format("no run reached the goal in %.1f s (%d wall contacts)%s", used_s,
                              contacts, tail))

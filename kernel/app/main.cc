@@ -5,6 +5,7 @@
 #include <exception>
 
 #include "commands.h"
+#include "install_paths.h"
 #include "lua/scenario.h"
 #include "maze_commands.h"
 #include "unimouse/errors.h"
@@ -121,7 +122,20 @@ int main(int argc, char** argv) {
   run.plugin_path = plugin_path;
   try {
     run.duration_given = run_cmd->get_option("--duration")->count() > 0;
-    if (run_cmd->parsed()) return RunCommand(run);
+    if (run_cmd->parsed()) {
+      // the main job: nothing chosen, so the contest with the bundled micromouse firmware
+      bool chosen = false;
+      for (const char* option : {"--robot", "--maze", "--duration", "--scenario", "--set",
+                                 "--controller", "--link", "--realtime"}) {
+        chosen = chosen || run_cmd->get_option(option)->count() > 0;
+      }
+      if (!chosen) {
+        run.scenario = "micromouse";
+        run.sets = {"end_on_log=done"};
+        run.link = "native:" + FirmwareDirectory() + "/micromouse";
+      }
+      return RunCommand(run);
+    }
     if (check_cmd->parsed()) return CheckCommand(check_robot, plugin_path);
     if (plugins_cmd->parsed()) return PluginsCommand(plugin_path);
     if (api_cmd->parsed()) {

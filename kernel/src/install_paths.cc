@@ -26,6 +26,10 @@ std::string DataDirectory() {
   return (ExecutableDirectory() / UNIMOUSE_BIN_TO_DATA).lexically_normal().string();
 }
 
+std::string FirmwareDirectory() {
+  return (ExecutableDirectory() / UNIMOUSE_BIN_TO_FIRMWARE).lexically_normal().string();
+}
+
 std::string ResolveDataFile(const std::string& name, const std::string& folder,
                             const std::string& extension) {
   if (fs::is_regular_file(name)) return name;

@@ -13,6 +13,8 @@ namespace unimouse {
 std::string PluginDirectory();
 /// Returns the directory of bundled data (robots/, mazes/, scenarios/).
 std::string DataDirectory();
+/// Returns the directory of the library's examples built for the PC (firmware programs).
+std::string FirmwareDirectory();
 
 /// Returns `name` if it is an existing file; otherwise the bundled file
 /// DataDirectory()/folder/name[extension]. Throws InputError naming both places when neither

@@ -63,6 +63,8 @@ TEST(ArduinoExamplesTest, MicromouseExploresJapan2018AndSpeedRunsThePathOfCost10
   // within the 10-minute contest, at least one whole run, ended by the firmware's "done"
   EXPECT_GE(r.result["scenario"]["scores"]["runs"].get<int>(), 1);
   EXPECT_LT(r.result["scenario"]["scores"]["time_used_s"].get<double>(), 600);
+  // the best run's path as the simulator saw the robot drive it: the optimum of table 5.4
+  EXPECT_EQ(r.result["scenario"]["scores"]["best_run_path_cost"], 108);
   const std::string log = ReadTextFile(out + "/log.txt");
   EXPECT_NE(log.find("speed run 1: path cost 108"), std::string::npos) << log;
   EXPECT_NE(log.find("the firmware logged 'done'"), std::string::npos);

@@ -6,9 +6,9 @@
 //   void setup() { Serial.begin(115200); robot.begin(); }
 //   void loop() { robot.update(); robot.motorLeft(robot.frontDistance() > 0.3 ? 500 : 0); ... }
 //
-// begin() never blocks (the original waited for the first readings). In lock-step
-// (begin(true), for the simulator only) each update() first tells the simulator that the
-// previous step is done, so everything loop() sent after it counts for that step.
+// begin() never blocks (the original waited for the first readings). In lock-step (begin(true),
+// the default of PC builds) each update() first tells the simulator that the previous step is
+// done, so everything loop() sent after it counts for that step, then waits for the next step.
 #ifndef UNIMOUSE_SIM_SIMULATION_ROBOT_H_
 #define UNIMOUSE_SIM_SIMULATION_ROBOT_H_
 
@@ -63,18 +63,27 @@ class SimulationRobot {
   /// Asks the simulator for sensor frames and, with `lockstep`, to run step by step with the
   /// firmware. Returns at once.
   void begin(bool lockstep = kLockstepByDefault) {
+    lockstep_ = lockstep;
     manager(UNIMOUSE_MANAGER_SENSORS_ON);
     if (lockstep) manager(UNIMOUSE_MANAGER_LOCKSTEP_ON);
   }
 
   /// Reads what the simulator sent and resends steady motor commands; call it every loop().
+  /// In lock-step it waits for the whole of the next step, so that each loop() sees one step
+  /// and the firmware does the same thing however fast it runs.
   void update() {
     if (stepPending_) {
       manager(UNIMOUSE_MANAGER_STEP_DONE);
       stepPending_ = false;
     }
-    sensors_.updateSensors();
-    if (clock_.ticked()) stepPending_ = true;
+    if (lockstep_) {
+      do sensors_.updateSensors();
+      while (!clock_.ticked());
+      stepPending_ = true;
+    } else {
+      sensors_.updateSensors();
+      if (clock_.ticked()) stepPending_ = true;
+    }
     const uint32_t now = nowMs();
     leftMotor_.refresh(now);
     rightMotor_.refresh(now);
@@ -127,6 +136,7 @@ class SimulationRobot {
   MotorActuator leftMotor_{actuators_, UNIMOUSE_ID_MOTOR_LEFT};
   MotorActuator rightMotor_{actuators_, UNIMOUSE_ID_MOTOR_RIGHT};
   SimulationLogger logger_{actuators_};
+  bool lockstep_ = false;
   bool stepPending_ = false;
 };
 

@@ -68,6 +68,11 @@ TEST(ArduinoExamplesTest, MicromouseExploresJapan2018AndSpeedRunsThePathOfCost10
   const std::string log = ReadTextFile(out + "/log.txt");
   EXPECT_NE(log.find("speed run 1: path cost 108"), std::string::npos) << log;
   EXPECT_NE(log.find("the firmware logged 'done'"), std::string::npos);
+  // lock-step: however the two processes are scheduled, the same contest
+  const ExampleRun again =
+      RunExample("micromouse", "micromouse --set end_on_log=done", "unimouse_example_mm2");
+  EXPECT_EQ(r.result["scenario"], again.result["scenario"]);
+  EXPECT_EQ(r.result["robot_pose"], again.result["robot_pose"]);
 }
 
 }  // namespace

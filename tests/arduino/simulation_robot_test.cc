@@ -63,17 +63,19 @@ TEST(FirmwareSimulationRobotTest, InLockStepTheCommandsOfAStepComeBeforeItsDoneB
   EXPECT_EQ(robot.simMicros(), 1000u);
   robot.motorLeft(300);
   robot.motorRight(-300);
-  robot.update();  // the next loop(): step 1 is done
+  // step 2: its frames, then its clock
+  stream.Arrive({3, 5, 0, 4, 5, 0});
+  stream.Arrive({9, 0xD0, 0x07, 0, 0});
+  robot.update();  // the next loop(): step 1 is done, and step 2 read
   EXPECT_EQ(stream.out, (std::vector<uint8_t>{5, 0x2C, 0x01, 6, 0xD4, 0xFE, 7, 0x11}));
-  stream.out.clear();
-  robot.update();  // no new clock frame: nothing more to say
-  EXPECT_TRUE(stream.out.empty());
+  EXPECT_EQ(robot.simMicros(), 2000u);
+  EXPECT_EQ(robot.leftEncoder(), 5);
 }
 
 TEST(FirmwareSimulationRobotTest, WithoutLockStepSteadyCommandsAreResent) {
   LoopbackStream stream;
   SimulationRobot robot(stream);
-  robot.begin();
+  robot.begin(false);
   now_ms = 1000;
   robot.motorLeft(100);
   stream.out.clear();

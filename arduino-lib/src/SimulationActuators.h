@@ -11,6 +11,7 @@
 #include <Arduino.h>
 #include <stdint.h>
 
+#include "Devices.h"
 #include "unimouse_protocol.h"
 
 class IActuatorManager {
@@ -44,7 +45,7 @@ class StreamActuatorManager : public IActuatorManager {
 };
 
 /// An H-bridge command: -1023..1023, the sign for the direction (10 bits and a sign, table 4.6).
-class MotorActuator {
+class MotorActuator : public IMotor {
  public:
   static const uint16_t kResendMs = 50;  // half the simulator's 100 ms failsafe
 
@@ -57,6 +58,10 @@ class MotorActuator {
       command_ = c;
       send(nowMs);
     }
+  }
+  /// Sets the command at the board's millis().
+  void setCommand(int32_t command) override {
+    setCommand(command, static_cast<uint32_t>(millis()));
   }
   int16_t getCommand() const { return command_; }
   /// Sends the command again if it has not been sent for kResendMs.

@@ -119,6 +119,15 @@ class SimulationRobot {
     while (nowMs() - start < ms);
   }
 
+  /// The devices themselves, for code written against IDistanceSensor, IEncoder and IMotor.
+  DistanceSensor& leftSensor() { return left_; }
+  DistanceSensor& rightSensor() { return right_; }
+  DistanceSensor& frontSensor() { return front_; }
+  EncoderSensor& leftEncoderSensor() { return leftEncoder_; }
+  EncoderSensor& rightEncoderSensor() { return rightEncoder_; }
+  MotorActuator& leftMotorActuator() { return leftMotor_; }
+  MotorActuator& rightMotorActuator() { return rightMotor_; }
+
   /// The frame reader, for its counts of skipped bytes and unclaimed frames.
   const StreamSimulationSensorManager<6>& sensorManager() const { return sensors_; }
 

@@ -10,6 +10,7 @@
 #include <Arduino.h>
 #include <stdint.h>
 
+#include "Devices.h"
 #include "unimouse_protocol.h"
 
 /// A sensor that the simulator sends frames for.
@@ -94,7 +95,7 @@ class StreamSimulationSensorManager : public ISimulationSensorManager {
 };
 
 /// A time-of-flight sensor: the latest distance in metres.
-class DistanceSensor : public ISimulationSensor {
+class DistanceSensor : public ISimulationSensor, public IDistanceSensor {
  public:
   explicit DistanceSensor(uint8_t id) : id_(id) {}
   uint8_t getId() const override { return id_; }
@@ -103,7 +104,7 @@ class DistanceSensor : public ISimulationSensor {
     fresh_ = true;
   }
   /// Metres; UNIMOUSE_TOF_FULL_SCALE_M (1.2 m, table 3.8) when nothing is in range.
-  float distance() const {
+  float distance() const override {
     return static_cast<float>(unimouse_tof_to_metres(counts_, UNIMOUSE_TOF_FULL_SCALE_M));
   }
   /// Whether a reading came since the last call.
@@ -121,7 +122,7 @@ class DistanceSensor : public ISimulationSensor {
 
 /// A wheel encoder: frames carry counts since the previous frame; this keeps a 32-bit running
 /// total (the original's 16-bit one overflowed within seconds) and the counts since readReset.
-class EncoderSensor : public ISimulationSensor {
+class EncoderSensor : public ISimulationSensor, public IEncoder {
  public:
   explicit EncoderSensor(uint8_t id) : id_(id) {}
   uint8_t getId() const override { return id_; }
@@ -131,7 +132,7 @@ class EncoderSensor : public ISimulationSensor {
                                   static_cast<uint32_t>(static_cast<int32_t>(delta)));
   }
   /// Counts since the start, wrapping around at 32 bits.
-  int32_t count() const { return total_; }
+  int32_t count() const override { return total_; }
   /// Counts since the previous readReset.
   int32_t readReset() {
     const int32_t since =

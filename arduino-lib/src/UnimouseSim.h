@@ -3,6 +3,7 @@
 #ifndef UNIMOUSE_SIM_H_
 #define UNIMOUSE_SIM_H_
 
+#include "Devices.h"
 #include "FFSolver.h"
 #include "Maze.h"
 #include "PathManager.h"

@@ -89,3 +89,51 @@ TEST(FirmwareSimulationRobotTest, WithoutLockStepSteadyCommandsAreResent) {
 
 }  // namespace
 }  // namespace unimouse
+
+namespace unimouse {
+namespace {
+
+// firmware code written against the device interfaces (figures 3.17/3.18)
+int32_t WallFollowTurn(const IDistanceSensor& left, float goal_m) {
+  return static_cast<int32_t>(900 * (left.distance() - goal_m));
+}
+
+// what a real robot's adapter looks like: a driver's reading behind the same interface
+class BoardToF : public IDistanceSensor {
+ public:
+  explicit BoardToF(uint16_t millimetres) : mm_(millimetres) {}
+  float distance() const override { return mm_ / 1000.0f; }
+
+ private:
+  uint16_t mm_;
+};
+
+class RecordedMotor : public IMotor {
+ public:
+  void setCommand(int32_t command) override { last = command; }
+  int32_t last = 0;
+};
+
+void Drive(IMotor& left, IMotor& right, int32_t turn) {
+  left.setCommand(500 - turn);
+  right.setCommand(500 + turn);
+}
+
+TEST(FirmwareDevicesTest, TheSameFirmwareCodeRunsOnSimulatedAndRealDevices) {
+  LoopbackStream stream;
+  SimulationRobot robot(stream);
+  robot.begin(false);
+  stream.Arrive({0, 0x00, 0x40});  // left: 0x4000 counts of 1.2 m = 0.300 m
+  robot.update();
+  EXPECT_EQ(WallFollowTurn(robot.leftSensor(), 0.2f), WallFollowTurn(BoardToF(300), 0.2f));
+  stream.out.clear();
+  Drive(robot.leftMotorActuator(), robot.rightMotorActuator(), 90);
+  EXPECT_EQ(stream.out, (std::vector<uint8_t>{5, 0x9A, 0x01, 6, 0x4E, 0x02}));  // 410, 590
+  RecordedMotor left, right;
+  Drive(left, right, 90);
+  EXPECT_EQ(left.last, 410);
+  EXPECT_EQ(right.last, 590);
+}
+
+}  // namespace
+}  // namespace unimouse

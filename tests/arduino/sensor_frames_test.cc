@@ -5,32 +5,13 @@
 // Encoder totals are 32-bit.
 #include <gtest/gtest.h>
 
-#include <deque>
 #include <vector>
 
 #include "SimulationSensors.h"
+#include "byte_stream.h"
 
 namespace unimouse {
 namespace {
-
-// a stream whose bytes arrive in pieces: available() shows only what has arrived
-class ArrivingStream : public Stream {
- public:
-  void Arrive(const std::vector<uint8_t>& bytes) {
-    arrived_.insert(arrived_.end(), bytes.begin(), bytes.end());
-  }
-  int available() override { return static_cast<int>(arrived_.size()); }
-  int read() override {
-    if (arrived_.empty()) return -1;
-    const int b = arrived_.front();
-    arrived_.pop_front();
-    return b;
-  }
-  size_t write(uint8_t) override { return 1; }
-
- private:
-  std::deque<uint8_t> arrived_;
-};
 
 std::vector<uint8_t> Tof(uint8_t id, uint16_t counts) {
   return {id, static_cast<uint8_t>(counts & 0xFF), static_cast<uint8_t>(counts >> 8)};
@@ -41,7 +22,7 @@ std::vector<uint8_t> Encoder(uint8_t id, int16_t delta) {
 }
 
 struct Rig {
-  ArrivingStream stream;
+  ByteStream stream;
   StreamSimulationSensorManager<4> manager{stream};
   DistanceSensor left{UNIMOUSE_ID_TOF_LEFT}, front{UNIMOUSE_ID_TOF_FRONT};
   EncoderSensor encoder{UNIMOUSE_ID_ENCODER_LEFT};

@@ -4,10 +4,10 @@
 // after a clock frame go out before that step's done byte, which the next update() sends.
 #include <gtest/gtest.h>
 
-#include <deque>
 #include <vector>
 
 #include "UnimouseSim.h"
+#include "byte_stream.h"
 
 namespace {
 unsigned long now_ms = 0;
@@ -20,28 +20,8 @@ void unimousePcClock(uint32_t) {}
 namespace unimouse {
 namespace {
 
-class LoopbackStream : public Stream {
- public:
-  void Arrive(const std::vector<uint8_t>& bytes) {
-    in.insert(in.end(), bytes.begin(), bytes.end());
-  }
-  int available() override { return static_cast<int>(in.size()); }
-  int read() override {
-    if (in.empty()) return -1;
-    const int b = in.front();
-    in.pop_front();
-    return b;
-  }
-  size_t write(uint8_t byte) override {
-    out.push_back(byte);
-    return 1;
-  }
-  std::deque<uint8_t> in;
-  std::vector<uint8_t> out;
-};
-
 TEST(FirmwareSimulationRobotTest, BeginAsksForSensorsAndLockStepWithoutWaiting) {
-  LoopbackStream stream;
+  ByteStream stream;
   SimulationRobot robot(stream);
   robot.begin(true);
   EXPECT_EQ(stream.out, (std::vector<uint8_t>{7, 0x02, 7, 0x10}));
@@ -49,7 +29,7 @@ TEST(FirmwareSimulationRobotTest, BeginAsksForSensorsAndLockStepWithoutWaiting) 
 }
 
 TEST(FirmwareSimulationRobotTest, InLockStepTheCommandsOfAStepComeBeforeItsDoneByte) {
-  LoopbackStream stream;
+  ByteStream stream;
   SimulationRobot robot(stream);
   robot.begin(true);
   stream.out.clear();
@@ -73,7 +53,7 @@ TEST(FirmwareSimulationRobotTest, InLockStepTheCommandsOfAStepComeBeforeItsDoneB
 }
 
 TEST(FirmwareSimulationRobotTest, WithoutLockStepSteadyCommandsAreResent) {
-  LoopbackStream stream;
+  ByteStream stream;
   SimulationRobot robot(stream);
   robot.begin(false);
   now_ms = 1000;
@@ -120,7 +100,7 @@ void Drive(IMotor& left, IMotor& right, int32_t turn) {
 }
 
 TEST(FirmwareDevicesTest, TheSameFirmwareCodeRunsOnSimulatedAndRealDevices) {
-  LoopbackStream stream;
+  ByteStream stream;
   SimulationRobot robot(stream);
   robot.begin(false);
   stream.Arrive({0, 0x00, 0x40});  // left: 0x4000 counts of 1.2 m = 0.300 m

@@ -101,12 +101,6 @@ TEST(MazeCommandsTest, BadTieRuleIsABadInput) {
   EXPECT_NE(o.output.find("must use each of ENWS once"), std::string::npos) << o.output;
 }
 
-}  // namespace
-}  // namespace unimouse
-
-namespace unimouse {
-namespace {
-
 TEST(MazeCommandsTest, ExploreDrawsEveryTripAndPlotDrawsAMaze) {
   const fs::path dir = fs::temp_directory_path() / "unimouse_maze_plots";
   fs::remove_all(dir);
@@ -137,12 +131,6 @@ TEST(MazeCommandsTest, ConvertNormalisesANumFileToText) {
   EXPECT_EQ(o.output, "o---o---o\n| S   G |\no---o---o\n");
   fs::remove(file);
 }
-
-}  // namespace
-}  // namespace unimouse
-
-namespace unimouse {
-namespace {
 
 TEST(MazeCommandsTest, CheckSpeaksJsonToo) {
   const auto o = testing::Unimouse("maze check japan2018 japan2019 --json");

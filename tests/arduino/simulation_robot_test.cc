@@ -67,12 +67,6 @@ TEST(FirmwareSimulationRobotTest, WithoutLockStepSteadyCommandsAreResent) {
   EXPECT_EQ(stream.out, (std::vector<uint8_t>{5, 100, 0}));
 }
 
-}  // namespace
-}  // namespace unimouse
-
-namespace unimouse {
-namespace {
-
 // firmware code written against the device interfaces (figures 3.17/3.18)
 int32_t WallFollowTurn(const IDistanceSensor& left, float goal_m) {
   return static_cast<int32_t>(900 * (left.distance() - goal_m));

@@ -122,12 +122,6 @@ TEST_F(ComponentConfigTest, SignalsPassFromWriterToReader) {
   EXPECT_EQ(kernel->state().signals()[kernel->model().FindSignal("two")], 2);
 }
 
-}  // namespace
-}  // namespace unimouse
-
-namespace unimouse {
-namespace {
-
 TEST(ComponentBindTest, NamesResolvedAtBindTimeMustExistInTheModel) {
   PluginRegistry registry;
   registry.AddStatic(ComponentType<testing::Probe>());

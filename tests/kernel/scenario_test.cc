@@ -165,12 +165,6 @@ TEST(ScenarioSandboxTest, TheSameSeedGivesTheSameResultJsonButForTheWallClock) {
   EXPECT_EQ(first, run());
 }
 
-}  // namespace
-}  // namespace unimouse
-
-namespace unimouse {
-namespace {
-
 TEST(WallDistanceScenarioTest, AProportionalControllerOnTheLeftSensorPasses) {
   const ScenarioRun r =
       Scenario("--scenario wall_distance --controller " + kTests + "wall_controller.lua");
@@ -195,12 +189,6 @@ TEST(WallDistanceScenarioTest, StandingStillAtTheRightDistanceIsNotEnough) {
             0u)
       << r.result["scenario"]["reason"];
 }
-
-}  // namespace
-}  // namespace unimouse
-
-namespace unimouse {
-namespace {
 
 TEST(MicromouseScenarioTest, RunsBetweenStartAndGoalAreTimedAndTheBestCounts) {
   const ScenarioRun r = Scenario("--scenario micromouse --set contest_s=12 --controller " + kTests +
@@ -268,12 +256,6 @@ TEST(MicromouseScenarioTest, NeverReachingTheGoalFails) {
       << r.result["scenario"]["reason"];
 }
 
-}  // namespace
-}  // namespace unimouse
-
-namespace unimouse {
-namespace {
-
 TEST(TimeTrialScenarioTest, LapsCountedCounterClockwiseWithTheirTimes) {
   const ScenarioRun r =
       Scenario("--scenario time_trial --set laps=2 --controller " + kTests + "lap_controller.lua");
@@ -308,12 +290,6 @@ TEST(TimeTrialScenarioTest, TooFewLapsInTheTimeFails) {
   EXPECT_EQ(r.outcome.exit_code, 1) << r.outcome.output;
   EXPECT_EQ(r.result["scenario"]["reason"], "1 of 3 laps in 40 s");
 }
-
-}  // namespace
-}  // namespace unimouse
-
-namespace unimouse {
-namespace {
 
 TEST(ScenarioApiTest, TheApiMatchesItsGoldenListing) {
   // an API change is deliberate: update tests/golden/scenario_api.txt, and the level for
@@ -363,12 +339,6 @@ TEST(ScenarioApiTest, EveryListedFunctionExistsInTheSandbox) {
   const ScenarioRun r = Scenario("--scenario " + path);
   EXPECT_EQ(r.outcome.exit_code, 0) << r.outcome.output;
 }
-
-}  // namespace
-}  // namespace unimouse
-
-namespace unimouse {
-namespace {
 
 TEST(SlalomScenarioTest, WeavingThroughPasses) {
   const ScenarioRun r =

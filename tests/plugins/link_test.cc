@@ -3,8 +3,12 @@
 // frames drive the robot, sensor frames arrive at their rates, manager bytes are honoured,
 // garbage is survived, a vanished board trips the failsafe and a returning one is heard again,
 // and in lock-step two runs with the same seed and client are identical.
+#include <arpa/inet.h>
 #include <fcntl.h>
 #include <gtest/gtest.h>
+#include <netinet/in.h>
+#include <pty.h>
+#include <sys/socket.h>
 #include <termios.h>
 #include <unistd.h>
 
@@ -223,17 +227,6 @@ TEST_F(LinkTest, LockstepRunsWithTheSameSeedAndBoardAreIdentical) {
   EXPECT_EQ(traces[0], traces[1]);  // step by step, the whole state
   EXPECT_EQ(std::memcmp(finals[0].data(), finals[1].data(), finals[0].size() * sizeof(mjtNum)), 0);
 }
-
-}  // namespace
-}  // namespace unimouse
-
-#include <arpa/inet.h>
-#include <netinet/in.h>
-#include <pty.h>
-#include <sys/socket.h>
-
-namespace unimouse {
-namespace {
 
 // a kernel whose link uses `transport`
 std::unique_ptr<Kernel> KernelWithLink(const std::string& transport) {

@@ -74,8 +74,8 @@ int RunCommand(const RunOptions& options) {
   const std::string robot_file = ResolveDataFile(options.robot, "robots/", ".yaml");
   RobotSpec robot = LoadRobotSpec(robot_file);
   if (!options.link.empty()) {
-    // the firmware drives the robot's inputs through the link, added as the last component
-    // a firmware program the simulator starts is waited for, so that its runs repeat exactly
+    // the firmware drives the robot's inputs through the link, added as the last component; a
+    // firmware program the simulator starts is run in lock-step, so that its runs repeat exactly
     const bool native = options.link.rfind("native:", 0) == 0;
     const std::string params = "{transport: '" + options.link +
                                "', start_with_lockstep: " + (native ? "true" : "false") + "}";
@@ -84,6 +84,7 @@ int RunCommand(const RunOptions& options) {
   }
   // a scenario builds its own world
   std::unique_ptr<Scenario> scenario;
+  std::string scenario_file;
   std::unique_ptr<Maze> maze;
   ScenarioWorld scenario_world;
   double duration_s = options.duration_s;
@@ -95,8 +96,8 @@ int RunCommand(const RunOptions& options) {
                             "--set " + set + ": write name=value");
       overrides[set.substr(0, eq)] = set.substr(eq + 1);
     }
-    scenario = Scenario::Load(ResolveDataFile(options.scenario, "scenarios/", ".lua"), overrides,
-                              options.seed);
+    scenario_file = ResolveDataFile(options.scenario, "scenarios/", ".lua");
+    scenario = Scenario::Load(scenario_file, overrides, options.seed);
     scenario_world = scenario->BuildWorld();
     maze = std::move(scenario_world.maze);
     // a second beyond the limit lets the scenario give its own reason
@@ -181,12 +182,9 @@ int RunCommand(const RunOptions& options) {
       outcome.status = "failed";
       outcome.reason = "not decided when the run ended at " + std::to_string(d.time) + " s";
     }
-    result["scenario"] = {{"name", scenario->name()},
-                          {"file", ResolveDataFile(options.scenario, "scenarios/", ".lua")},
-                          {"params", scenario->params()},
-                          {"status", outcome.status},
-                          {"reason", outcome.reason},
-                          {"scores", outcome.scores},
+    result["scenario"] = {{"name", scenario->name()},     {"file", scenario_file},
+                          {"params", scenario->params()}, {"status", outcome.status},
+                          {"reason", outcome.reason},     {"scores", outcome.scores},
                           {"hud", scenario->hud()}};
     if (!scenario->traceback().empty()) result["scenario"]["traceback"] = scenario->traceback();
   }

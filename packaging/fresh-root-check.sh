@@ -16,7 +16,9 @@ fi
 cp /etc/resolv.conf "$root/etc/resolv.conf"
 mount --bind /proc "$root/proc"
 mount --bind /dev "$root/dev"
-trap 'umount "$root/proc" "$root/dev"' EXIT
+# a booted machine has its pseudo-terminals mounted under /dev; the link's tests open them
+mount --bind /dev/pts "$root/dev/pts"
+trap 'umount "$root/dev/pts" "$root/proc" "$root/dev"' EXIT
 
 quick_start=$(sed -n '/^## Quick start/,/^## /p' "$repo/README.md" | grep -E '^(\./setup|ctest)')
 echo "$quick_start"

@@ -12,20 +12,14 @@
 namespace unimouse {
 namespace {
 
-struct ExampleRun {
-  testing::Outcome outcome;
-  nlohmann::json result;
-};
+using ExampleRun = testing::RunResult;
 
+// the example's PC build driving the robot in the scenario; the wall-clock figures left out
 ExampleRun RunExample(const std::string& example, const std::string& scenario,
                       const std::string& out_name) {
-  const std::string out = (std::filesystem::temp_directory_path() / out_name).string();
-  std::filesystem::remove_all(out);
-  ExampleRun run{testing::Unimouse("run --out " + out + " --scenario " + scenario +
-                                   " --link native:" + UNIMOUSE_FIRMWARE_DIR "/" + example),
-                 {}};
-  if (std::filesystem::exists(out + "/result.json")) {
-    run.result = nlohmann::json::parse(ReadTextFile(out + "/result.json"));
+  ExampleRun run = testing::UnimouseRun(
+      "--scenario " + scenario + " --link native:" + UNIMOUSE_FIRMWARE_DIR "/" + example, out_name);
+  if (run.result.is_object()) {
     run.result.erase("wall_time_s");
     run.result.erase("real_time_factor");
     run.result.erase("real_time_pacing");

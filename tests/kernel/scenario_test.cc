@@ -18,23 +18,13 @@ using testing::Unimouse;
 
 const std::string kTests = UNIMOUSE_SOURCE_DIR "/tests/scenarios/";
 
-struct ScenarioRun {
-  testing::Outcome outcome;
-  nlohmann::json result;
-};
+using ScenarioRun = testing::RunResult;
 
+// a run in an output directory of the test's own
 ScenarioRun Scenario(const std::string& arguments) {
-  const std::string out =
-      (std::filesystem::temp_directory_path() /
-       ("unimouse_scenario_" +
-        std::string(::testing::UnitTest::GetInstance()->current_test_info()->name())))
-          .string();
-  std::filesystem::remove_all(out);
-  ScenarioRun run{Unimouse("run --out " + out + " " + arguments), {}};
-  if (std::filesystem::exists(out + "/result.json")) {
-    run.result = nlohmann::json::parse(ReadTextFile(out + "/result.json"));
-  }
-  return run;
+  return testing::UnimouseRun(
+      arguments, "unimouse_scenario_" +
+                     std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
 }
 
 TEST(SpeedControlScenarioTest, ACorrectControllerPasses) {

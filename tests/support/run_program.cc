@@ -4,6 +4,9 @@
 #include <sys/wait.h>
 
 #include <cstdio>
+#include <filesystem>
+
+#include "text_file.h"
 
 namespace unimouse::testing {
 
@@ -17,6 +20,16 @@ Outcome Unimouse(const std::string& arguments, const std::string& environment) {
   const int status = pclose(pipe);
   out.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return out;
+}
+
+RunResult UnimouseRun(const std::string& arguments, const std::string& out_name) {
+  const std::string out = (std::filesystem::temp_directory_path() / out_name).string();
+  std::filesystem::remove_all(out);
+  RunResult run{Unimouse("run --out " + out + " " + arguments), nullptr};
+  if (std::filesystem::exists(out + "/result.json")) {
+    run.result = nlohmann::json::parse(ReadTextFile(out + "/result.json"));
+  }
+  return run;
 }
 
 }  // namespace unimouse::testing

@@ -3,6 +3,7 @@
 #ifndef UNIMOUSE_TESTS_RUN_PROGRAM_H_
 #define UNIMOUSE_TESTS_RUN_PROGRAM_H_
 
+#include <nlohmann/json.hpp>
 #include <string>
 
 namespace unimouse::testing {
@@ -14,6 +15,15 @@ struct Outcome {
 
 /// Runs `unimouse <arguments>`, after environment assignments ("A=b ") if any.
 Outcome Unimouse(const std::string& arguments, const std::string& environment = "");
+
+struct RunResult {
+  Outcome outcome;
+  nlohmann::json result;  ///< its result.json; null when it wrote none
+};
+
+/// Runs `unimouse run <arguments>` with a fresh output directory `out_name` in the temporary
+/// directory, and reads the result.json it wrote there.
+RunResult UnimouseRun(const std::string& arguments, const std::string& out_name);
 
 }  // namespace unimouse::testing
 

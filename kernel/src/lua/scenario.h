@@ -1,15 +1,17 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Scenarios: Lua 5.4 scripts that build a challenge's world, watch the run and decide pass or
-// fail. A scenario file returns `sim.scenario { name, params, world, run }`:
+// fail. A scenario file returns `sim.scenario { name, params, world, run, finish }`:
 //
 //   - params: names with defaults; `unimouse run --set name=value` overrides them;
 //   - world(p): before physics exists, adds walls and boxes, loads a maze, places the robot;
 //   - run(p): a coroutine resumed once per tick at the tick boundary; it waits on sim time
-//     (sim.wait, sim.wait_until), reads the robot and signals, and ends with sim.pass/sim.fail.
+//     (sim.wait, sim.wait_until), reads the robot and signals, and ends with sim.pass/sim.fail;
+//     handlers added with sim.on are called at the boundary before it resumes;
+//   - finish(p, ended), optional: once the run is over, for last scores or a late decision.
 //
 // Sandboxed: no io, os, load, dofile or require; math.random is the run's seeded stream; print
 // goes to the run's log; an instruction budget stops a script that never yields, naming its
-// file:line. A script error stops the run with exit code 3.
+// file:line. A script error stops the run with exit code 3, its Lua traceback kept.
 #ifndef UNIMOUSE_KERNEL_LUA_SCENARIO_H_
 #define UNIMOUSE_KERNEL_LUA_SCENARIO_H_
 

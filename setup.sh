@@ -12,6 +12,8 @@ packages=(
   nlohmann-json3-dev libpng-dev
   # rendering: offscreen EGL (Mesa) and the live viewer
   libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri libglfw3-dev xvfb xauth
+  # video export of a run (optional at run time: without it, --video says so)
+  ffmpeg
   # tests and benchmarks
   libgtest-dev libgmock-dev libbenchmark-dev
   # firmware: AVR builds and emulation

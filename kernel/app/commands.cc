@@ -18,6 +18,7 @@
 #include "maze_explorer.h"
 #include "maze_plot.h"
 #include "real_time_pacer.h"
+#include "render/run_pictures.h"
 #include "text_file.h"
 #include "unimouse/errors.h"
 #include "unimouse/plugin_abi.h"
@@ -64,6 +65,60 @@ void DrawFirmwareBeliefs(const Maze& maze, const std::string& out_dir) {
   WriteMazePicture(picture, base.string() + ".png");
   WriteMazePicture(picture, base.string() + ".svg");
   std::printf("  maze as the firmware saw it: %s.png\n", base.string().c_str());
+}
+
+// "1.5", "1.5s" or "250ms" as seconds
+double ParseSeconds(const std::string& text, const char* option) {
+  char* end = nullptr;
+  double v = std::strtod(text.c_str(), &end);
+  const std::string unit = end;
+  if (unit == "ms") v /= 1000;
+  UNIMOUSE_THROW_UNLESS(
+      end != text.c_str() && (unit.empty() || unit == "s" || unit == "ms") && std::isfinite(v) &&
+          v >= 0,
+      std::string(option) + " " + text + ": write seconds, like 1.5, 1.5s or 250ms");
+  return v;
+}
+
+PictureOptions PicturesFor(const RunOptions& options) {
+  PictureOptions p;
+  p.camera = options.camera;
+  char x = 0;
+  char rest = 0;
+  UNIMOUSE_THROW_UNLESS(
+      std::sscanf(options.snapshot_size.c_str(), "%d%c%d%c", &p.width, &x, &p.height, &rest) == 3 &&
+          x == 'x',
+      "--snapshot-size " + options.snapshot_size + ": write WIDTHxHEIGHT");
+  if (!options.snapshot_every.empty()) {
+    p.every_s = ParseSeconds(options.snapshot_every, "--snapshot-every");
+    UNIMOUSE_THROW_UNLESS(p.every_s > 0, "--snapshot-every must be more than 0 s");
+  }
+  for (const auto& t : options.snapshot_at) p.at_s.push_back(ParseSeconds(t, "--snapshot-at"));
+  p.at_end = options.snapshot_end;
+  p.frames_fps = options.frames_fps;
+  p.video = options.video;
+  p.video_fps = options.video_fps;
+  p.required = !options.snapshot_on.empty();
+  return p;
+}
+
+// the pictures asked for; without any, final.png whenever the machine can draw
+std::unique_ptr<RunPictures> MakePictures(Kernel& kernel, const RobotSpec& robot,
+                                          const RunOptions& options) {
+  PictureOptions asked = PicturesFor(options);
+  const bool any = asked.required || asked.every_s > 0 || !asked.at_s.empty() || asked.at_end ||
+                   asked.frames_fps > 0 || !asked.video.empty();
+  if (any || options.no_pictures) {
+    return std::make_unique<RunPictures>(kernel, robot, asked, options.out_dir);
+  }
+  PictureOptions final_only = asked;
+  final_only.at_end = true;
+  try {
+    return std::make_unique<RunPictures>(kernel, robot, final_only, options.out_dir);
+  } catch (const RenderUnavailable& e) {
+    std::printf("  no pictures: %s\n", e.what());
+    return std::make_unique<RunPictures>(kernel, robot, asked, options.out_dir);
+  }
 }
 
 }  // namespace
@@ -136,6 +191,17 @@ int RunCommand(const RunOptions& options) {
 
   nlohmann::json result;
   if (scenario) scenario->Attach(*kernel, options.controller);
+  UNIMOUSE_THROW_UNLESS(options.snapshot_on.empty() || scenario,
+                        "--snapshot-on watches a scenario's events: give --scenario");
+  std::unique_ptr<RunPictures> pictures = MakePictures(*kernel, robot, options);
+  if (scenario) {
+    pictures->SetHudSource([&scenario] { return scenario->hud(); });
+    scenario->SetPictureTaker(
+        [&pictures](const std::string& file, const std::string& camera, int width, int height) {
+          return pictures->Save(file, camera, width, height);
+        });
+    for (const auto& kind : options.snapshot_on) scenario->SnapshotOn(kind);
+  }
   result["robot"] = robot_file;
   result["maze"] = maze && !scenario
                        ? nlohmann::json(ResolveDataFile(options.maze, "mazes/", ".txt"))
@@ -152,6 +218,7 @@ int RunCommand(const RunOptions& options) {
   try {
     while (kernel->state().step() < steps && !(scenario && scenario->finished())) {
       kernel->Step();
+      pictures->AfterStep();
       // hardware runs on the wall clock; firmware in lock-step sets the pace itself
       const bool lockstep = lockstep_signal >= 0 && kernel->state().signals()[lockstep_signal] != 0;
       if (pace && !lockstep) pacer.Wait(kernel->state().step());
@@ -160,6 +227,7 @@ int RunCommand(const RunOptions& options) {
   } catch (const RuntimeFault& e) {
     fault = e.what();
   }
+  pictures->Finish();
   kernel->Finish();
   if (maze && !options.link.empty()) DrawFirmwareBeliefs(*maze, options.out_dir);
   const double wall_s =
@@ -189,6 +257,9 @@ int RunCommand(const RunOptions& options) {
     if (!scenario->traceback().empty()) result["scenario"]["traceback"] = scenario->traceback();
   }
   if (pace) result["real_time_pacing"] = pacer.Report();
+  if (pictures->written() > 0) {
+    result["pictures"] = {{"written", pictures->written()}, {"renderer", pictures->renderer()}};
+  }
   WriteResult(options.out_dir, result);
 
   const std::string where = scenario ? "in scenario " + scenario->name()
@@ -203,6 +274,11 @@ int RunCommand(const RunOptions& options) {
               result["real_time_factor"].get<double>());
   std::printf("  robot at (%.3f, %.3f) m heading %.1f deg\n", pose.x_m, pose.y_m,
               pose.yaw_rad * 180 / std::numbers::pi);
+  if (pictures->written() > 0) {
+    std::printf("  %d picture%s in %s (%s)\n", pictures->written(),
+                pictures->written() == 1 ? "" : "s", options.out_dir.c_str(),
+                pictures->renderer().c_str());
+  }
   std::printf("  result: %s\n",
               (std::filesystem::path(options.out_dir) / "result.json").string().c_str());
   if (!fault.empty()) {

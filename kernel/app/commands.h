@@ -22,6 +22,18 @@ struct RunOptions {
   std::vector<std::string> sets;  ///< scenario parameters, "name=value"
   std::string controller;         ///< Lua controller file for the scenario; "" for none
   bool duration_given = false;
+  // pictures (docs/pictures.md)
+  std::string camera = "top";             ///< top, chase or free
+  std::string snapshot_size = "640x480";  ///< WIDTHxHEIGHT
+  std::string snapshot_every;             ///< "1s", "250ms"; "" for none
+  std::vector<std::string> snapshot_at;   ///< sim times
+  std::vector<std::string> snapshot_on;   ///< scenario events
+  bool snapshot_end = false;              ///< final.png, or exit 2 when the machine cannot draw
+  bool no_pictures = false;               ///< not even the final.png taken when possible
+  double frames_fps = 0;                  ///< PNG frames; 0 for none
+  std::string video;                      ///< MP4 file in the output directory; "" for none
+  double video_fps = 30;
+  bool view = false;  ///< a live window instead of a headless run
 };
 
 /// Runs a simulation headless and writes out_dir/result.json; returns the exit code.

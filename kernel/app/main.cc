@@ -41,6 +41,30 @@ int main(int argc, char** argv) {
   run_cmd->add_option("--link", run.link,
                       "connect firmware: pty, pty:LINK, serial:/dev/ttyUSB0@115200 or tcp::5760");
 
+  // pictures: none of these changes what is run
+  run_cmd->add_option("--camera", run.camera, "camera of the pictures: top, chase or free")
+      ->capture_default_str();
+  run_cmd->add_option("--snapshot-size", run.snapshot_size, "size of the pictures, WIDTHxHEIGHT")
+      ->capture_default_str();
+  run_cmd->add_option("--snapshot-every", run.snapshot_every,
+                      "a picture every so much sim time (1s, 250ms): snapshots/<time>s.png");
+  run_cmd->add_option("--snapshot-at", run.snapshot_at,
+                      "a picture at this sim time, e.g. 12.5 (repeatable)");
+  run_cmd->add_option("--snapshot-on", run.snapshot_on,
+                      "a picture at each scenario event: cell_entered, wall_contact, "
+                      "gate_crossed, firmware_log (repeatable): events/<event>_<n>.png");
+  run_cmd->add_flag("--snapshot-end", run.snapshot_end,
+                    "final.png when the run ends, or exit 2 if the machine cannot draw (without "
+                    "this flag final.png is taken whenever the machine can)");
+  run_cmd->add_flag("--no-pictures", run.no_pictures, "not even final.png");
+  run_cmd->add_option("--frames-fps", run.frames_fps,
+                      "frames/NNNNNN.png at this many frames per sim second");
+  run_cmd->add_option("--video", run.video, "an MP4 of the run in the output directory (ffmpeg)");
+  run_cmd->add_option("--video-fps", run.video_fps, "frames per sim second of the video")
+      ->capture_default_str();
+  run_cmd->add_flag("--view", run.view,
+                    "watch in a live 3D window: orbit, zoom, pause, step, speed, follow (press H)");
+
   std::string check_robot;
   CLI::App* check_cmd = app.add_subcommand("check", "validate a robot file without running it");
   check_cmd->add_option("robot", check_robot, "robot YAML file or bundled robot name")->required();

@@ -1,14 +1,12 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "maze_plot.h"
 
-#include <png.h>
-
 #include <algorithm>
-#include <cerrno>
 #include <cstdio>
 #include <cstring>
 #include <sstream>
 
+#include "png_file.h"
 #include "text_file.h"
 #include "unimouse/errors.h"
 
@@ -175,31 +173,6 @@ std::vector<uint8_t> RenderMazePixels(const MazePicture& p, const PlotGeometry& 
     }
   }
   return std::move(canvas.rgb());
-}
-
-void WritePng(const std::string& path, int width, int height, const std::vector<uint8_t>& rgb) {
-  std::FILE* f = std::fopen(path.c_str(), "wb");
-  if (f == nullptr) {
-    throw InputError(path + ": cannot write the picture (" + std::strerror(errno) + ")");
-  }
-  png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
-  png_infop info = png_create_info_struct(png);
-  if (setjmp(png_jmpbuf(png))) {
-    png_destroy_write_struct(&png, &info);
-    std::fclose(f);
-    throw InputError(path + ": writing the PNG failed");
-  }
-  png_init_io(png, f);
-  png_set_IHDR(png, info, static_cast<png_uint_32>(width), static_cast<png_uint_32>(height), 8,
-               PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT,
-               PNG_FILTER_TYPE_DEFAULT);
-  png_write_info(png, info);
-  for (int y = 0; y < height; ++y) {
-    png_write_row(png, rgb.data() + static_cast<size_t>(y * width * 3));
-  }
-  png_write_end(png, nullptr);
-  png_destroy_write_struct(&png, &info);
-  std::fclose(f);
 }
 
 void WriteMazePng(const MazePicture& picture, const std::string& path) {

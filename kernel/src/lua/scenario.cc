@@ -277,6 +277,28 @@ std::unique_ptr<Scenario> Scenario::Load(const std::string& path,
   return s;
 }
 
+void Scenario::SnapshotOn(const std::string& kind) {
+  static constexpr const char* kChunk = R"lua(
+local kind = ...
+local n = 0
+sim.on(kind, function()
+  n = n + 1
+  sim.snapshot_save(string.format("events/%s_%04d.png", kind, n))
+end)
+)lua";
+  lua_State* L = L_;
+  UNIMOUSE_DEMAND(luaL_loadbufferx(L, kChunk, std::strlen(kChunk), "=snapshot_on", "t") == LUA_OK);
+  lua_getfield(L, LUA_REGISTRYINDEX, "unimouse.env");
+  lua_setupvalue(L, -2, 1);
+  lua_pushstring(L, kind.c_str());
+  if (lua_pcall(L, 1, 0, 0) != LUA_OK) {
+    lua_pop(L, 1);
+    throw InputError("--snapshot-on " + kind +
+                     ": not an event; the events are cell_entered, wall_contact, gate_crossed and "
+                     "firmware_log");
+  }
+}
+
 void Scenario::Call(int nargs, const char* what) {
   lua_getglobal(L_, "debug");
   lua_getfield(L_, -1, "traceback");

@@ -15,6 +15,7 @@
 #ifndef UNIMOUSE_KERNEL_LUA_SCENARIO_H_
 #define UNIMOUSE_KERNEL_LUA_SCENARIO_H_
 
+#include <functional>
 #include <map>
 #include <memory>
 #include <optional>
@@ -31,7 +32,7 @@ struct lua_State;
 namespace unimouse {
 
 /// The scenario API's level: new functions carry the level they came with.
-inline constexpr int kScenarioApiLevel = 1;
+inline constexpr int kScenarioApiLevel = 2;
 
 /// Returns every `sim.*` function with its signature, meaning and level, a line each.
 std::string DescribeScenarioApi();
@@ -77,6 +78,15 @@ class Scenario {
   const std::vector<std::string>& hud() const { return hud_; }
   /// The Lua traceback of the error that stopped the run; empty when none did.
   const std::string& traceback() const { return traceback_; }
+  /// Takes a picture for sim.snapshot_save: file (relative to the run's output directory),
+  /// camera, width, height; returns "" or why it could not.
+  using PictureTaker = std::function<std::string(const std::string& file, const std::string& camera,
+                                                 int width, int height)>;
+  void SetPictureTaker(PictureTaker taker) { picture_taker_ = std::move(taker); }
+  /// Saves a picture, events/<kind>_<n>.png, each time the event `kind` happens (sim.on's
+  /// kinds). Throws InputError for an unknown kind.
+  void SnapshotOn(const std::string& kind);
+
   /// Once the run is over (decided, or out of time), calls the scenario's finish(params,
   /// {status, reason, time_s}) if it has one: it may add scores and decide an undecided run.
   /// Throws RuntimeFault on a script error.
@@ -112,6 +122,7 @@ class Scenario {
   Cell maze_start_;
   std::string traceback_;
   std::vector<std::pair<double, std::string>> firmware_lines_;  // not yet handed to events
+  PictureTaker picture_taker_;
 
   friend struct ScenarioApi;
 };

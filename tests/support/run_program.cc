@@ -22,10 +22,11 @@ Outcome Unimouse(const std::string& arguments, const std::string& environment) {
   return out;
 }
 
-RunResult UnimouseRun(const std::string& arguments, const std::string& out_name) {
+RunResult UnimouseRun(const std::string& arguments, const std::string& out_name,
+                      const std::string& environment) {
   const std::string out = (std::filesystem::temp_directory_path() / out_name).string();
   std::filesystem::remove_all(out);
-  RunResult run{Unimouse("run --out " + out + " " + arguments), nullptr};
+  RunResult run{Unimouse("run --out " + out + " " + arguments, environment), nullptr};
   if (std::filesystem::exists(out + "/result.json")) {
     run.result = nlohmann::json::parse(ReadTextFile(out + "/result.json"));
   }

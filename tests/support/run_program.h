@@ -22,8 +22,9 @@ struct RunResult {
 };
 
 /// Runs `unimouse run <arguments>` with a fresh output directory `out_name` in the temporary
-/// directory, and reads the result.json it wrote there.
-RunResult UnimouseRun(const std::string& arguments, const std::string& out_name);
+/// directory, and reads the result.json it wrote there; `environment` as for Unimouse.
+RunResult UnimouseRun(const std::string& arguments, const std::string& out_name,
+                      const std::string& environment = "");
 
 }  // namespace unimouse::testing
 

@@ -22,6 +22,7 @@
 #include "text_file.h"
 #include "unimouse/errors.h"
 #include "unimouse/plugin_abi.h"
+#include "viewer.h"
 
 namespace unimouse {
 namespace {
@@ -123,7 +124,8 @@ std::unique_ptr<RunPictures> MakePictures(Kernel& kernel, const RobotSpec& robot
 
 }  // namespace
 
-int RunCommand(const RunOptions& options) {
+// one run, headless or in the viewer's window
+int RunOnce(const RunOptions& options, Viewer* viewer) {
   UNIMOUSE_THROW_UNLESS(options.duration_s > 0 && std::isfinite(options.duration_s),
                         "--duration must be a positive number of seconds");
   const std::string robot_file = ResolveDataFile(options.robot, "robots/", ".yaml");
@@ -211,14 +213,30 @@ int RunCommand(const RunOptions& options) {
 
   const int64_t steps = std::llround(duration_s / kernel->timestep_s());
   const int lockstep_signal = kernel->model().FindSignal("link.lockstep");
-  const bool pace = options.realtime || !options.link.empty();
+  // a viewer paces the run itself, to its own speed
+  const bool pace = viewer == nullptr && (options.realtime || !options.link.empty());
   RealTimePacer pacer(kernel->timestep_s());
   const auto start = std::chrono::steady_clock::now();
+  auto over = [&] { return kernel->state().step() >= steps || (scenario && scenario->finished()); };
+  auto step = [&] {
+    kernel->Step();
+    pictures->AfterStep();
+  };
   std::string fault;
   try {
-    while (kernel->state().step() < steps && !(scenario && scenario->finished())) {
-      kernel->Step();
-      pictures->AfterStep();
+    if (viewer != nullptr) {
+      Viewer::Run shown{kernel.get(), &robot, step, over, nullptr, nullptr};
+      if (scenario) {
+        shown.hud = [&scenario] { return scenario->hud(); };
+        shown.verdict = [&scenario] {
+          const ScenarioOutcome& o = scenario->outcome();
+          return o.status + (o.reason.empty() ? "" : ": " + o.reason);
+        };
+      }
+      viewer->Show(shown);
+    }
+    while (viewer == nullptr && !over()) {
+      step();
       // hardware runs on the wall clock; firmware in lock-step sets the pace itself
       const bool lockstep = lockstep_signal >= 0 && kernel->state().signals()[lockstep_signal] != 0;
       if (pace && !lockstep) pacer.Wait(kernel->state().step());
@@ -257,6 +275,7 @@ int RunCommand(const RunOptions& options) {
     if (!scenario->traceback().empty()) result["scenario"]["traceback"] = scenario->traceback();
   }
   if (pace) result["real_time_pacing"] = pacer.Report();
+  if (viewer != nullptr) result["view"] = {{"frames", viewer->frames()}};
   if (pictures->written() > 0) {
     result["pictures"] = {{"written", pictures->written()}, {"renderer", pictures->renderer()}};
   }
@@ -293,6 +312,17 @@ int RunCommand(const RunOptions& options) {
     return status == "passed" ? kExitPassed : kExitFailed;
   }
   return kExitPassed;
+}
+
+int RunCommand(const RunOptions& options) {
+  if (!options.view) return RunOnce(options, nullptr);
+  const std::string what = options.scenario.empty() ? "run" : "scenario " + options.scenario;
+  Viewer viewer("unimouse: " + what, options.out_dir, options.view_frames);
+  for (;;) {
+    const int code = RunOnce(options, &viewer);
+    if (!viewer.restart_requested()) return code;
+    std::printf("unimouse run: starting again\n");
+  }
 }
 
 int CheckCommand(const std::string& robot_name, const std::string& plugin_path) {

@@ -33,7 +33,8 @@ struct RunOptions {
   double frames_fps = 0;                  ///< PNG frames; 0 for none
   std::string video;                      ///< MP4 file in the output directory; "" for none
   double video_fps = 30;
-  bool view = false;  ///< a live window instead of a headless run
+  bool view = false;    ///< a live window instead of a headless run
+  int view_frames = 0;  ///< close the window after so many frames; 0 never
 };
 
 /// Runs a simulation headless and writes out_dir/result.json; returns the exit code.

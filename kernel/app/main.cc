@@ -64,6 +64,8 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   run_cmd->add_flag("--view", run.view,
                     "watch in a live 3D window: orbit, zoom, pause, step, speed, follow (press H)");
+  run_cmd->add_option("--view-frames", run.view_frames,
+                      "close the window after so many frames, saving the last as view.png");
 
   std::string check_robot;
   CLI::App* check_cmd = app.add_subcommand("check", "validate a robot file without running it");

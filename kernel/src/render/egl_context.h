@@ -25,9 +25,14 @@ class EglContext {
   EglContext& operator=(const EglContext&) = delete;
   ~EglContext();
 
-  /// Creates a context and makes it current on this thread. Throws RenderUnavailable saying
+  /// Creates a context and leaves it current on this thread. Throws RenderUnavailable saying
   /// why, in one line, when the machine has no usable EGL display.
   static std::unique_ptr<EglContext> Create();
+
+  /// Makes the context current on this thread, or lets go of it. A thread holds one context at
+  /// a time, and a viewer's window has one too: each lets go when it has drawn.
+  void MakeCurrent() const;
+  void Release() const;
 
   /// The GL renderer's name, e.g. "llvmpipe (LLVM 15.0.6, 256 bits)".
   const std::string& renderer() const { return renderer_; }

@@ -35,6 +35,13 @@ std::string ShellQuoted(const std::string& s) {
   return out + "'";
 }
 
+// the offscreen context, current while a picture is drawn
+struct ScopedCurrent {
+  explicit ScopedCurrent(const EglContext& c) : context(c) { context.MakeCurrent(); }
+  ~ScopedCurrent() { context.Release(); }
+  const EglContext& context;
+};
+
 // the step at which sim time t is reached
 int64_t StepAt(double t_s, double timestep_s) { return std::llround(t_s / timestep_s); }
 
@@ -73,28 +80,34 @@ RunPictures::RunPictures(Kernel& kernel, const RobotSpec& robot, PictureOptions 
   });
   if (!any) return;
   // ask now, so that a machine that cannot draw says so before the run, not after it
+  MakeRenderer();
+  renderer_->Camera(o.camera, 1);  // refuses an unknown camera before the run
+}
+
+void RunPictures::MakeRenderer() {
   egl_ = EglContext::Create();
   renderer_ = std::make_unique<SceneRenderer>(kernel_, TofBeams(robot_, kernel_));
   renderer_name_ = egl_->renderer();
-  renderer_->Camera(o.camera, 1);  // refuses an unknown camera before the run
+  egl_->Release();
 }
 
 RunPictures::~RunPictures() {
   if (ffmpeg_ != nullptr) pclose(ffmpeg_);
+  if (!egl_) return;
+  egl_->MakeCurrent();  // the renderer's GL objects go with their own context
+  renderer_.reset();
 }
 
 bool RunPictures::EnsureRenderer() {
   if (renderer_) return true;
   if (!unavailable_.empty()) return false;
   try {
-    egl_ = EglContext::Create();
+    MakeRenderer();
   } catch (const RenderUnavailable& e) {
     unavailable_ = e.what();
     kernel_.Log(UNIMOUSE_LOG_WARNING, "pictures", unavailable_ + "; pictures are skipped");
     return false;
   }
-  renderer_ = std::make_unique<SceneRenderer>(kernel_, TofBeams(robot_, kernel_));
-  renderer_name_ = egl_->renderer();
   return true;
 }
 
@@ -102,6 +115,7 @@ Image RunPictures::Take(const std::string& camera, int width, int height) {
   DrawOptions draw;
   if (hud_) draw.hud = hud_();
   draw.firmware = &beliefs_;
+  const ScopedCurrent current(*egl_);
   return renderer_->Snapshot(width, height, camera, draw);
 }
 

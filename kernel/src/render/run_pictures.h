@@ -59,6 +59,7 @@ class RunPictures {
   const std::string& renderer() const { return renderer_name_; }
 
  private:
+  void MakeRenderer();    // throws RenderUnavailable
   bool EnsureRenderer();  // false when the machine cannot draw (warned once)
   std::string Write(const std::string& relative, const std::string& camera, int width, int height);
   Image Take(const std::string& camera, int width, int height);

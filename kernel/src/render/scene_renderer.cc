@@ -250,6 +250,11 @@ Image SceneRenderer::Snapshot(int width, int height, const std::string& camera,
   mjr_setBuffer(mjFB_OFFSCREEN, &context_);
   const mjrRect viewport{0, 0, width, height};
   Draw(viewport, cam, options);
+  return Read(viewport);
+}
+
+Image SceneRenderer::Read(const mjrRect& viewport) {
+  const int width = viewport.width, height = viewport.height;
   Image image{width, height, std::vector<uint8_t>(static_cast<size_t>(width) * height * 3)};
   std::vector<uint8_t> bottom_up(image.rgb.size());
   mjr_readPixels(bottom_up.data(), nullptr, viewport, &context_);
@@ -259,6 +264,10 @@ Image SceneRenderer::Snapshot(int width, int height, const std::string& camera,
                 image.rgb.data() + row * static_cast<size_t>(y));
   }
   return image;
+}
+
+void SceneRenderer::MoveCamera(int action, double dx, double dy, mjvCamera* camera) {
+  mjv_moveCamera(model_, action, dx, dy, &scene_, camera);
 }
 
 }  // namespace unimouse

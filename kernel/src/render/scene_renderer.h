@@ -74,6 +74,13 @@ class SceneRenderer {
   /// Draws offscreen and reads the picture back. Throws InputError for a size over the maximum.
   Image Snapshot(int width, int height, const std::string& camera, const DrawOptions& options);
 
+  /// Reads a viewport of the current framebuffer back as a picture.
+  Image Read(const mjrRect& viewport);
+
+  /// Moves a camera as a mouse drag or scroll does (mjtMouse action; dx, dy in viewport
+  /// heights).
+  void MoveCamera(int action, double dx, double dy, mjvCamera* camera);
+
   mjrContext& context() { return context_; }
   const mjModel& model() const { return *model_; }
 

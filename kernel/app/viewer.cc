@@ -1,0 +1,180 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "viewer.h"
+
+#include <GLFW/glfw3.h>
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+
+#include "png_file.h"
+#include "render/scene_renderer.h"
+#include "unimouse/errors.h"
+
+namespace unimouse {
+
+namespace {
+
+Viewer* Of(GLFWwindow* w) { return static_cast<Viewer*>(glfwGetWindowUserPointer(w)); }
+
+std::string last_glfw_error;
+void KeepGlfwError(int, const char* text) { last_glfw_error = text; }
+
+}  // namespace
+
+Viewer::Viewer(const std::string& title, std::string out_dir, int max_frames)
+    : out_dir_(std::move(out_dir)), max_frames_(max_frames) {
+  glfwSetErrorCallback(KeepGlfwError);
+  if (!glfwInit()) {
+    throw InputError("--view needs a display: " + (last_glfw_error.empty()
+                                                       ? std::string("GLFW cannot start")
+                                                       : last_glfw_error));
+  }
+  glfwWindowHint(GLFW_SAMPLES, 4);
+  window_ = glfwCreateWindow(1200, 900, title.c_str(), nullptr, nullptr);
+  if (window_ == nullptr) {
+    glfwTerminate();
+    throw InputError("--view cannot open a window: " + last_glfw_error);
+  }
+  glfwMakeContextCurrent(window_);
+  glfwSwapInterval(1);
+  glfwSetWindowUserPointer(window_, this);
+  glfwSetKeyCallback(window_, [](GLFWwindow* w, int key, int, int action, int) {
+    if (action != GLFW_RELEASE) Of(w)->controls_.Key(key);
+  });
+  glfwSetMouseButtonCallback(window_, [](GLFWwindow* w, int button, int action, int) {
+    Viewer* v = Of(w);
+    const bool down = action == GLFW_PRESS;
+    if (button == GLFW_MOUSE_BUTTON_LEFT) v->left_down_ = down;
+    if (button == GLFW_MOUSE_BUTTON_RIGHT) v->right_down_ = down;
+    glfwGetCursorPos(w, &v->last_x_, &v->last_y_);
+  });
+  glfwSetCursorPosCallback(window_,
+                           [](GLFWwindow* w, double x, double y) { Of(w)->OnMouseMove(x, y); });
+  glfwSetScrollCallback(window_, [](GLFWwindow* w, double, double dy) {
+    Viewer* v = Of(w);
+    if (v->renderer_) v->renderer_->MoveCamera(mjMOUSE_ZOOM, 0, -0.05 * dy, &v->camera_);
+  });
+  // a thread holds one context at a time: the window's is current only while it draws, so that
+  // the run's pictures can draw in theirs
+  glfwMakeContextCurrent(nullptr);
+}
+
+Viewer::~Viewer() {
+  glfwMakeContextCurrent(window_);
+  renderer_.reset();  // its GL objects go while the context still exists
+  if (window_ != nullptr) glfwDestroyWindow(window_);
+  glfwTerminate();
+}
+
+void Viewer::OnMouseMove(double x, double y) {
+  const double dx = x - last_x_, dy = y - last_y_;
+  last_x_ = x;
+  last_y_ = y;
+  if (!renderer_ || (!left_down_ && !right_down_)) return;
+  int width = 0, height = 0;
+  glfwGetWindowSize(window_, &width, &height);
+  if (height <= 0) return;
+  const int action = left_down_ ? mjMOUSE_ROTATE_V : mjMOUSE_MOVE_V;
+  renderer_->MoveCamera(action, dx / height, dy / height, &camera_);
+}
+
+void Viewer::SaveScreenshot(const std::string& file) {
+  int width = 0, height = 0;
+  glfwGetFramebufferSize(window_, &width, &height);
+  mjr_setBuffer(mjFB_WINDOW, &renderer_->context());
+  const Image image = renderer_->Read({0, 0, width, height});
+  const std::string path = (std::filesystem::path(out_dir_) / file).string();
+  WritePng(path, image.width, image.height, image.rgb);
+  std::printf("  screenshot: %s\n", path.c_str());
+}
+
+void Viewer::Draw(const Run& run) {
+  int width = 0, height = 0;
+  glfwGetFramebufferSize(window_, &width, &height);
+  const mjrRect viewport{0, 0, width, height};
+  if (!controls_.preset.empty()) {
+    camera_ = renderer_->Camera(controls_.preset, static_cast<double>(width) / height);
+    controls_.preset.clear();
+  }
+  if (controls_.follow) {
+    const Pose2D p = run.kernel->world().RobotPose(run.kernel->state().data());
+    camera_.lookat[0] = p.x_m;
+    camera_.lookat[1] = p.y_m;
+  }
+  DrawOptions draw;
+  draw.beams = controls_.beams;
+  draw.beliefs = controls_.beliefs;
+  draw.firmware = &beliefs_;
+  if (controls_.hud && run.hud) draw.hud = run.hud();
+  mjr_setBuffer(mjFB_WINDOW, &renderer_->context());
+  renderer_->Draw(viewport, camera_, draw);
+
+  const bool over = run.over();
+  std::string state = over ? "run over" + (run.verdict ? ": " + run.verdict() : "") + "\n"
+                      : controls_.paused ? "paused\n"
+                                         : "";
+  char speed[64];
+  std::snprintf(speed, sizeof(speed), "%s%gx real time%s", controls_.follow ? "following; " : "",
+                controls_.speed, controls_.help ? "" : "; H: help");
+  state += speed;
+  mjr_overlay(mjFONT_NORMAL, mjGRID_BOTTOMRIGHT, viewport, state.c_str(), nullptr,
+              &renderer_->context());
+  if (controls_.help) {
+    mjr_overlay(mjFONT_NORMAL, mjGRID_TOPRIGHT, viewport, ViewerControls::HelpKeys(),
+                ViewerControls::HelpActions(), &renderer_->context());
+  }
+}
+
+void Viewer::Show(const Run& run) {
+  controls_.restart = false;
+  beliefs_ = {};
+  run.kernel->AddMessageListener([this](double, int, const std::string&,
+                                        const std::string& message) { beliefs_.Read(message); });
+  glfwMakeContextCurrent(window_);
+  renderer_ = std::make_unique<SceneRenderer>(*run.kernel, TofBeams(*run.robot, *run.kernel));
+  glfwMakeContextCurrent(nullptr);
+  if (frames_ == 0) controls_.preset = "free";
+  using Clock = std::chrono::steady_clock;
+  auto last = Clock::now();
+  double behind_s = 0;  // sim time owed to the wall clock
+  const double dt = run.kernel->timestep_s();
+  while (!glfwWindowShouldClose(window_) && !controls_.quit && !controls_.restart) {
+    const auto now = Clock::now();
+    const double wall_s = std::chrono::duration<double>(now - last).count();
+    last = now;
+    if (!run.over()) {
+      if (controls_.paused) {
+        for (; controls_.steps_wanted > 0; --controls_.steps_wanted) run.step();
+        behind_s = 0;
+      } else {
+        // catch up with the wall clock, but never spend more than a frame's time on it: a slow
+        // machine shows the run slower, not in jumps
+        behind_s += wall_s * controls_.speed;
+        const auto until = now + std::chrono::milliseconds(30);
+        while (behind_s >= dt && !run.over() && Clock::now() < until) {
+          run.step();
+          behind_s -= dt;
+        }
+        if (behind_s > 0.1 * controls_.speed) behind_s = 0;
+      }
+    }
+    glfwMakeContextCurrent(window_);
+    Draw(run);
+    ++frames_;
+    const bool last_frame = max_frames_ > 0 && frames_ >= max_frames_;
+    if (controls_.screenshot || last_frame) {
+      SaveScreenshot(last_frame ? "view.png" : "view_" + std::to_string(++screenshots_) + ".png");
+      controls_.screenshot = false;
+    }
+    glfwSwapBuffers(window_);
+    glfwMakeContextCurrent(nullptr);
+    glfwPollEvents();
+    if (last_frame) controls_.quit = true;
+  }
+  glfwMakeContextCurrent(window_);
+  renderer_.reset();
+  glfwMakeContextCurrent(nullptr);
+}
+
+}  // namespace unimouse

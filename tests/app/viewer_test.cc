@@ -1,0 +1,97 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The live viewer: what its keys do, and the window itself under a virtual X server (Xvfb),
+// skipped with the reason when xvfb-run is not installed.
+#include <GLFW/glfw3.h>
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <set>
+
+#include "png_file.h"
+#include "run_program.h"
+#include "viewer_controls.h"
+
+namespace unimouse {
+namespace {
+
+TEST(ViewerControlsTest, KeysPauseStepAndChangeSpeed) {
+  ViewerControls c;
+  EXPECT_TRUE(c.Key(GLFW_KEY_SPACE));
+  EXPECT_TRUE(c.paused);
+  EXPECT_TRUE(c.Key(GLFW_KEY_SPACE));
+  EXPECT_FALSE(c.paused);
+  // a step pauses and asks for one tick each press
+  c.Key(GLFW_KEY_RIGHT);
+  c.Key(GLFW_KEY_N);
+  EXPECT_TRUE(c.paused);
+  EXPECT_EQ(c.steps_wanted, 2);
+  for (int i = 0; i < 10; ++i) c.Key(GLFW_KEY_EQUAL);
+  EXPECT_EQ(c.speed, ViewerControls::kMaxSpeed);
+  c.Key(GLFW_KEY_0);
+  EXPECT_EQ(c.speed, 1);
+  c.Key(GLFW_KEY_MINUS);
+  EXPECT_EQ(c.speed, 0.5);
+  for (int i = 0; i < 10; ++i) c.Key(GLFW_KEY_MINUS);
+  EXPECT_EQ(c.speed, ViewerControls::kMinSpeed);
+}
+
+TEST(ViewerControlsTest, KeysToggleWhatIsShown) {
+  ViewerControls c;
+  c.Key(GLFW_KEY_R);
+  c.Key(GLFW_KEY_B);
+  c.Key(GLFW_KEY_U);
+  c.Key(GLFW_KEY_F);
+  c.Key(GLFW_KEY_H);
+  EXPECT_FALSE(c.beams);
+  EXPECT_FALSE(c.beliefs);
+  EXPECT_FALSE(c.hud);
+  EXPECT_TRUE(c.follow);
+  EXPECT_TRUE(c.help);
+  c.Key(GLFW_KEY_2);
+  EXPECT_EQ(c.preset, "chase");
+  c.Key(GLFW_KEY_BACKSPACE);
+  EXPECT_TRUE(c.restart);
+  c.Key(GLFW_KEY_ESCAPE);
+  EXPECT_TRUE(c.quit);
+  EXPECT_FALSE(c.Key(GLFW_KEY_Z));
+}
+
+bool HaveXvfb() { return std::system("command -v xvfb-run > /dev/null 2>&1") == 0; }
+
+TEST(ViewerTest, OpensUnderXvfbDrawsFramesAndItsScreenshotShowsTheMaze) {
+  if (!HaveXvfb()) GTEST_SKIP() << "xvfb-run is not installed (apt install xvfb xauth)";
+  const auto r =
+      testing::UnimouseRun("--maze japan2018 --duration 5 --view --view-frames 30 --no-pictures",
+                           "viewer_xvfb", "xvfb-run -a -s '-screen 0 1280x1024x24' ");
+  ASSERT_EQ(r.outcome.exit_code, 0) << r.outcome.output;
+  EXPECT_EQ(r.result["view"]["frames"], 30);
+  EXPECT_GT(r.result["sim_time_s"].get<double>(), 0);
+  const std::string shot =
+      (std::filesystem::temp_directory_path() / "viewer_xvfb/view.png").string();
+  int width = 0, height = 0;
+  const std::vector<uint8_t> rgb = ReadPng(shot, &width, &height);
+  EXPECT_EQ(width, 1200);
+  EXPECT_EQ(height, 900);
+  // not blank: white walls, red posts, the dark floor, the text of the overlays
+  std::set<uint32_t> colours;
+  int white = 0;
+  for (size_t i = 0; i < rgb.size(); i += 3) {
+    colours.insert(rgb[i] << 16 | rgb[i + 1] << 8 | rgb[i + 2]);
+    white += rgb[i] > 200 && rgb[i + 1] > 200 && rgb[i + 2] > 200;
+  }
+  EXPECT_GT(colours.size(), 100u);
+  EXPECT_GT(white, 5000);
+}
+
+TEST(ViewerTest, WithoutADisplayItIsBadInput) {
+  const auto r =
+      testing::Unimouse("run --maze none --duration 0.1 --view --out " +
+                            (std::filesystem::temp_directory_path() / "viewer_nodisplay").string(),
+                        "env -u DISPLAY -u WAYLAND_DISPLAY ");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("--view needs a display"), std::string::npos) << r.output;
+}
+
+}  // namespace
+}  // namespace unimouse

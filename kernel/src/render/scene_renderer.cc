@@ -48,6 +48,7 @@ std::vector<BeamView> TofBeams(const RobotSpec& robot, const Kernel& kernel) {
 SceneRenderer::SceneRenderer(const Kernel& kernel, std::vector<BeamView> beams)
     : kernel_(kernel), beams_(std::move(beams)) {
   model_ = mj_copyModel(nullptr, &kernel.mj_model());
+  model_->vis.quality.shadowsize = 1;  // no shadows (below): no 64 MB shadow map either
   data_ = mj_makeData(model_);
   const mjModel& scenery = kernel.world().scenery_model();
   scenery_data_ = mj_makeData(&scenery);

@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <regex>
 
+#include "firmware_beliefs.h"
 #include "inline_assets.h"
 #include "plugin_rig.h"
 #include "run_program.h"
@@ -113,6 +114,24 @@ TEST_F(NativeLinkTest, WhatTheFirmwareReportsIsKeptAndDrawn) {
   EXPECT_NE(ReadTextFile("/tmp/unimouse_native_beliefs/maze.svg").find("class='closed-path'"),
             std::string::npos);
   EXPECT_NE(o.output.find("debug path (0, 0) (0, 1) (0, 2)"), std::string::npos) << o.output;
+}
+
+// the viewer and the pictures rebuild the firmware's beliefs from the lines the link logs
+TEST_F(NativeLinkTest, WhatTheFirmwareReportsIsRebuiltFromTheLinksLog) {
+  auto kernel = Make("");
+  FirmwareBeliefs beliefs;
+  kernel->AddMessageListener(
+      [&](double, int, const std::string&, const std::string& line) { beliefs.Read(line); });
+  for (int i = 0; i < 10; ++i) kernel->Step();
+  kernel->Finish();
+  // what the test firmware sends: walls (0, 0) E S W of N E S W known, visited (0, 0), a path
+  ASSERT_EQ(beliefs.walls.size(), 1u);
+  EXPECT_EQ(beliefs.walls.begin()->first, std::make_pair(0, 0));
+  EXPECT_EQ(beliefs.walls.begin()->second.walls, 14);
+  EXPECT_EQ(beliefs.walls.begin()->second.known, 15);
+  EXPECT_EQ(beliefs.visited, (std::vector<Cell>{{0, 0}}));
+  EXPECT_EQ(beliefs.path, (std::vector<Cell>{{0, 0}, {0, 1}, {0, 2}}));
+  EXPECT_FALSE(beliefs.Read("debug value speed = 1"));
 }
 
 TEST_F(NativeLinkTest, TheRunCommandRunsLockstepFirmwareFasterThanRealTime) {

@@ -212,6 +212,29 @@ TEST_F(SnapshotTest, TheSameSeedGivesTheSameImage) {
   EXPECT_NE(a.rgb, c.rgb);
 }
 
+TEST_F(SnapshotTest, DrawsTheWallsTheFirmwareBelievesIn) {
+  Build(&Japan2018(), std::nullopt);
+  FirmwareBeliefs beliefs;
+  ASSERT_TRUE(beliefs.Read("debug walls (0, 0): E S W; known N E S W"));
+  DrawOptions draw = kSceneOnly;
+  draw.firmware = &beliefs;
+  const Image plain = Picture(640, 480, kSceneOnly);
+  draw.beliefs = false;
+  EXPECT_EQ(Picture(640, 480, draw).rgb, plain.rgb);  // toggled off
+  draw.beliefs = true;
+  const Image shown = Picture(640, 480, draw);
+  // three blue strips along the start cell's walls, and nothing else changed
+  int blue = 0, other = 0;
+  for (size_t i = 0; i < shown.rgb.size(); i += 3) {
+    if (std::equal(shown.rgb.begin() + i, shown.rgb.begin() + i + 3, plain.rgb.begin() + i))
+      continue;
+    const int r = shown.rgb[i], g = shown.rgb[i + 1], b = shown.rgb[i + 2];
+    (b > r + 60 ? blue : other)++;
+  }
+  EXPECT_GT(blue, 3 * 25);
+  EXPECT_LT(other, blue / 2);
+}
+
 TEST_F(SnapshotTest, RefusesUnknownCamerasAndSizes) {
   Build(nullptr, std::nullopt);
   EXPECT_THROW(Picture(640, 480, {}, "side"), InputError);

@@ -107,9 +107,7 @@ PictureOptions PicturesFor(const RunOptions& options) {
 std::unique_ptr<RunPictures> MakePictures(Kernel& kernel, const RobotSpec& robot,
                                           const RunOptions& options) {
   PictureOptions asked = PicturesFor(options);
-  const bool any = asked.required || asked.every_s > 0 || !asked.at_s.empty() || asked.at_end ||
-                   asked.frames_fps > 0 || !asked.video.empty();
-  if (any || options.no_pictures) {
+  if (asked.Any() || options.no_pictures) {
     return std::make_unique<RunPictures>(kernel, robot, asked, options.out_dir);
   }
   PictureOptions final_only = asked;
@@ -121,8 +119,6 @@ std::unique_ptr<RunPictures> MakePictures(Kernel& kernel, const RobotSpec& robot
     return std::make_unique<RunPictures>(kernel, robot, asked, options.out_dir);
   }
 }
-
-}  // namespace
 
 // one run, headless or in the viewer's window
 int RunOnce(const RunOptions& options, Viewer* viewer) {
@@ -313,6 +309,8 @@ int RunOnce(const RunOptions& options, Viewer* viewer) {
   }
   return kExitPassed;
 }
+
+}  // namespace
 
 int RunCommand(const RunOptions& options) {
   if (!options.view) return RunOnce(options, nullptr);

@@ -66,8 +66,6 @@ RunPictures::RunPictures(Kernel& kernel, const RobotSpec& robot, PictureOptions 
   UNIMOUSE_THROW_UNLESS(
       o.frames_fps >= 0 && o.frames_fps <= 1000 && o.video_fps > 0 && o.video_fps <= 1000,
       "--frames-fps and --video-fps are 1 to 1000 frames a second");
-  const bool any = o.required || every_steps_ > 0 || !at_steps_.empty() || o.at_end ||
-                   o.frames_fps > 0 || !o.video.empty();
   if (!o.video.empty()) {
     UNIMOUSE_THROW_UNLESS(o.width % 2 == 0 && o.height % 2 == 0,
                           "--video needs an even width and height");
@@ -75,13 +73,13 @@ RunPictures::RunPictures(Kernel& kernel, const RobotSpec& robot, PictureOptions 
                           "--video needs ffmpeg, which is not installed (apt install ffmpeg); "
                           "--frames-fps writes the frames as PNG files instead");
   }
+  CheckCameraName(o.camera);
+  // ask now, so that a machine that cannot draw says so before the run, not after it
+  if (o.Any()) MakeRenderer();
+  // last: nothing may throw once the kernel holds on to this object
   kernel.AddMessageListener([this](double, int, const std::string&, const std::string& message) {
     beliefs_.Read(message);
   });
-  if (!any) return;
-  // ask now, so that a machine that cannot draw says so before the run, not after it
-  MakeRenderer();
-  renderer_->Camera(o.camera, 1);  // refuses an unknown camera before the run
 }
 
 void RunPictures::MakeRenderer() {

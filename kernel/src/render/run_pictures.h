@@ -34,6 +34,10 @@ struct PictureOptions {
   std::string video;         ///< an MP4 of the run, through ffmpeg; "" for none
   double video_fps = 30;
   bool required = false;  ///< make the context at the start even if only the scenario draws
+  /// Whether any picture is asked for, so that the context is made at the start.
+  bool Any() const {
+    return required || every_s > 0 || !at_s.empty() || at_end || frames_fps > 0 || !video.empty();
+  }
 };
 
 class RunPictures {

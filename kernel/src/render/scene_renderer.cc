@@ -21,7 +21,8 @@ constexpr float kPlannedPath[4] = {1, 0.85f, 0.1f, 1};
 // the scene's geoms beyond the models' own: beams, and beliefs about a 32x32 maze at most
 constexpr int kExtraGeoms = 8 + 32 * 32 * 6;
 
-double DefaultTofRange_m() { return 1.2; }  // VL53L0X full scale, table 3.8 (the plugin's default)
+// the tof_sensor plugin's default range_max_m: the VL53L0X's full scale (table 3.8)
+constexpr double kDefaultTofRange_m = 1.2;
 
 }  // namespace
 
@@ -30,7 +31,7 @@ std::vector<BeamView> TofBeams(const RobotSpec& robot, const Kernel& kernel) {
   for (const ComponentSpec& c : robot.components) {
     if (c.type != "unimouse.tof_sensor" || !c.params.IsMap()) continue;
     BeamView beam;
-    beam.range_max_m = DefaultTofRange_m();
+    beam.range_max_m = kDefaultTofRange_m;
     for (const auto& [key, value] : c.params.entries) {
       if (key.scalar == "site") {
         beam.site = mj_name2id(&kernel.mj_model(), mjOBJ_SITE, value.scalar.c_str());
@@ -43,6 +44,13 @@ std::vector<BeamView> TofBeams(const RobotSpec& robot, const Kernel& kernel) {
     if (beam.site >= 0 && beam.reading_signal >= 0) beams.push_back(beam);
   }
   return beams;
+}
+
+void CheckCameraName(const std::string& name) {
+  for (const char* known : kCameraNames) {
+    if (name == known) return;
+  }
+  throw InputError("unknown camera '" + name + "': top, chase or free");
 }
 
 SceneRenderer::SceneRenderer(const Kernel& kernel, std::vector<BeamView> beams)
@@ -132,7 +140,7 @@ mjvCamera SceneRenderer::Camera(const std::string& name, double aspect) const {
     cam.azimuth = 45;  // from the south-west
     cam.elevation = -40;
   } else {
-    throw InputError("unknown camera '" + name + "': top, chase or free");
+    CheckCameraName(name);  // throws
   }
   return cam;
 }

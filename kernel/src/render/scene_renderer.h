@@ -25,6 +25,8 @@ namespace unimouse {
 /// The named cameras: "top" looks straight down on the whole scene with north up, "chase"
 /// follows behind the robot, "free" looks over the scene from the south-west.
 inline constexpr const char* kCameraNames[] = {"top", "chase", "free"};
+/// Throws InputError unless `name` is one of them.
+void CheckCameraName(const std::string& name);
 
 /// A ToF sensor's beam as drawn: from its site along the site's x axis, as long as its reading.
 struct BeamView {

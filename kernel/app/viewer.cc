@@ -132,7 +132,8 @@ void Viewer::Show(const Run& run) {
   run.kernel->AddMessageListener([this](double, int, const std::string&,
                                         const std::string& message) { beliefs_.Read(message); });
   glfwMakeContextCurrent(window_);
-  renderer_ = std::make_unique<SceneRenderer>(*run.kernel, TofBeams(*run.robot, *run.kernel));
+  renderer_ = std::make_unique<SceneRenderer>(*run.kernel, TofBeams(*run.robot, *run.kernel),
+                                              mjFONTSCALE_150);
   glfwMakeContextCurrent(nullptr);
   if (frames_ == 0) controls_.preset = "free";
   using Clock = std::chrono::steady_clock;

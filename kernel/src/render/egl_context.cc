@@ -28,7 +28,7 @@ bool HasExtension(const char* list, const char* name) {
 }
 
 // a display on a hardware device (one with a DRM node), as NVIDIA's driver offers
-EGLDisplay HardwareDeviceDisplay(PFNEGLGETPLATFORMDISPLAYEXTPROC get_display) {
+EGLDisplay HardwareDeviceDisplay() {
   auto query_devices =
       reinterpret_cast<PFNEGLQUERYDEVICESEXTPROC>(eglGetProcAddress("eglQueryDevicesEXT"));
   auto query_string = reinterpret_cast<PFNEGLQUERYDEVICESTRINGEXTPROC>(
@@ -40,7 +40,7 @@ EGLDisplay HardwareDeviceDisplay(PFNEGLGETPLATFORMDISPLAYEXTPROC get_display) {
   if (!query_devices(count, devices.data(), &count)) return EGL_NO_DISPLAY;
   for (int i = 0; i < count; ++i) {
     if (!HasExtension(query_string(devices[i], EGL_EXTENSIONS), "EGL_EXT_device_drm")) continue;
-    EGLDisplay display = get_display(EGL_PLATFORM_DEVICE_EXT, devices[i], nullptr);
+    EGLDisplay display = eglGetPlatformDisplay(EGL_PLATFORM_DEVICE_EXT, devices[i], nullptr);
     if (display != EGL_NO_DISPLAY && eglInitialize(display, nullptr, nullptr)) return display;
   }
   return EGL_NO_DISPLAY;
@@ -50,20 +50,21 @@ EGLDisplay HardwareDeviceDisplay(PFNEGLGETPLATFORMDISPLAYEXTPROC get_display) {
 
 std::unique_ptr<EglContext> EglContext::Create() {
   const char* client = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
-  auto get_display = reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(
-      eglGetProcAddress("eglGetPlatformDisplayEXT"));
-  if (client == nullptr || get_display == nullptr) {
-    throw RenderUnavailable("no EGL library with platform displays (install libegl-mesa0)");
+  // EGL 1.5 platform displays, as glvnd's libEGL has: the platform is named here, in code
+  if (client == nullptr || !HasExtension(client, "EGL_EXT_platform_base")) {
+    throw RenderUnavailable(
+        "no EGL display: no EGL driver with platform displays (install "
+        "libegl-mesa0)");
   }
   EGLDisplay display = EGL_NO_DISPLAY;
-  if (HasExtension(client, "EGL_EXT_platform_device")) display = HardwareDeviceDisplay(get_display);
+  if (HasExtension(client, "EGL_EXT_platform_device")) display = HardwareDeviceDisplay();
   if (display == EGL_NO_DISPLAY) {
     if (!HasExtension(client, "EGL_MESA_platform_surfaceless")) {
       throw RenderUnavailable(
           "no EGL display: no GPU device and no Mesa surfaceless platform "
           "(install libegl-mesa0 and libgl1-mesa-dri)");
     }
-    display = get_display(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
+    display = eglGetPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
     if (display == EGL_NO_DISPLAY || !eglInitialize(display, nullptr, nullptr)) {
       throw RenderUnavailable("no EGL display: " +
                               ErrorText("initialising Mesa's surfaceless display"));

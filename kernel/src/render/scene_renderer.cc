@@ -53,8 +53,8 @@ void CheckCameraName(const std::string& name) {
   throw InputError("unknown camera '" + name + "': top, chase or free");
 }
 
-SceneRenderer::SceneRenderer(const Kernel& kernel, std::vector<BeamView> beams)
-    : kernel_(kernel), beams_(std::move(beams)) {
+SceneRenderer::SceneRenderer(const Kernel& kernel, std::vector<BeamView> beams, int font_scale)
+    : kernel_(kernel), beams_(std::move(beams)), font_scale_(font_scale) {
   model_ = mj_copyModel(nullptr, &kernel.mj_model());
   model_->vis.quality.shadowsize = 1;  // no shadows (below): no 64 MB shadow map either
   data_ = mj_makeData(model_);
@@ -105,7 +105,7 @@ void SceneRenderer::MakeContext(int width, int height) {
   mjr_freeContext(&context_);
   model_->vis.global.offwidth = width;
   model_->vis.global.offheight = height;
-  mjr_makeContext(model_, &context_, mjFONTSCALE_150);
+  mjr_makeContext(model_, &context_, font_scale_);
 }
 
 mjvCamera SceneRenderer::Camera(const std::string& name, double aspect) const {

@@ -60,8 +60,10 @@ class SceneRenderer {
   static constexpr int kMaxWidth = 1920;
   static constexpr int kMaxHeight = 1080;
 
-  /// Uploads the kernel's model to the OpenGL context current on this thread.
-  SceneRenderer(const Kernel& kernel, std::vector<BeamView> beams);
+  /// Uploads the kernel's model to the OpenGL context current on this thread. Text is drawn at
+  /// `font_scale` (an mjtFontScale): 100 suits pictures of 640x480, 150 a large window.
+  SceneRenderer(const Kernel& kernel, std::vector<BeamView> beams,
+                int font_scale = mjFONTSCALE_100);
   SceneRenderer(const SceneRenderer&) = delete;
   SceneRenderer& operator=(const SceneRenderer&) = delete;
   ~SceneRenderer();
@@ -95,6 +97,7 @@ class SceneRenderer {
 
   const Kernel& kernel_;
   std::vector<BeamView> beams_;
+  int font_scale_;
   mjModel* model_ = nullptr;  // a copy of the physics model, with a larger offscreen buffer
   mjData* data_ = nullptr;
   mjData* scenery_data_ = nullptr;

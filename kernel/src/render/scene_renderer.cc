@@ -117,11 +117,13 @@ mjvCamera SceneRenderer::Camera(const std::string& name, double aspect) const {
   const double tan_half_fovy = std::tan(model_->vis.global.fovy / 2 * std::numbers::pi / 180);
   if (name == "top") {
     // the whole scene with a small margin; walls are 5 cm tall, so the camera sits that much
-    // higher than the floor's fit
-    cam.lookat[0] = cx;
+    // higher than the floor's fit. In a picture wider than the scene, the scene goes to the
+    // right, leaving the left side to the HUD.
+    const double half_height_m = std::max(hy, hx / aspect) + 0.05;
+    cam.lookat[0] = cx + hx + 0.05 - half_height_m * aspect;
     cam.lookat[1] = cy;
     cam.lookat[2] = 0;
-    cam.distance = (std::max(hy, hx / aspect) + 0.05) / tan_half_fovy + 0.05;
+    cam.distance = half_height_m / tan_half_fovy + 0.05;
     cam.azimuth = 90;  // north up
     cam.elevation = -90;
   } else if (name == "chase") {

@@ -146,7 +146,7 @@ void Viewer::Show(const Run& run) {
     last = now;
     if (!run.over()) {
       if (controls_.paused) {
-        for (; controls_.steps_wanted > 0; --controls_.steps_wanted) run.step();
+        for (; controls_.steps_wanted > 0 && !run.over(); --controls_.steps_wanted) run.step();
         behind_s = 0;
       } else {
         // catch up with the wall clock, but never spend more than a frame's time on it: a slow

@@ -105,8 +105,7 @@ PictureOptions PicturesFor(const RunOptions& options) {
 
 // the pictures asked for; without any, final.png whenever the machine can draw
 std::unique_ptr<RunPictures> MakePictures(Kernel& kernel, const RobotSpec& robot,
-                                          const RunOptions& options) {
-  PictureOptions asked = PicturesFor(options);
+                                          const PictureOptions& asked, const RunOptions& options) {
   if (asked.Any() || options.no_pictures) {
     return std::make_unique<RunPictures>(kernel, robot, asked, options.out_dir);
   }
@@ -191,14 +190,17 @@ int RunOnce(const RunOptions& options, Viewer* viewer) {
   if (scenario) scenario->Attach(*kernel, options.controller);
   UNIMOUSE_THROW_UNLESS(options.snapshot_on.empty() || scenario,
                         "--snapshot-on watches a scenario's events: give --scenario");
-  std::unique_ptr<RunPictures> pictures = MakePictures(*kernel, robot, options);
+  const PictureOptions asked = PicturesFor(options);
+  std::unique_ptr<RunPictures> pictures = MakePictures(*kernel, robot, asked, options);
   if (scenario) {
     pictures->SetHudSource([&scenario] { return scenario->hud(); });
     scenario->SetPictureTaker(
         [&pictures](const std::string& file, const std::string& camera, int width, int height) {
           return pictures->Save(file, camera, width, height);
         });
-    for (const auto& kind : options.snapshot_on) scenario->SnapshotOn(kind);
+    for (const auto& kind : options.snapshot_on) {
+      scenario->SnapshotOn(kind, asked.camera, asked.width, asked.height);
+    }
   }
   result["robot"] = robot_file;
   result["maze"] = maze && !scenario

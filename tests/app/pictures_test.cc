@@ -129,11 +129,13 @@ TEST(PicturesTest, ScenarioSavesPicturesInsideItsOutputDirectoryOnly) {
 
 TEST(PicturesTest, APictureAtEveryScenarioEvent) {
   SkipWithoutEgl();
-  // the pen: the robot drives into its arc once
-  const auto r =
-      UnimouseRun("--scenario " + kTests + "pen.lua --snapshot-on wall_contact", "pictures_events");
+  // the pen: the robot drives into its arc once; the pictures take the camera and size asked
+  const auto r = UnimouseRun("--scenario " + kTests +
+                                 "pen.lua --snapshot-on wall_contact --snapshot-size 300x200 "
+                                 "--camera chase",
+                             "pictures_events");
   ASSERT_EQ(r.outcome.exit_code, 0) << r.outcome.output;
-  ExpectPng(Out("pictures_events") + "/events/wall_contact_0001.png", 640, 480);
+  ExpectPng(Out("pictures_events") + "/events/wall_contact_0001.png", 300, 200);
   EXPECT_EQ(CountFiles(Out("pictures_events") + "/events"), 1);
 }
 

@@ -277,13 +277,14 @@ std::unique_ptr<Scenario> Scenario::Load(const std::string& path,
   return s;
 }
 
-void Scenario::SnapshotOn(const std::string& kind) {
+void Scenario::SnapshotOn(const std::string& kind, const std::string& camera, int width,
+                          int height) {
   static constexpr const char* kChunk = R"lua(
-local kind = ...
+local kind, picture = ...
 local n = 0
 sim.on(kind, function()
   n = n + 1
-  sim.snapshot_save(string.format("events/%s_%04d.png", kind, n))
+  sim.snapshot_save(string.format("events/%s_%04d.png", kind, n), picture)
 end)
 )lua";
   lua_State* L = L_;
@@ -291,7 +292,14 @@ end)
   lua_getfield(L, LUA_REGISTRYINDEX, "unimouse.env");
   lua_setupvalue(L, -2, 1);
   lua_pushstring(L, kind.c_str());
-  if (lua_pcall(L, 1, 0, 0) != LUA_OK) {
+  lua_createtable(L, 0, 3);
+  lua_pushstring(L, camera.c_str());
+  lua_setfield(L, -2, "camera");
+  lua_pushinteger(L, width);
+  lua_setfield(L, -2, "width");
+  lua_pushinteger(L, height);
+  lua_setfield(L, -2, "height");
+  if (lua_pcall(L, 2, 0, 0) != LUA_OK) {
     lua_pop(L, 1);
     throw InputError("--snapshot-on " + kind +
                      ": not an event; the events are cell_entered, wall_contact, gate_crossed and "

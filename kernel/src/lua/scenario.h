@@ -83,9 +83,9 @@ class Scenario {
   using PictureTaker = std::function<std::string(const std::string& file, const std::string& camera,
                                                  int width, int height)>;
   void SetPictureTaker(PictureTaker taker) { picture_taker_ = std::move(taker); }
-  /// Saves a picture, events/<kind>_<n>.png, each time the event `kind` happens (sim.on's
-  /// kinds). Throws InputError for an unknown kind.
-  void SnapshotOn(const std::string& kind);
+  /// Saves a picture from `camera`, events/<kind>_<n>.png, each time the event `kind` happens
+  /// (sim.on's kinds). Throws InputError for an unknown kind.
+  void SnapshotOn(const std::string& kind, const std::string& camera, int width, int height);
 
   /// Once the run is over (decided, or out of time), calls the scenario's finish(params,
   /// {status, reason, time_s}) if it has one: it may add scores and decide an undecided run.

@@ -39,7 +39,8 @@ int main(int argc, char** argv) {
                     "pace the simulation to the wall clock (always, with --link, until the "
                     "firmware turns lock-step on)");
   run_cmd->add_option("--link", run.link,
-                      "connect firmware: pty, pty:LINK, serial:/dev/ttyUSB0@115200 or tcp::5760");
+                      "connect firmware: pty, pty:LINK, serial:/dev/ttyUSB0@115200, tcp::5760 or "
+                      "native:PROGRAM");
 
   // pictures: none of these changes what is run
   run_cmd->add_option("--camera", run.camera, "camera of the pictures: top, chase or free")

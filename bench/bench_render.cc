@@ -77,7 +77,7 @@ void BM_RealTimeFactorWithSnapshots(benchmark::State& bench) {
     options.every_s = static_cast<double>(bench.range(0));
     std::unique_ptr<RunPictures> pictures;
     try {
-      pictures = std::make_unique<RunPictures>(*rig.kernel, rig.robot, options, out);
+      pictures = std::make_unique<RunPictures>(*rig.kernel, rig.robot, options, nullptr, out);
     } catch (const RenderUnavailable& e) {
       bench.SkipWithError(e.what());
       return;

@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 #include <numbers>
 
+#include "firmware_beliefs.h"
 #include "install_paths.h"
 #include "kernel.h"
 #include "lua/scenario.h"
@@ -45,23 +46,18 @@ void WriteResult(const std::string& out_dir, const nlohmann::json& result) {
 
 // the maze as the firmware reported it on its debug channels: cells it knows (with their true
 // walls dark), cells it visited, the path it last planned
-void DrawFirmwareBeliefs(const Maze& maze, const std::string& out_dir) {
-  const std::filesystem::path file = std::filesystem::path(out_dir) / "firmware_beliefs.json";
-  if (!std::filesystem::exists(file)) return;
-  const nlohmann::json beliefs = nlohmann::json::parse(ReadTextFile(file.string()), nullptr, false);
-  if (beliefs.is_discarded()) return;
+void DrawFirmwareBeliefs(const Maze& maze, const FirmwareBeliefs& beliefs,
+                         const std::string& out_dir) {
   WallKnowledge knowledge(maze);
-  auto sense = [&](int x, int y) {
-    if (maze.Contains({x, y})) knowledge.Sense(maze, {x, y});
+  auto sense = [&](Cell c) {
+    if (maze.Contains(c)) knowledge.Sense(maze, c);
   };
-  for (const auto& w : beliefs["walls"]) sense(w[0], w[1]);
-  for (const auto& c : beliefs["visited"]) sense(c[0], c[1]);
-  std::vector<Cell> path;
-  for (const auto& c : beliefs["path"]) path.push_back({c[0], c[1]});
+  for (const auto& [cell, walls] : beliefs.walls) sense({cell.first, cell.second});
+  for (const Cell& c : beliefs.visited) sense(c);
   MazePicture picture;
   picture.maze = &maze;
   picture.knowledge = &knowledge;
-  picture.closed_path = DescribeRoute(path, maze.start_heading());
+  picture.closed_path = DescribeRoute(beliefs.path, maze.start_heading());
   const std::filesystem::path base = std::filesystem::path(out_dir) / "maze";
   WriteMazePicture(picture, base.string() + ".png");
   WriteMazePicture(picture, base.string() + ".svg");
@@ -105,17 +101,19 @@ PictureOptions PicturesFor(const RunOptions& options) {
 
 // the pictures asked for; without any, final.png whenever the machine can draw
 std::unique_ptr<RunPictures> MakePictures(Kernel& kernel, const RobotSpec& robot,
-                                          const PictureOptions& asked, const RunOptions& options) {
+                                          const PictureOptions& asked,
+                                          const FirmwareBeliefs* beliefs,
+                                          const RunOptions& options) {
   if (asked.Any() || options.no_pictures) {
-    return std::make_unique<RunPictures>(kernel, robot, asked, options.out_dir);
+    return std::make_unique<RunPictures>(kernel, robot, asked, beliefs, options.out_dir);
   }
   PictureOptions final_only = asked;
   final_only.at_end = true;
   try {
-    return std::make_unique<RunPictures>(kernel, robot, final_only, options.out_dir);
+    return std::make_unique<RunPictures>(kernel, robot, final_only, beliefs, options.out_dir);
   } catch (const RenderUnavailable& e) {
     std::printf("  no pictures: %s\n", e.what());
-    return std::make_unique<RunPictures>(kernel, robot, asked, options.out_dir);
+    return std::make_unique<RunPictures>(kernel, robot, asked, beliefs, options.out_dir);
   }
 }
 
@@ -191,7 +189,11 @@ int RunOnce(const RunOptions& options, Viewer* viewer) {
   UNIMOUSE_THROW_UNLESS(options.snapshot_on.empty() || scenario,
                         "--snapshot-on watches a scenario's events: give --scenario");
   const PictureOptions asked = PicturesFor(options);
-  std::unique_ptr<RunPictures> pictures = MakePictures(*kernel, robot, asked, options);
+  // what the firmware reports on the link's debug channels, for the pictures and the maze plot
+  FirmwareBeliefs beliefs;
+  kernel->AddMessageListener(
+      [&beliefs](double, int, const std::string&, const std::string& line) { beliefs.Read(line); });
+  std::unique_ptr<RunPictures> pictures = MakePictures(*kernel, robot, asked, &beliefs, options);
   if (scenario) {
     pictures->SetHudSource([&scenario] { return scenario->hud(); });
     scenario->SetPictureTaker(
@@ -223,7 +225,7 @@ int RunOnce(const RunOptions& options, Viewer* viewer) {
   std::string fault;
   try {
     if (viewer != nullptr) {
-      Viewer::Run shown{kernel.get(), &robot, step, over, nullptr, nullptr};
+      Viewer::Run shown{kernel.get(), &robot, &beliefs, step, over, nullptr, nullptr};
       if (scenario) {
         shown.hud = [&scenario] { return scenario->hud(); };
         shown.verdict = [&scenario] {
@@ -245,7 +247,7 @@ int RunOnce(const RunOptions& options, Viewer* viewer) {
   }
   pictures->Finish();
   kernel->Finish();
-  if (maze && !options.link.empty()) DrawFirmwareBeliefs(*maze, options.out_dir);
+  if (maze && !options.link.empty()) DrawFirmwareBeliefs(*maze, beliefs, options.out_dir);
   const double wall_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 

@@ -105,7 +105,7 @@ void Viewer::Draw(const Run& run) {
   DrawOptions draw;
   draw.beams = controls_.beams;
   draw.beliefs = controls_.beliefs;
-  draw.firmware = &beliefs_;
+  draw.firmware = run.beliefs;
   if (controls_.hud && run.hud) draw.hud = run.hud();
   mjr_setBuffer(mjFB_WINDOW, &renderer_->context());
   renderer_->Draw(viewport, camera_, draw);
@@ -128,9 +128,6 @@ void Viewer::Draw(const Run& run) {
 
 void Viewer::Show(const Run& run) {
   controls_.restart = false;
-  beliefs_ = {};
-  run.kernel->AddMessageListener([this](double, int, const std::string&,
-                                        const std::string& message) { beliefs_.Read(message); });
   glfwMakeContextCurrent(window_);
   renderer_ = std::make_unique<SceneRenderer>(*run.kernel, TofBeams(*run.robot, *run.kernel),
                                               mjFONTSCALE_150);

@@ -35,6 +35,7 @@ class Viewer {
   struct Run {
     Kernel* kernel = nullptr;
     const RobotSpec* robot = nullptr;
+    const FirmwareBeliefs* beliefs = nullptr;       ///< what the firmware reported
     std::function<void()> step;                     ///< one tick, with its pictures
     std::function<bool()> over;                     ///< decided, out of time, or failed
     std::function<std::vector<std::string>()> hud;  ///< the scenario's lines
@@ -60,7 +61,6 @@ class Viewer {
   int frames_ = 0;
   int screenshots_ = 0;
   ViewerControls controls_;
-  FirmwareBeliefs beliefs_;
   std::unique_ptr<SceneRenderer> renderer_;
   mjvCamera camera_{};
   // the mouse

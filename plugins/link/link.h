@@ -67,7 +67,7 @@ struct LinkParams {
       "from step 0; for firmware the simulator starts itself");
     v("beliefs_out", beliefs_out,
       "file in the run's output directory for what the firmware reported on its debug "
-      "channels (walls, visited cells, path), drawn by `unimouse run`; empty for none");
+      "channels (walls, visited cells, path); empty for none");
     v("lockstep_out", lockstep_out,
       "signal it writes: 1 once the firmware runs in lock-step (the run stops pacing then)");
   }

@@ -48,8 +48,12 @@ int64_t StepAt(double t_s, double timestep_s) { return std::llround(t_s / timest
 }  // namespace
 
 RunPictures::RunPictures(Kernel& kernel, const RobotSpec& robot, PictureOptions options,
-                         std::string out_dir)
-    : kernel_(kernel), robot_(robot), options_(std::move(options)), out_dir_(std::move(out_dir)) {
+                         const FirmwareBeliefs* beliefs, std::string out_dir)
+    : kernel_(kernel),
+      robot_(robot),
+      options_(std::move(options)),
+      out_dir_(std::move(out_dir)),
+      beliefs_(beliefs) {
   const PictureOptions& o = options_;
   const double dt = kernel.timestep_s();
   UNIMOUSE_THROW_UNLESS(o.width >= 16 && o.height >= 16 && o.width <= SceneRenderer::kMaxWidth &&
@@ -76,10 +80,6 @@ RunPictures::RunPictures(Kernel& kernel, const RobotSpec& robot, PictureOptions 
   CheckCameraName(o.camera);
   // ask now, so that a machine that cannot draw says so before the run, not after it
   if (o.Any()) MakeRenderer();
-  // last: nothing may throw once the kernel holds on to this object
-  kernel.AddMessageListener([this](double, int, const std::string&, const std::string& message) {
-    beliefs_.Read(message);
-  });
 }
 
 void RunPictures::MakeRenderer() {
@@ -112,7 +112,7 @@ bool RunPictures::EnsureRenderer() {
 Image RunPictures::Take(const std::string& camera, int width, int height) {
   DrawOptions draw;
   if (hud_) draw.hud = hud_();
-  draw.firmware = &beliefs_;
+  draw.firmware = beliefs_;
   const ScopedCurrent current(*egl_);
   return renderer_->Snapshot(width, height, camera, draw);
 }

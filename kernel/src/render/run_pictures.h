@@ -44,7 +44,9 @@ class RunPictures {
  public:
   /// Makes the offscreen context now if `options` asks for any picture; throws RenderUnavailable
   /// or InputError (bad size, camera or time, no ffmpeg for a video).
-  RunPictures(Kernel& kernel, const RobotSpec& robot, PictureOptions options, std::string out_dir);
+  /// `beliefs`, if given, are drawn: what the firmware reported of the maze.
+  RunPictures(Kernel& kernel, const RobotSpec& robot, PictureOptions options,
+              const FirmwareBeliefs* beliefs, std::string out_dir);
   ~RunPictures();
 
   /// The HUD lines to draw, read at each picture.
@@ -73,7 +75,7 @@ class RunPictures {
   PictureOptions options_;
   std::string out_dir_;
   std::function<std::vector<std::string>()> hud_;
-  FirmwareBeliefs beliefs_;
+  const FirmwareBeliefs* beliefs_;
   std::unique_ptr<EglContext> egl_;
   std::unique_ptr<SceneRenderer> renderer_;
   std::string renderer_name_;

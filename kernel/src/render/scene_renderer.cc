@@ -184,7 +184,7 @@ void SceneRenderer::AddBeams() {
 
 void SceneRenderer::AddBeliefs(const FirmwareBeliefs& beliefs) {
   const MazeDimensions dims;
-  auto centre = [&](int v) { return dims.cell_m * (v + 0.5); };
+  auto centre = [&](Cell c) { return CellCentre(c, Heading::kNorth, dims); };
   // believed walls: a strip on top of each, so that true and believed walls are seen together
   for (const auto& [cell, w] : beliefs.walls) {
     for (int side = 0; side < 4; ++side) {
@@ -197,8 +197,9 @@ void SceneRenderer::AddBeliefs(const FirmwareBeliefs& beliefs) {
       const double dy = side == 0 ? 0.5 : side == 2 ? -0.5 : 0;
       const mjtNum size[3] = {north_south ? dims.cell_m / 2 : 0.004,
                               north_south ? 0.004 : dims.cell_m / 2, 0.002};
-      const mjtNum pos[3] = {dims.cell_m * (cell.first + 0.5 + dx),
-                             dims.cell_m * (cell.second + 0.5 + dy), dims.wall_height_m + 0.003};
+      const Pose2D c = centre({cell.first, cell.second});
+      const mjtNum pos[3] = {c.x_m + dims.cell_m * dx, c.y_m + dims.cell_m * dy,
+                             dims.wall_height_m + 0.003};
       mjv_initGeom(g, mjGEOM_BOX, size, pos, nullptr, kBelievedWall);
       g->category = mjCAT_DECOR;
       g->emission = 0.5f;
@@ -208,18 +209,17 @@ void SceneRenderer::AddBeliefs(const FirmwareBeliefs& beliefs) {
     mjvGeom* g = NewGeom();
     if (g == nullptr) return;
     const mjtNum size[3] = {0.03, 0.03, 0.0005};
-    const mjtNum pos[3] = {centre(c.x), centre(c.y), 0.001};
+    const Pose2D p = centre(c);
+    const mjtNum pos[3] = {p.x_m, p.y_m, 0.001};
     mjv_initGeom(g, mjGEOM_BOX, size, pos, nullptr, kVisited);
     g->category = mjCAT_DECOR;
   }
   for (size_t i = 1; i < beliefs.path.size(); ++i) {
     mjvGeom* g = NewGeom();
     if (g == nullptr) return;
-    const Cell& a = beliefs.path[i - 1];
-    const Cell& b = beliefs.path[i];
     mjv_initGeom(g, mjGEOM_CAPSULE, nullptr, nullptr, nullptr, kPlannedPath);
-    mjv_makeConnector(g, mjGEOM_CAPSULE, 0.006, centre(a.x), centre(a.y), 0.004, centre(b.x),
-                      centre(b.y), 0.004);
+    const Pose2D pa = centre(beliefs.path[i - 1]), pb = centre(beliefs.path[i]);
+    mjv_makeConnector(g, mjGEOM_CAPSULE, 0.006, pa.x_m, pa.y_m, 0.004, pb.x_m, pb.y_m, 0.004);
     g->category = mjCAT_DECOR;
     g->emission = 0.5f;
   }

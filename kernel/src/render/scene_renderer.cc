@@ -21,17 +21,26 @@ constexpr float kPlannedPath[4] = {1, 0.85f, 0.1f, 1};
 // the scene's geoms beyond the models' own: beams, and beliefs about a 32x32 maze at most
 constexpr int kExtraGeoms = 8 + 32 * 32 * 6;
 
-// the tof_sensor plugin's default range_max_m: the VL53L0X's full scale (table 3.8)
-constexpr double kDefaultTofRange_m = 1.2;
+// a parameter's declared default, as the component's type gives it
+double DefaultNumber(const unimouse_component_type& type, const std::string& name) {
+  for (int i = 0; i < type.nparam; ++i) {
+    if (name == type.params[i].name) return type.params[i].default_number;
+  }
+  return 0;
+}
 
 }  // namespace
 
 std::vector<BeamView> TofBeams(const RobotSpec& robot, const Kernel& kernel) {
   std::vector<BeamView> beams;
+  const std::vector<ComponentInstance>& bound = kernel.model().components;
   for (const ComponentSpec& c : robot.components) {
     if (c.type != "unimouse.tof_sensor" || !c.params.IsMap()) continue;
+    const auto instance = std::find_if(
+        bound.begin(), bound.end(), [&](const ComponentInstance& i) { return i.name == c.name; });
+    if (instance == bound.end()) continue;
     BeamView beam;
-    beam.range_max_m = kDefaultTofRange_m;
+    beam.range_max_m = DefaultNumber(*instance->type, "range_max_m");
     for (const auto& [key, value] : c.params.entries) {
       if (key.scalar == "site") {
         beam.site = mj_name2id(&kernel.mj_model(), mjOBJ_SITE, value.scalar.c_str());

@@ -9,11 +9,11 @@
 #include <filesystem>
 
 #include "bundled_components.h"
+#include "egl_context.h"
 #include "kernel.h"
 #include "png_file.h"
-#include "render/egl_context.h"
-#include "render/run_pictures.h"
-#include "render/scene_renderer.h"
+#include "run_pictures.h"
+#include "scene_renderer.h"
 
 namespace {
 

@@ -8,7 +8,7 @@
 
 namespace unimouse {
 
-/// Registers battery, H-bridge, DC motor, encoder, ToF sensor, logger and link.
+/// Registers every plugin that plugins/CMakeLists.txt adds, compiled into the program.
 void AddBundledComponents(PluginRegistry& registry);
 
 }  // namespace unimouse

@@ -6,8 +6,8 @@
 
 #include "commands.h"
 #include "install_paths.h"
-#include "lua/scenario.h"
 #include "maze_commands.h"
+#include "scenario.h"
 #include "unimouse/errors.h"
 
 int main(int argc, char** argv) {

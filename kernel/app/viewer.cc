@@ -8,7 +8,7 @@
 #include <filesystem>
 
 #include "png_file.h"
-#include "render/scene_renderer.h"
+#include "scene_renderer.h"
 #include "unimouse/errors.h"
 
 namespace unimouse {

@@ -6,8 +6,8 @@
 
 #include <filesystem>
 
+#include "egl_context.h"
 #include "png_file.h"
-#include "render/egl_context.h"
 #include "run_program.h"
 #include "text_file.h"
 

@@ -3,18 +3,14 @@
 // defaults, so the documentation cannot drift from the code.
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <fstream>
 #include <map>
+#include <set>
 #include <sstream>
 
-#include "battery.h"
-#include "dc_motor.h"
-#include "encoder.h"
-#include "h_bridge.h"
-#include "link.h"
-#include "logger.h"
+#include "bundled_plugins.h"
 #include "plugin_registry.h"
-#include "tof_sensor.h"
 
 namespace unimouse {
 namespace {
@@ -63,13 +59,22 @@ void ExpectReadmeMatches(const std::string& folder, const unimouse_component_typ
 }
 
 TEST(ReadmeSchemaTest, EveryPluginReadmeListsItsParameters) {
-  ExpectReadmeMatches("battery", ComponentType<plugins::Battery>());
-  ExpectReadmeMatches("h_bridge", ComponentType<plugins::HBridge>());
-  ExpectReadmeMatches("dc_motor", ComponentType<plugins::DcMotor>());
-  ExpectReadmeMatches("encoder", ComponentType<plugins::Encoder>());
-  ExpectReadmeMatches("tof_sensor", ComponentType<plugins::TofSensor>());
-  ExpectReadmeMatches("logger", ComponentType<plugins::Logger>());
-  ExpectReadmeMatches("link", ComponentType<link::Link>());
+  std::set<std::string> checked;
+#define UNIMOUSE_CHECK_README(folder, type)            \
+  ExpectReadmeMatches(#folder, ComponentType<type>()); \
+  checked.insert(#folder);
+  UNIMOUSE_BUNDLED_PLUGINS(UNIMOUSE_CHECK_README)
+#undef UNIMOUSE_CHECK_README
+
+  // the list is every plugin folder of the source tree
+  std::set<std::string> folders;
+  for (const auto& entry :
+       std::filesystem::directory_iterator(std::string(UNIMOUSE_SOURCE_DIR) + "/plugins")) {
+    if (std::filesystem::exists(entry.path() / "plugin.cc")) {
+      folders.insert(entry.path().filename().string());
+    }
+  }
+  EXPECT_EQ(checked, folders);
 }
 
 }  // namespace

@@ -6,10 +6,10 @@
 #include <cmath>
 #include <numbers>
 
+#include "egl_context.h"
 #include "inline_assets.h"
 #include "plugin_rig.h"
-#include "render/egl_context.h"
-#include "render/scene_renderer.h"
+#include "scene_renderer.h"
 
 namespace unimouse {
 namespace {

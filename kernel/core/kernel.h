@@ -1,0 +1,131 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The kernel: a world, the robot's components bound to it, and the one tick that advances them.
+//
+// Kernel::Step, the only place the tick order lives:
+//   1. the boundary hook (scenario scripts): may move the robot or change signals
+//   2. collision proxies follow the robot (see world.h)
+//   3. mj_step1: kinematics, contacts and velocities for the current state
+//   4. Sense of every due component, in YAML order; mjData is read-only
+//   5. Actuate of every due component, in YAML order; writes controls
+//   6. mj_step2: actuation, constraint forces, integration
+#ifndef UNIMOUSE_CORE_KERNEL_H_
+#define UNIMOUSE_CORE_KERNEL_H_
+
+#include <cstdint>
+#include <deque>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "model.h"
+#include "plugin_registry.h"
+#include "robot_spec.h"
+#include "state.h"
+
+namespace unimouse {
+
+/// Choices made per run rather than per robot.
+/// Receives every log line at sim time time_s: level (UNIMOUSE_LOG_*), the component's name
+/// and the message.
+using LogSink = std::function<void(double time_s, int level, const std::string& component,
+                                   const std::string& message)>;
+
+/// Choices made per run rather than per robot.
+struct KernelOptions {
+  uint64_t seed = 1;
+  std::string output_dir = ".";  ///< where components write their files
+  std::optional<Pose2D> spawn;   ///< default: the maze's start, or the origin facing north
+  LogSink log_sink;              ///< default: warnings and errors to stderr
+  std::vector<StaticBox> boxes;  ///< more walls and obstacles, as a scenario adds
+};
+
+class Kernel {
+ public:
+  Kernel(const Kernel&) = delete;
+  Kernel& operator=(const Kernel&) = delete;
+
+  /// Builds the world, validates, creates and binds every component, and resets. Throws
+  /// InputError with file:line:col.
+  static std::unique_ptr<Kernel> Create(const RobotSpec& robot, const Maze* maze,
+                                        const PluginRegistry& registry,
+                                        const KernelOptions& options);
+  /// Same, with default options and the given seed.
+  static std::unique_ptr<Kernel> Create(const RobotSpec& robot, const Maze* maze,
+                                        const PluginRegistry& registry, uint64_t seed) {
+    KernelOptions options;
+    options.seed = seed;
+    return Create(robot, maze, registry, options);
+  }
+
+  /// Returns to time 0: the robot at its spawn pose, fresh random streams, components reset.
+  void Reset();
+  /// Advances one physics step. Throws RuntimeFault when a component fails or physics diverges.
+  void Step();
+  /// Ends the run: every component's finish hook, so that nothing it holds is lost. Call it
+  /// once, also after a RuntimeFault; a component failing here is reported, not thrown.
+  void Finish();
+
+  /// Logs a line as `source` at the current sim time, as components do.
+  void Log(int level, const std::string& source, const std::string& message) {
+    Emit(level, source, message);
+  }
+
+  /// Also hands every logged line to `listener` (a scenario's events), besides the log sink.
+  void AddMessageListener(LogSink listener) { listeners_.push_back(std::move(listener)); }
+
+  /// Runs at the start of every tick, before physics; scenario scripts live here.
+  void SetBoundaryHook(std::function<void()> hook) { boundary_hook_ = std::move(hook); }
+
+  const Model& model() const { return model_; }
+  const mjModel& mj_model() const { return model_.mj(); }
+  const World& world() const { return *model_.world; }
+  /// Writable for placing the robot and moving the collision proxies.
+  World& world() { return *model_.world; }
+  State& state() { return *state_; }
+  const State& state() const { return *state_; }
+  double timestep_s() const { return model_.timestep_s(); }
+  uint64_t seed() const { return seed_; }
+
+ private:
+  struct HookContext {
+    Kernel* kernel;
+    int component;
+  };
+  struct BindSession;
+
+  struct StoredMessage {
+    double time_s;
+    int level;
+    std::string source;
+    std::string text;
+  };
+
+  explicit Kernel(const KernelOptions& options) : seed_(options.seed), options_(options) {}
+  void BindComponent(int index);
+  // runs one hook of component `index` with a fresh tick; `hook` is one of the type's pointers
+  void RunHook(int index, void (*hook)(const void*, const unimouse_tick*));
+  void Emit(int level, const std::string& component, const std::string& message);
+  void ThrowIfFaulted();
+  void ForgetSeenMessages();
+
+  uint64_t seed_;
+  KernelOptions options_;
+  Model model_;
+  std::unique_ptr<State> state_;
+  // bind-time bookkeeping: which component writes, and first reads, each signal
+  std::vector<int> signal_writer_;
+  std::vector<int> signal_first_reader_;
+  std::function<void()> boundary_hook_;
+  std::vector<LogSink> listeners_;
+  std::string fault_;
+  // the run's messages, oldest first; what each component has already been shown of them
+  std::deque<StoredMessage> messages_;
+  std::vector<unimouse_message> message_views_;
+  std::vector<size_t> message_cursor_;
+};
+
+}  // namespace unimouse
+
+#endif  // UNIMOUSE_CORE_KERNEL_H_

@@ -1,0 +1,50 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Everything constant for a run: the world, the robot's components bound to it, and the tables
+// that give a State its shape. A Model is built once by Kernel::Create; a State holds everything
+// that changes. The one part of the world that moves is the set of collision proxies, placed
+// before each step as a function of the State alone (see world.h).
+#ifndef UNIMOUSE_CORE_MODEL_H_
+#define UNIMOUSE_CORE_MODEL_H_
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "unimouse/plugin_abi.h"
+#include "world.h"
+#include "yaml_doc.h"
+
+namespace unimouse {
+
+/// One component of the robot, created and bound.
+struct ComponentInstance {
+  const unimouse_component_type* type = nullptr;
+  void* self = nullptr;  ///< owned: destroyed through type->destroy with the Model
+  std::string name;
+  SourceLocation location;
+  int every_n_steps = 1;
+  int state_offset = 0;
+  int nstate = 0;
+};
+
+struct Model {
+  Model() = default;
+  Model(const Model&) = delete;
+  Model& operator=(const Model&) = delete;
+  ~Model();
+
+  const mjModel& mj() const { return world->model(); }
+  double timestep_s() const { return world->model().opt.timestep; }
+  /// Returns a signal's id, or -1.
+  int FindSignal(const std::string& name) const;
+
+  std::unique_ptr<World> world;
+  std::vector<ComponentInstance> components;  ///< in YAML order: the order of every phase
+  std::vector<std::string> signal_names;
+  std::vector<std::string> rng_names;
+  int component_state_size = 0;
+};
+
+}  // namespace unimouse
+
+#endif  // UNIMOUSE_CORE_MODEL_H_

@@ -1,0 +1,97 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// A robot as described by its YAML file: a tree of rigid bodies with joints, geoms and sites,
+// the actuators MuJoCo applies torques through, and the components (plugins) that model its
+// electronics. Plain data; the world builder turns it into MJCF.
+#ifndef UNIMOUSE_CORE_ROBOT_SPEC_H_
+#define UNIMOUSE_CORE_ROBOT_SPEC_H_
+
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "yaml_doc.h"
+
+namespace unimouse {
+
+using Vec3 = std::array<double, 3>;
+
+struct GeomSpec {
+  std::string name;
+  std::string type;       ///< box, sphere, cylinder or capsule
+  Vec3 size_m{};          ///< box: full extents along x, y, z
+  double radius_m = 0;    ///< sphere, cylinder, capsule
+  double length_m = 0;    ///< cylinder, capsule: along the geom's z axis
+  Vec3 pos_m{};           ///< in the body frame
+  Vec3 euler_deg{};       ///< xyz rotation in the body frame
+  double mass_kg = 0;     ///< a body's geoms must weigh something in total
+  double friction = 0.6;  ///< Coulomb sliding coefficient
+  bool contact = true;    ///< false: seen and weighed, never touched
+  std::array<double, 4> rgba{0.6, 0.6, 0.6, 1};
+  SourceLocation location;
+};
+
+struct SiteSpec {
+  std::string name;
+  Vec3 pos_m{};
+  Vec3 euler_deg{};  ///< the site's x axis is where a sensor on it points
+  SourceLocation location;
+};
+
+struct JointSpec {
+  std::string name;
+  std::string type;    ///< hinge or ball
+  Vec3 axis{0, 1, 0};  ///< hinge axis in the body frame
+  double damping_nm_s = 0;
+  double armature_kg_m2 = 0;
+  SourceLocation location;
+};
+
+struct BodySpec {
+  std::string name;
+  Vec3 pos_m{};  ///< relative to the parent body; ignored for the chassis
+  Vec3 euler_deg{};
+  std::optional<JointSpec> joint;  ///< none for the chassis, which floats freely
+  std::vector<GeomSpec> geoms;
+  std::vector<SiteSpec> sites;
+  std::vector<BodySpec> bodies;
+  SourceLocation location;
+};
+
+/// A torque actuator on a hinge; ctrl is the joint torque in N m.
+struct ActuatorSpec {
+  std::string name;
+  std::string joint;
+  SourceLocation location;
+};
+
+/// One entry of the components list; params are validated against the type's schema later.
+struct ComponentSpec {
+  std::string type;
+  std::string name;
+  std::optional<double> period_s;
+  YamlNode params;
+  SourceLocation location;
+};
+
+struct RobotSpec {
+  std::string name;
+  std::string file;
+  double timestep_s = 0.001;
+  std::string integrator = "Euler";
+  BodySpec chassis;
+  std::vector<ActuatorSpec> actuators;
+  /// Signals the outside world writes (the firmware link, a scenario): components may read them
+  /// without a component writing them.
+  std::vector<std::string> inputs;
+  std::vector<ComponentSpec> components;
+};
+
+/// Reads and validates a robot file; throws InputError with file:line:col.
+RobotSpec LoadRobotSpec(const std::string& path);
+/// Reads and validates robot YAML text; `file` names it in errors.
+RobotSpec ParseRobotSpec(const std::string& text, const std::string& file);
+
+}  // namespace unimouse
+
+#endif  // UNIMOUSE_CORE_ROBOT_SPEC_H_

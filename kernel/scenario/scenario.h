@@ -1,0 +1,132 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Scenarios: Lua 5.4 scripts that build a challenge's world, watch the run and decide pass or
+// fail. A scenario file returns `sim.scenario { name, params, world, run, finish }`:
+//
+//   - params: names with defaults; `unimouse run --set name=value` overrides them;
+//   - world(p): before physics exists, adds walls and boxes, loads a maze, places the robot;
+//   - run(p): a coroutine resumed once per tick at the tick boundary; it waits on sim time
+//     (sim.wait, sim.wait_until), reads the robot and signals, and ends with sim.pass/sim.fail;
+//     handlers added with sim.on are called at the boundary before it resumes;
+//   - finish(p, ended), optional: once the run is over, for last scores or a late decision.
+//
+// Sandboxed: no io, os, load, dofile or require; math.random is the run's seeded stream; print
+// goes to the run's log; an instruction budget stops a script that never yields, naming its
+// file:line. A script error stops the run with exit code 3, its Lua traceback kept.
+#ifndef UNIMOUSE_SCENARIO_SCENARIO_H_
+#define UNIMOUSE_SCENARIO_SCENARIO_H_
+
+#include <functional>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "kernel.h"
+#include "maze.h"
+#include "world.h"
+
+struct lua_State;
+
+namespace unimouse {
+
+/// The scenario API's level: new functions carry the level they came with.
+inline constexpr int kScenarioApiLevel = 2;
+
+/// Returns every `sim.*` function with its signature, meaning and level, a line each.
+std::string DescribeScenarioApi();
+
+/// What a scenario's world phase asked for.
+struct ScenarioWorld {
+  std::unique_ptr<Maze> maze;
+  std::vector<StaticBox> boxes;
+  std::optional<Pose2D> spawn;
+};
+
+/// How a scenario ended.
+struct ScenarioOutcome {
+  std::string status = "running";  ///< passed, failed, or running (not decided)
+  std::string reason;
+  std::map<std::string, double> scores;
+};
+
+class Scenario {
+ public:
+  /// Loads a scenario file with parameter overrides ("name" -> "value" from --set). Throws
+  /// InputError for a missing file or a bad override (exit 2), RuntimeFault for a script error
+  /// (exit 3).
+  static std::unique_ptr<Scenario> Load(const std::string& path,
+                                        const std::map<std::string, std::string>& overrides,
+                                        uint64_t seed);
+  ~Scenario();
+
+  const std::string& name() const { return name_; }
+  /// Runs the world phase.
+  ScenarioWorld BuildWorld();
+  /// Starts the run phase on a kernel: the coroutine runs at each tick boundary from now on.
+  /// `controller`, if given, is a Lua file returning function(sim_time_s) called every tick
+  /// after the scenario, with the same API, to drive the robot (tests, teaching).
+  void Attach(Kernel& kernel, const std::string& controller = "");
+  bool finished() const { return outcome_.status != "running"; }
+  const ScenarioOutcome& outcome() const { return outcome_; }
+  /// Parameters after overrides, as text, for the result.
+  const std::map<std::string, std::string>& params() const { return param_text_; }
+  /// The scenario's time limit (parameter time_limit_s), or 0 for none.
+  double time_limit_s() const { return time_limit_s_; }
+  /// The lines a scenario shows on screen (sim.hud_set).
+  const std::vector<std::string>& hud() const { return hud_; }
+  /// The Lua traceback of the error that stopped the run; empty when none did.
+  const std::string& traceback() const { return traceback_; }
+  /// Takes a picture for sim.snapshot_save: file (relative to the run's output directory),
+  /// camera, width, height; returns "" or why it could not.
+  using PictureTaker = std::function<std::string(const std::string& file, const std::string& camera,
+                                                 int width, int height)>;
+  void SetPictureTaker(PictureTaker taker) { picture_taker_ = std::move(taker); }
+  /// Saves a picture from `camera`, events/<kind>_<n>.png, each time the event `kind` happens
+  /// (sim.on's kinds). Throws InputError for an unknown kind.
+  void SnapshotOn(const std::string& kind, const std::string& camera, int width, int height);
+
+  /// Once the run is over (decided, or out of time), calls the scenario's finish(params,
+  /// {status, reason, time_s}) if it has one: it may add scores and decide an undecided run.
+  /// Throws RuntimeFault on a script error.
+  void Finish();
+
+ private:
+  Scenario() = default;
+  void Tick();
+  // calls the function under its `nargs` arguments on the stack; a Lua error throws Throw's fault
+  void Call(int nargs, const char* what);
+  // keeps and logs a Lua error's traceback, then throws its first line (file:line) as the fault
+  [[noreturn]] void Throw(const std::string& traceback, const char* what);
+
+  lua_State* L_ = nullptr;
+  std::string file_;
+  std::string name_;
+  int scenario_ref_ = -1;    // the returned table
+  int params_ref_ = -1;      // parameters after overrides
+  int coroutine_ref_ = -1;   // the run coroutine
+  int controller_ref_ = -1;  // the controller function
+  int dispatch_ref_ = -1;    // the prelude's event dispatcher
+  lua_State* coroutine_ = nullptr;
+  bool started_ = false;
+  bool finish_called_ = false;
+  Kernel* kernel_ = nullptr;
+  ScenarioWorld world_;
+  ScenarioOutcome outcome_;
+  std::map<std::string, std::string> param_text_;
+  double time_limit_s_ = 0;
+  std::vector<std::string> hud_;
+  uint64_t seed_ = 1;
+  std::unique_ptr<std::vector<Cell>> maze_goals_;  // of the maze the world loaded
+  Cell maze_start_;
+  std::string traceback_;
+  std::vector<std::pair<double, std::string>> firmware_lines_;  // not yet handed to events
+  PictureTaker picture_taker_;
+
+  friend struct ScenarioApi;
+};
+
+}  // namespace unimouse
+
+#endif  // UNIMOUSE_SCENARIO_SCENARIO_H_

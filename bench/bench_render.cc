@@ -46,7 +46,7 @@ void BM_Snapshot640x480(benchmark::State& bench) {
   Rig rig;
   auto egl = ContextOrSkip(bench);
   if (!egl) return;
-  SceneRenderer renderer(*rig.kernel, TofBeams(rig.robot, *rig.kernel));
+  SceneRenderer renderer(*rig.kernel);
   const DrawOptions draw{.hud = {"run 1  best -", "time 12.3 s of 600 s"}};
   for (auto _ : bench) benchmark::DoNotOptimize(renderer.Snapshot(640, 480, "top", draw));
   bench.SetLabel(egl->renderer());
@@ -57,7 +57,7 @@ void BM_Snapshot640x480Png(benchmark::State& bench) {
   Rig rig;
   auto egl = ContextOrSkip(bench);
   if (!egl) return;
-  SceneRenderer renderer(*rig.kernel, TofBeams(rig.robot, *rig.kernel));
+  SceneRenderer renderer(*rig.kernel);
   const std::string file = (std::filesystem::temp_directory_path() / "unimouse-bench.png").string();
   for (auto _ : bench) {
     const Image image = renderer.Snapshot(640, 480, "top", {});
@@ -77,7 +77,7 @@ void BM_RealTimeFactorWithSnapshots(benchmark::State& bench) {
     options.every_s = static_cast<double>(bench.range(0));
     std::unique_ptr<RunPictures> pictures;
     try {
-      pictures = std::make_unique<RunPictures>(*rig.kernel, rig.robot, options, nullptr, out);
+      pictures = std::make_unique<RunPictures>(*rig.kernel, options, nullptr, out);
     } catch (const RenderUnavailable& e) {
       bench.SkipWithError(e.what());
       return;

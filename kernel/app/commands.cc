@@ -105,15 +105,15 @@ std::unique_ptr<RunPictures> MakePictures(Kernel& kernel, const RobotSpec& robot
                                           const FirmwareBeliefs* beliefs,
                                           const RunOptions& options) {
   if (asked.Any() || options.no_pictures) {
-    return std::make_unique<RunPictures>(kernel, robot, asked, beliefs, options.out_dir);
+    return std::make_unique<RunPictures>(kernel, asked, beliefs, options.out_dir);
   }
   PictureOptions final_only = asked;
   final_only.at_end = true;
   try {
-    return std::make_unique<RunPictures>(kernel, robot, final_only, beliefs, options.out_dir);
+    return std::make_unique<RunPictures>(kernel, final_only, beliefs, options.out_dir);
   } catch (const RenderUnavailable& e) {
     std::printf("  no pictures: %s\n", e.what());
-    return std::make_unique<RunPictures>(kernel, robot, asked, beliefs, options.out_dir);
+    return std::make_unique<RunPictures>(kernel, asked, beliefs, options.out_dir);
   }
 }
 
@@ -191,8 +191,8 @@ int RunOnce(const RunOptions& options, Viewer* viewer) {
   const PictureOptions asked = PicturesFor(options);
   // what the firmware reports on the link's debug channels, for the pictures and the maze plot
   FirmwareBeliefs beliefs;
-  kernel->AddMessageListener(
-      [&beliefs](double, int, const std::string&, const std::string& line) { beliefs.Read(line); });
+  kernel->AddReportListener(
+      [&beliefs](const std::string&, const unimouse_report& report) { beliefs.Apply(report); });
   std::unique_ptr<RunPictures> pictures = MakePictures(*kernel, robot, asked, &beliefs, options);
   if (scenario) {
     pictures->SetHudSource([&scenario] { return scenario->hud(); });
@@ -212,7 +212,6 @@ int RunOnce(const RunOptions& options, Viewer* viewer) {
   result["duration_s"] = duration_s;
 
   const int64_t steps = std::llround(duration_s / kernel->timestep_s());
-  const int lockstep_signal = kernel->model().FindSignal("link.lockstep");
   // a viewer paces the run itself, to its own speed
   const bool pace = viewer == nullptr && (options.realtime || !options.link.empty());
   RealTimePacer pacer(kernel->timestep_s());
@@ -238,8 +237,7 @@ int RunOnce(const RunOptions& options, Viewer* viewer) {
     while (viewer == nullptr && !over()) {
       step();
       // hardware runs on the wall clock; firmware in lock-step sets the pace itself
-      const bool lockstep = lockstep_signal >= 0 && kernel->state().signals()[lockstep_signal] != 0;
-      if (pace && !lockstep) pacer.Wait(kernel->state().step());
+      if (pace && !kernel->firmware_paced()) pacer.Wait(kernel->state().step());
     }
     if (scenario) scenario->Finish();
   } catch (const RuntimeFault& e) {

@@ -129,8 +129,7 @@ void Viewer::Draw(const Run& run) {
 void Viewer::Show(const Run& run) {
   controls_.restart = false;
   glfwMakeContextCurrent(window_);
-  renderer_ = std::make_unique<SceneRenderer>(*run.kernel, TofBeams(*run.robot, *run.kernel),
-                                              mjFONTSCALE_150);
+  renderer_ = std::make_unique<SceneRenderer>(*run.kernel, mjFONTSCALE_150);
   glfwMakeContextCurrent(nullptr);
   if (frames_ == 0) controls_.preset = "free";
   using Clock = std::chrono::steady_clock;

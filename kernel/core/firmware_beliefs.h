@@ -1,17 +1,17 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // What a firmware reported about the maze on the link's debug channels (docs/protocol.md, ids
-// 10-12), rebuilt from the lines the link logs for them, so that a viewer or a picture can show
-// it while the run goes on.
+// 10-12), gathered from the typed reports the link hands the host (unimouse_report), so that a
+// viewer, a picture or a maze plot can show it while the run goes on.
 #ifndef UNIMOUSE_CORE_FIRMWARE_BELIEFS_H_
 #define UNIMOUSE_CORE_FIRMWARE_BELIEFS_H_
 
 #include <cstdint>
 #include <map>
-#include <string>
 #include <utility>
 #include <vector>
 
 #include "maze.h"
+#include "unimouse/plugin_abi.h"
 
 namespace unimouse {
 
@@ -25,9 +25,10 @@ struct FirmwareBeliefs {
   std::vector<Cell> visited;
   std::vector<Cell> path;  ///< the path it last planned
 
-  /// Takes one of the link's debug lines ("debug walls (3, 4): N E; known N E S W", "debug
-  /// visited (3, 4)", "debug path (0, 0) (0, 1)"); returns false for any other line.
-  bool Read(const std::string& line);
+  /// Takes one report; returns false for a kind that says nothing about the maze.
+  bool Apply(const unimouse_report& report);
+  /// Whether the firmware reported anything at all.
+  bool empty() const { return walls.empty() && visited.empty() && path.empty(); }
 };
 
 }  // namespace unimouse

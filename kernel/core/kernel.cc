@@ -19,14 +19,13 @@ namespace {
 constexpr int kOutsideWriter = -2;
 
 // MuJoCo would otherwise print to stdout, write MUJOCO_LOG.TXT into the working directory and,
-// on errors, exit(1)
+// on errors, exit(1); an error becomes a fault of the run, which still writes its result
 void InstallMujocoHandlers() {
   static std::once_flag once;
   std::call_once(once, [] {
     mju_user_warning = [](const char* message) { std::cerr << "MuJoCo: " << message << "\n"; };
     mju_user_error = [](const char* message) {
-      std::cerr << "MuJoCo error: " << message << "\n";
-      std::exit(kExitRuntimeFault);
+      throw RuntimeFault(std::string("MuJoCo error: ") + message);
     };
   });
 }
@@ -166,6 +165,11 @@ std::unique_ptr<Kernel> Kernel::Create(const RobotSpec& robot, const Maze* maze,
   k->state_ = std::make_unique<State>(k->mj_model(), k->model_.component_state_size,
                                       static_cast<int>(k->model_.signal_names.size()));
   k->message_cursor_.assign(k->model_.components.size(), 0);
+  if (options.start_components) {
+    for (size_t i = 0; i < k->model_.components.size(); ++i) {
+      k->StartComponent(static_cast<int>(i));
+    }
+  }
   k->Reset();
   return k;
 }
@@ -212,6 +216,18 @@ void Kernel::BindComponent(int index) {
     auto* s = static_cast<BindSession*>(ctx);
     s->kernel->model_.components[s->component].nstate = nstate < 0 ? 0 : nstate;
   };
+  b.declare_beam = [](void* ctx, int site, int length_signal, double range_max_m) {
+    auto* s = static_cast<BindSession*>(ctx);
+    Model& model = s->kernel->model_;
+    const bool valid = site >= 0 && site < s->kernel->mj_model().nsite && length_signal >= 0 &&
+                       length_signal < static_cast<int>(model.signal_names.size()) &&
+                       range_max_m > 0;
+    if (!valid) {
+      if (s->error.empty()) s->error = s->prefix + "declared a beam with an unknown site or signal";
+      return;
+    }
+    model.beams.push_back({site, length_signal, range_max_m});
+  };
 
   char error[512] = "";
   const int failed = c.type->bind(c.self, &b, error, sizeof(error));
@@ -219,6 +235,16 @@ void Kernel::BindComponent(int index) {
   if (failed) throw InputError(session.prefix + error);
   c.state_offset = model_.component_state_size;
   model_.component_state_size += c.nstate;
+}
+
+void Kernel::StartComponent(int index) {
+  const ComponentInstance& c = model_.components[index];
+  if (c.type->start == nullptr) return;
+  char error[512] = "";
+  if (c.type->start(c.self, error, sizeof(error)) != 0) {
+    throw InputError(c.location.ToString() + ": component '" + c.name + "' (" + c.type->name +
+                     "): " + error);
+  }
 }
 
 void Kernel::RunHook(int index, void (*hook)(const void*, const unimouse_tick*)) {
@@ -259,6 +285,15 @@ void Kernel::RunHook(int index, void (*hook)(const void*, const unimouse_tick*))
   };
   t.messages = message_views_.data() + seen;
   t.nmessages = static_cast<int>(message_views_.size() - seen);
+  t.report = [](void* ctx, const unimouse_report* report) {
+    auto* h = static_cast<HookContext*>(ctx);
+    if (report == nullptr || report->size < sizeof(unimouse_report)) return;
+    const std::string& source = h->kernel->model_.components[h->component].name;
+    for (const auto& listener : h->kernel->report_listeners_) listener(source, *report);
+  };
+  t.set_firmware_paced = [](void* ctx, int paced) {
+    static_cast<HookContext*>(ctx)->kernel->firmware_paced_ = paced != 0;
+  };
   hook(c.self, &t);
 }
 
@@ -324,6 +359,7 @@ void Kernel::Reset() {
   state_->rngs().clear();
   for (const auto& name : model_.rng_names) state_->rngs().emplace_back(seed_, name);
   state_->set_step(0);
+  firmware_paced_ = false;
 
   messages_.clear();
   message_views_.clear();

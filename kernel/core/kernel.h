@@ -26,7 +26,6 @@
 
 namespace unimouse {
 
-/// Choices made per run rather than per robot.
 /// Receives every log line at sim time time_s: level (UNIMOUSE_LOG_*), the component's name
 /// and the message.
 using LogSink = std::function<void(double time_s, int level, const std::string& component,
@@ -39,7 +38,13 @@ struct KernelOptions {
   std::optional<Pose2D> spawn;   ///< default: the maze's start, or the origin facing north
   LogSink log_sink;              ///< default: warnings and errors to stderr
   std::vector<StaticBox> boxes;  ///< more walls and obstacles, as a scenario adds
+  /// false: components are created and bound but not started (no port, process or file is
+  /// opened), as `unimouse check` does
+  bool start_components = true;
 };
+
+/// Receives every typed report a component hands the host, with the component's name.
+using ReportSink = std::function<void(const std::string& component, const unimouse_report&)>;
 
 class Kernel {
  public:
@@ -61,7 +66,8 @@ class Kernel {
 
   /// Returns to time 0: the robot at its spawn pose, fresh random streams, components reset.
   void Reset();
-  /// Advances one physics step. Throws RuntimeFault when a component fails or physics diverges.
+  /// Advances one physics step. Throws RuntimeFault when a component fails, MuJoCo reports an
+  /// error, or physics diverges.
   void Step();
   /// Ends the run: every component's finish hook, so that nothing it holds is lost. Call it
   /// once, also after a RuntimeFault; a component failing here is reported, not thrown.
@@ -74,6 +80,10 @@ class Kernel {
 
   /// Also hands every logged line to `listener` (a scenario's events), besides the log sink.
   void AddMessageListener(LogSink listener) { listeners_.push_back(std::move(listener)); }
+  /// Hands every typed report (unimouse_report) to `listener`.
+  void AddReportListener(ReportSink listener) { report_listeners_.push_back(std::move(listener)); }
+  /// Whether a component said that the firmware sets the pace (lock-step) since the last reset.
+  bool firmware_paced() const { return firmware_paced_; }
 
   /// Runs at the start of every tick, before physics; scenario scripts live here.
   void SetBoundaryHook(std::function<void()> hook) { boundary_hook_ = std::move(hook); }
@@ -104,6 +114,7 @@ class Kernel {
 
   explicit Kernel(const KernelOptions& options) : seed_(options.seed), options_(options) {}
   void BindComponent(int index);
+  void StartComponent(int index);
   // runs one hook of component `index` with a fresh tick; `hook` is one of the type's pointers
   void RunHook(int index, void (*hook)(const void*, const unimouse_tick*));
   void Emit(int level, const std::string& component, const std::string& message);
@@ -119,6 +130,8 @@ class Kernel {
   std::vector<int> signal_first_reader_;
   std::function<void()> boundary_hook_;
   std::vector<LogSink> listeners_;
+  std::vector<ReportSink> report_listeners_;
+  bool firmware_paced_ = false;
   std::string fault_;
   // the run's messages, oldest first; what each component has already been shown of them
   std::deque<StoredMessage> messages_;

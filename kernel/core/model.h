@@ -27,6 +27,14 @@ struct ComponentInstance {
   int nstate = 0;
 };
 
+/// A beam a component declared at bind (a ToF sensor's): drawn from a site along its x axis, as
+/// long as a signal's value.
+struct BeamSpec {
+  int site = -1;
+  int length_signal = -1;
+  double range_max_m = 0;  ///< a length this long means no target
+};
+
 struct Model {
   Model() = default;
   Model(const Model&) = delete;
@@ -42,6 +50,7 @@ struct Model {
   std::vector<ComponentInstance> components;  ///< in YAML order: the order of every phase
   std::vector<std::string> signal_names;
   std::vector<std::string> rng_names;
+  std::vector<BeamSpec> beams;
   int component_state_size = 0;
 };
 

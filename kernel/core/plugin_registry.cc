@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <iomanip>
 #include <sstream>
@@ -84,13 +85,14 @@ const unimouse_plugin_info* LoadPluginLibrary(const std::string& path) {
                      std::to_string(info->abi_version) + ", but this unimouse uses version " +
                      std::to_string(UNIMOUSE_ABI_VERSION) + rebuild);
   }
+  // tables only grow at the end: an older plugin's shorter type table is widened on adding
   if (info->size < sizeof(unimouse_plugin_info) ||
-      info->component_type_size < sizeof(unimouse_component_type)) {
+      info->component_type_size < UNIMOUSE_COMPONENT_TYPE_V1_SIZE) {
     throw InputError(path + " was built with an older plugin header (its tables are " +
                      std::to_string(info->size) + " and " +
                      std::to_string(info->component_type_size) + " bytes, this unimouse needs " +
                      std::to_string(sizeof(unimouse_plugin_info)) + " and " +
-                     std::to_string(sizeof(unimouse_component_type)) + ")" + rebuild);
+                     std::to_string(UNIMOUSE_COMPONENT_TYPE_V1_SIZE) + ")" + rebuild);
   }
   if (info->mujoco_version != mj_version()) {
     throw InputError(path + " was built against MuJoCo " + MujocoVersionText(info->mujoco_version) +
@@ -99,7 +101,7 @@ const unimouse_plugin_info* LoadPluginLibrary(const std::string& path) {
   }
   for (int i = 0; i < info->ntype; ++i) {
     const unimouse_component_type* t = info->types[i];
-    if (t == nullptr || t->size < sizeof(unimouse_component_type) || t->name == nullptr ||
+    if (t == nullptr || t->size < UNIMOUSE_COMPONENT_TYPE_V1_SIZE || t->name == nullptr ||
         t->create == nullptr || t->bind == nullptr || t->destroy == nullptr) {
       throw InputError(path + ": component type #" + std::to_string(i) +
                        " is incomplete (it needs a name, create, bind and destroy)" + rebuild);
@@ -117,8 +119,18 @@ std::vector<std::string> PluginSearchPath(const std::string& option_path) {
 }
 
 void PluginRegistry::Add(const unimouse_component_type* type, const std::string& library) {
-  auto [it, fresh] = entries_.emplace(type->name, Entry{type, library});
-  if (!fresh && it->second.type != type) {
+  const auto known = entries_.find(type->name);
+  if (known != entries_.end() && known->second.original == type) return;
+  // a table from an older header is copied into a whole one: what it lacks reads as NULL
+  const unimouse_component_type* whole = type;
+  if (type->size < sizeof(unimouse_component_type)) {
+    unimouse_component_type& copy = widened_.emplace_back();
+    std::memcpy(&copy, type, type->size);
+    copy.size = sizeof(copy);
+    whole = &copy;
+  }
+  auto [it, fresh] = entries_.emplace(type->name, Entry{whole, library, type});
+  if (!fresh) {
     throw InputError(library + ": component type '" + type->name + "' is already provided by " +
                      it->second.library);
   }

@@ -4,6 +4,7 @@
 #ifndef UNIMOUSE_CORE_PLUGIN_REGISTRY_H_
 #define UNIMOUSE_CORE_PLUGIN_REGISTRY_H_
 
+#include <deque>
 #include <map>
 #include <string>
 #include <vector>
@@ -23,9 +24,17 @@ std::vector<std::string> PluginSearchPath(const std::string& option_path);
 
 class PluginRegistry {
  public:
+  PluginRegistry() = default;
+  // entries may point into widened_, whose elements a move keeps in place and a copy would not
+  PluginRegistry(const PluginRegistry&) = delete;
+  PluginRegistry& operator=(const PluginRegistry&) = delete;
+  PluginRegistry(PluginRegistry&&) = default;
+  PluginRegistry& operator=(PluginRegistry&&) = default;
+
   struct Entry {
-    const unimouse_component_type* type = nullptr;
-    std::string library;  ///< file it came from, or "built-in"
+    const unimouse_component_type* type = nullptr;      ///< whole, as this kernel's header has it
+    std::string library;                                ///< file it came from, or "built-in"
+    const unimouse_component_type* original = nullptr;  ///< as the plugin handed it over
   };
 
   /// Adds a type compiled into the program.
@@ -43,6 +52,7 @@ class PluginRegistry {
  private:
   void Add(const unimouse_component_type* type, const std::string& library);
   std::map<std::string, Entry> entries_;
+  std::deque<unimouse_component_type> widened_;  // whole copies of older, shorter tables
 };
 
 /// Returns a parameter kind's name: number, integer, bool or string.

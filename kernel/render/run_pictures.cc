@@ -47,10 +47,9 @@ int64_t StepAt(double t_s, double timestep_s) { return std::llround(t_s / timest
 
 }  // namespace
 
-RunPictures::RunPictures(Kernel& kernel, const RobotSpec& robot, PictureOptions options,
-                         const FirmwareBeliefs* beliefs, std::string out_dir)
+RunPictures::RunPictures(Kernel& kernel, PictureOptions options, const FirmwareBeliefs* beliefs,
+                         std::string out_dir)
     : kernel_(kernel),
-      robot_(robot),
       options_(std::move(options)),
       out_dir_(std::move(out_dir)),
       beliefs_(beliefs) {
@@ -84,7 +83,7 @@ RunPictures::RunPictures(Kernel& kernel, const RobotSpec& robot, PictureOptions 
 
 void RunPictures::MakeRenderer() {
   egl_ = EglContext::Create();
-  renderer_ = std::make_unique<SceneRenderer>(kernel_, TofBeams(robot_, kernel_));
+  renderer_ = std::make_unique<SceneRenderer>(kernel_);
   renderer_name_ = egl_->renderer();
   egl_->Release();
 }

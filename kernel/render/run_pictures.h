@@ -18,7 +18,6 @@
 #include "egl_context.h"
 #include "firmware_beliefs.h"
 #include "kernel.h"
-#include "robot_spec.h"
 #include "scene_renderer.h"
 
 namespace unimouse {
@@ -45,8 +44,8 @@ class RunPictures {
   /// Makes the offscreen context now if `options` asks for any picture; throws RenderUnavailable
   /// or InputError (bad size, camera or time, no ffmpeg for a video).
   /// `beliefs`, if given, are drawn: what the firmware reported of the maze.
-  RunPictures(Kernel& kernel, const RobotSpec& robot, PictureOptions options,
-              const FirmwareBeliefs* beliefs, std::string out_dir);
+  RunPictures(Kernel& kernel, PictureOptions options, const FirmwareBeliefs* beliefs,
+              std::string out_dir);
   ~RunPictures();
 
   /// The HUD lines to draw, read at each picture.
@@ -71,7 +70,6 @@ class RunPictures {
   Image Take(const std::string& camera, int width, int height);
 
   Kernel& kernel_;
-  const RobotSpec& robot_;
   PictureOptions options_;
   std::string out_dir_;
   std::function<std::vector<std::string>()> hud_;

@@ -22,38 +22,7 @@ constexpr float kPlannedPath[4] = {1, 0.85f, 0.1f, 1};
 constexpr int kExtraGeoms = 8 + 32 * 32 * 6;
 
 // a parameter's declared default, as the component's type gives it
-double DefaultNumber(const unimouse_component_type& type, const std::string& name) {
-  for (int i = 0; i < type.nparam; ++i) {
-    if (name == type.params[i].name) return type.params[i].default_number;
-  }
-  return 0;
-}
-
 }  // namespace
-
-std::vector<BeamView> TofBeams(const RobotSpec& robot, const Kernel& kernel) {
-  std::vector<BeamView> beams;
-  const std::vector<ComponentInstance>& bound = kernel.model().components;
-  for (const ComponentSpec& c : robot.components) {
-    if (c.type != "unimouse.tof_sensor" || !c.params.IsMap()) continue;
-    const auto instance = std::find_if(
-        bound.begin(), bound.end(), [&](const ComponentInstance& i) { return i.name == c.name; });
-    if (instance == bound.end()) continue;
-    BeamView beam;
-    beam.range_max_m = DefaultNumber(*instance->type, "range_max_m");
-    for (const auto& [key, value] : c.params.entries) {
-      if (key.scalar == "site") {
-        beam.site = mj_name2id(&kernel.mj_model(), mjOBJ_SITE, value.scalar.c_str());
-      } else if (key.scalar == "range_out") {
-        beam.reading_signal = kernel.model().FindSignal(value.scalar);
-      } else if (key.scalar == "range_max_m") {
-        beam.range_max_m = value.AsNumber("range_max_m");
-      }
-    }
-    if (beam.site >= 0 && beam.reading_signal >= 0) beams.push_back(beam);
-  }
-  return beams;
-}
 
 void CheckCameraName(const std::string& name) {
   for (const char* known : kCameraNames) {
@@ -62,8 +31,8 @@ void CheckCameraName(const std::string& name) {
   throw InputError("unknown camera '" + name + "': top, chase or free");
 }
 
-SceneRenderer::SceneRenderer(const Kernel& kernel, std::vector<BeamView> beams, int font_scale)
-    : kernel_(kernel), beams_(std::move(beams)), font_scale_(font_scale) {
+SceneRenderer::SceneRenderer(const Kernel& kernel, int font_scale)
+    : kernel_(kernel), font_scale_(font_scale) {
   model_ = mj_copyModel(nullptr, &kernel.mj_model());
   model_->vis.quality.shadowsize = 1;  // no shadows (below): no 64 MB shadow map either
   data_ = mj_makeData(model_);
@@ -175,12 +144,13 @@ mjvGeom* SceneRenderer::NewGeom() {
 
 void SceneRenderer::AddBeams() {
   const std::vector<double>& signals = kernel_.state().signals();
-  for (const BeamView& b : beams_) {
+  // every beam a component declared at bind, whatever its type
+  for (const BeamSpec& b : kernel_.model().beams) {
     mjvGeom* g = NewGeom();
     if (g == nullptr) return;
     const mjtNum* from = data_->site_xpos + 3 * b.site;
     const mjtNum* r = data_->site_xmat + 9 * b.site;  // column 0: the beam's direction
-    const double reading = signals[static_cast<size_t>(b.reading_signal)];
+    const double reading = signals[static_cast<size_t>(b.length_signal)];
     const bool hit = reading < b.range_max_m;
     const double length = std::clamp(reading, 0.0, b.range_max_m);
     mjv_initGeom(g, mjGEOM_CAPSULE, nullptr, nullptr, nullptr, hit ? kHit : kMiss);

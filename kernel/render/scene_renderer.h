@@ -18,7 +18,6 @@
 
 #include "firmware_beliefs.h"
 #include "kernel.h"
-#include "robot_spec.h"
 
 namespace unimouse {
 
@@ -27,16 +26,6 @@ namespace unimouse {
 inline constexpr const char* kCameraNames[] = {"top", "chase", "free"};
 /// Throws InputError unless `name` is one of them.
 void CheckCameraName(const std::string& name);
-
-/// A ToF sensor's beam as drawn: from its site along the site's x axis, as long as its reading.
-struct BeamView {
-  int site = -1;
-  int reading_signal = -1;
-  double range_max_m = 0;  ///< a reading this long means no target: drawn red
-};
-
-/// Returns the beams of the robot's ToF sensors (components of type unimouse.tof_sensor).
-std::vector<BeamView> TofBeams(const RobotSpec& robot, const Kernel& kernel);
 
 /// What goes into a picture besides the scene itself.
 struct DrawOptions {
@@ -62,8 +51,7 @@ class SceneRenderer {
 
   /// Uploads the kernel's model to the OpenGL context current on this thread. Text is drawn at
   /// `font_scale` (an mjtFontScale): 100 suits pictures of 640x480, 150 a large window.
-  SceneRenderer(const Kernel& kernel, std::vector<BeamView> beams,
-                int font_scale = mjFONTSCALE_100);
+  SceneRenderer(const Kernel& kernel, int font_scale = mjFONTSCALE_100);
   SceneRenderer(const SceneRenderer&) = delete;
   SceneRenderer& operator=(const SceneRenderer&) = delete;
   ~SceneRenderer();
@@ -96,7 +84,6 @@ class SceneRenderer {
   mjvGeom* NewGeom();
 
   const Kernel& kernel_;
-  std::vector<BeamView> beams_;
   int font_scale_;
   mjModel* model_ = nullptr;  // a copy of the physics model, with a larger offscreen buffer
   mjData* data_ = nullptr;

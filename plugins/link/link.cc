@@ -97,6 +97,7 @@ void Link::Apply(const SenseContext& ctx, const FirmwareFrame& f, bool* step_don
           if (s[kLockstep] == 0) ctx.Log("lock-step on: the simulation waits for the firmware");
           s[kLockstep] = 1;
           ctx.Write(lockstep_, 1);
+          ctx.SetFirmwarePaced(true);
           break;
         case UNIMOUSE_MANAGER_STEP_DONE:
           *step_done = true;
@@ -109,21 +110,47 @@ void Link::Apply(const SenseContext& ctx, const FirmwareFrame& f, bool* step_don
     case UNIMOUSE_ID_LOG:
       ctx.Firmware(f.text);
       break;
-    case UNIMOUSE_ID_DEBUG_WALLS:
+    case UNIMOUSE_ID_DEBUG_WALLS: {
       beliefs_.walls[{f.data[0], f.data[1]}] = {f.data[2], f.data[3]};
+      unimouse_report r{};
+      r.size = sizeof(r);
+      r.kind = UNIMOUSE_REPORT_WALLS;
+      r.x = f.data[0];
+      r.y = f.data[1];
+      r.walls = f.data[2];
+      r.known = f.data[3];
+      ctx.Report(r);
       std::snprintf(text, sizeof(text), "debug walls (%d, %d): %s; known %s", f.data[0], f.data[1],
                     Sides(f.data[2]).c_str(), Sides(f.data[3]).c_str());
       ctx.Log(text);
       break;
-    case UNIMOUSE_ID_DEBUG_VISITED:
+    }
+    case UNIMOUSE_ID_DEBUG_VISITED: {
       beliefs_.visited.emplace_back(f.data[0], f.data[1]);
+      unimouse_report r{};
+      r.size = sizeof(r);
+      r.kind = UNIMOUSE_REPORT_VISITED;
+      r.x = f.data[0];
+      r.y = f.data[1];
+      ctx.Report(r);
       std::snprintf(text, sizeof(text), "debug visited (%d, %d)", f.data[0], f.data[1]);
       ctx.Log(text);
       break;
+    }
     case UNIMOUSE_ID_DEBUG_PATH: {
       beliefs_.path.clear();
-      for (size_t i = 0; i + 1 < f.data.size(); i += 2)
+      std::vector<int> cells;
+      for (size_t i = 0; i + 1 < f.data.size(); i += 2) {
         beliefs_.path.emplace_back(f.data[i], f.data[i + 1]);
+        cells.push_back(f.data[i]);
+        cells.push_back(f.data[i + 1]);
+      }
+      unimouse_report r{};
+      r.size = sizeof(r);
+      r.kind = UNIMOUSE_REPORT_PATH;
+      r.cells = cells.data();
+      r.ncells = static_cast<int>(cells.size() / 2);
+      ctx.Report(r);
       std::string path = "debug path";
       for (size_t i = 0; i + 1 < f.data.size(); i += 2) {
         path += " (" + std::to_string(f.data[i]) + ", " + std::to_string(f.data[i + 1]) + ")";
@@ -131,10 +158,17 @@ void Link::Apply(const SenseContext& ctx, const FirmwareFrame& f, bool* step_don
       ctx.Log(path);
       break;
     }
-    case UNIMOUSE_ID_DEBUG_VALUE:
+    case UNIMOUSE_ID_DEBUG_VALUE: {
+      unimouse_report r{};
+      r.size = sizeof(r);
+      r.kind = UNIMOUSE_REPORT_VALUE;
+      r.name = f.text.c_str();
+      r.value = f.number;
+      ctx.Report(r);
       std::snprintf(text, sizeof(text), "debug value %s = %.9g", f.text.c_str(), f.number);
       ctx.Log(text);
       break;
+    }
   }
 }
 

@@ -15,6 +15,8 @@ void TofSensor::Bind(BindContext& ctx) {
   range_ = ctx.WriteSignal(p_.range_out);
   if (!p_.true_range_out.empty()) true_range_ = ctx.WriteSignal(p_.true_range_out);
   noise_ = ctx.Rng(ctx.name());
+  // the host draws the beam from the declaration alone
+  ctx.DeclareBeam(site_, range_, p_.range_max_m);
 }
 
 void TofSensor::Reset(const ResetContext& ctx) const {

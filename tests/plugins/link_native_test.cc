@@ -116,12 +116,15 @@ TEST_F(NativeLinkTest, WhatTheFirmwareReportsIsKeptAndDrawn) {
   EXPECT_NE(o.output.find("debug path (0, 0) (0, 1) (0, 2)"), std::string::npos) << o.output;
 }
 
-// the viewer and the pictures rebuild the firmware's beliefs from the lines the link logs
-TEST_F(NativeLinkTest, WhatTheFirmwareReportsIsRebuiltFromTheLinksLog) {
+// the viewer and the pictures gather the firmware's beliefs from the link's typed reports
+TEST_F(NativeLinkTest, WhatTheFirmwareReportsReachesTheHostAsTypedReports) {
   auto kernel = Make("");
   FirmwareBeliefs beliefs;
-  kernel->AddMessageListener(
-      [&](double, int, const std::string&, const std::string& line) { beliefs.Read(line); });
+  std::vector<double> values;
+  kernel->AddReportListener([&](const std::string& source, const unimouse_report& r) {
+    EXPECT_EQ(source, "link");
+    if (!beliefs.Apply(r)) values.push_back(r.value);
+  });
   for (int i = 0; i < 10; ++i) kernel->Step();
   kernel->Finish();
   // what the test firmware sends: walls (0, 0) E S W of N E S W known, visited (0, 0), a path
@@ -131,7 +134,8 @@ TEST_F(NativeLinkTest, WhatTheFirmwareReportsIsRebuiltFromTheLinksLog) {
   EXPECT_EQ(beliefs.walls.begin()->second.known, 15);
   EXPECT_EQ(beliefs.visited, (std::vector<Cell>{{0, 0}}));
   EXPECT_EQ(beliefs.path, (std::vector<Cell>{{0, 0}, {0, 1}, {0, 2}}));
-  EXPECT_FALSE(beliefs.Read("debug value speed = 1"));
+  // a named value is a report too, though not about the maze
+  EXPECT_EQ(values, std::vector<double>{1.5});
 }
 
 TEST_F(NativeLinkTest, TheRunCommandRunsLockstepFirmwareFasterThanRealTime) {

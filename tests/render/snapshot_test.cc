@@ -42,7 +42,7 @@ class SnapshotTest : public ::testing::Test {
     options.output_dir = ::testing::TempDir();
     kernel_ = MakeKernel(yaml, maze, options);
     kernel_->Step();
-    renderer_ = std::make_unique<SceneRenderer>(*kernel_, TofBeams(robot_, *kernel_));
+    renderer_ = std::make_unique<SceneRenderer>(*kernel_);
   }
 
   Image Picture(int width, int height, DrawOptions draw, const std::string& camera = "top") {
@@ -216,7 +216,12 @@ TEST_F(SnapshotTest, TheSameSeedGivesTheSameImage) {
 TEST_F(SnapshotTest, DrawsTheWallsTheFirmwareBelievesIn) {
   Build(&Japan2018(), std::nullopt);
   FirmwareBeliefs beliefs;
-  ASSERT_TRUE(beliefs.Read("debug walls (0, 0): E S W; known N E S W"));
+  unimouse_report walls{};
+  walls.size = sizeof(walls);
+  walls.kind = UNIMOUSE_REPORT_WALLS;
+  walls.walls = 2 | 4 | 8;  // east, south, west
+  walls.known = 15;
+  ASSERT_TRUE(beliefs.Apply(walls));
   DrawOptions draw = kSceneOnly;
   draw.firmware = &beliefs;
   const Image plain = Picture(640, 480, kSceneOnly);

@@ -39,6 +39,10 @@ int main(int argc, char** argv) {
         UNIMOUSE_SIDE_EAST | UNIMOUSE_SIDE_SOUTH | UNIMOUSE_SIDE_WEST, 0x0F});
   Send({UNIMOUSE_ID_DEBUG_VISITED, 0, 0});
   Send({UNIMOUSE_ID_DEBUG_PATH, 3, 0, 0, 0, 1, 0, 2});
+  const float speed_m_s = 1.5f;  // a named value: float32, then its name
+  std::vector<uint8_t> value = {UNIMOUSE_ID_DEBUG_VALUE, 0, 0, 0, 0, 's', 'p', 'e', 'e', 'd', 0};
+  std::memcpy(value.data() + 1, &speed_m_s, sizeof(speed_m_s));
+  Send(value);
 
   std::vector<uint8_t> pending;
   uint16_t front = UNIMOUSE_TOF_NO_TARGET;

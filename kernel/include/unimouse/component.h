@@ -68,6 +68,13 @@ class BindContext {
   }
   RngId Rng(const std::string& name) const { return {Check(b_.rng_stream(b_.ctx, name.c_str()))}; }
   void SetStateSize(int nstate) const { b_.set_state_size(b_.ctx, nstate); }
+  /// Declares a beam the host draws: from `site` along its x axis, `length` metres long; a
+  /// length of range_max_m or more is a miss.
+  void DeclareBeam(int site, SignalId length, double range_max_m) const {
+    if (UNIMOUSE_HAS_FIELD(&b_, unimouse_bind, declare_beam)) {
+      b_.declare_beam(b_.ctx, site, length.index, range_max_m);
+    }
+  }
 
  private:
   // the kernel has already recorded why; an empty message tells the adapter to use that
@@ -115,6 +122,17 @@ class TickContext {
   void Fail(const std::string& message) const {
     t_.log(t_.ctx, UNIMOUSE_LOG_ERROR, message.c_str());
   }
+  /// Hands the host a typed report (what a firmware believes about the maze).
+  void Report(const unimouse_report& report) const {
+    if (UNIMOUSE_HAS_FIELD(&t_, unimouse_tick, report)) t_.report(t_.ctx, &report);
+  }
+  /// Tells the host whether the firmware sets the pace (lock-step): then the run does not pace
+  /// itself to the wall clock.
+  void SetFirmwarePaced(bool paced) const {
+    if (UNIMOUSE_HAS_FIELD(&t_, unimouse_tick, set_firmware_paced)) {
+      t_.set_firmware_paced(t_.ctx, paced ? 1 : 0);
+    }
+  }
 
  protected:
   const unimouse_tick& t_;
@@ -143,6 +161,9 @@ class Component {
 
   /// Resolves names to ids, declares signals, random streams and state size.
   virtual void Bind(BindContext& ctx) = 0;
+  /// Opens what the instance needs outside the process (a port, a child process, a file)
+  /// before the first reset of a run; never called when a robot file is only checked.
+  virtual void Start() {}
   /// Writes initial values into this component's state slice.
   virtual void Reset(const ResetContext&) const {}
   /// Samples the world after mj_step1; mjData is read-only here.
@@ -215,6 +236,17 @@ const unimouse_component_type* ComponentType() {
       }
     };
     // only hooks the class overrides: the kernel skips NULL ones
+    if constexpr (!std::is_same_v<decltype(&T::Start), decltype(&Component::Start)>) {
+      t.start = +[](void* self, char* err, int err_size) -> int {
+        try {
+          static_cast<T*>(self)->Start();
+          return 0;
+        } catch (const std::exception& e) {
+          internal::CopyMessage(e.what(), err, err_size);
+          return 1;
+        }
+      };
+    }
     if constexpr (!std::is_same_v<decltype(&T::Reset), decltype(&Component::Reset)>) {
       t.reset = &internal::CallHook<T, ResetContext, &T::Reset>;
     }

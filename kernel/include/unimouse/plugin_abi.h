@@ -3,12 +3,16 @@
  *
  * A plugin library exports one symbol, unimouse_plugin_v1, returning a table of component types.
  * The loader checks the ABI version, the struct sizes and the MuJoCo version before it uses
- * anything else. Within ABI version 1, structs only grow at the end; a NULL optional hook means
- * "not implemented". No C++ exception may cross this boundary. C99. */
+ * anything else. Within ABI version 1, structs only grow at the end, and every struct says its
+ * size: the kernel accepts a plugin built against an older, smaller header (the fields it lacks
+ * read as 0 and its missing hooks as NULL), and a plugin reads a kernel-made struct's newer
+ * fields only when its size covers them (UNIMOUSE_HAS_FIELD). A NULL optional hook means "not
+ * implemented". No C++ exception may cross this boundary. C99. */
 #ifndef UNIMOUSE_PLUGIN_ABI_H_
 #define UNIMOUSE_PLUGIN_ABI_H_
 
 #include <mujoco/mujoco.h>
+#include <stddef.h>
 #include <stdint.h>
 
 #ifdef __cplusplus
@@ -17,6 +21,10 @@ extern "C" {
 
 #define UNIMOUSE_ABI_VERSION 1
 #define UNIMOUSE_EXPORT __attribute__((visibility("default")))
+
+/* whether a struct whose size field says `s->size` includes `field` */
+#define UNIMOUSE_HAS_FIELD(s, type, field) \
+  ((s)->size >= offsetof(type, field) + sizeof(((type*)0)->field))
 
 /* kinds of component parameters */
 typedef enum unimouse_param_kind {
@@ -79,6 +87,9 @@ typedef struct unimouse_bind {
   int (*signal_write)(void* ctx, const char* name); /* a signal this component alone writes */
   int (*rng_stream)(void* ctx, const char* name);   /* named, seeded stream: "tof.front" */
   void (*set_state_size)(void* ctx, int nstate);    /* doubles of evolving state it needs */
+  /* appended in 0.2: a beam the host draws, from a site along its x axis, as long as the value of
+   * a signal (metres); a value of range_max_m or more is a miss */
+  void (*declare_beam)(void* ctx, int site, int length_signal, double range_max_m);
 } unimouse_bind;
 
 /* A text line a component logged (a firmware's log channel, for one), with when and who. */
@@ -88,6 +99,26 @@ typedef struct unimouse_message {
   const char* source; /* component name */
   const char* text;
 } unimouse_message;
+
+/* What a component reports to the host on a typed path (appended in 0.2): what a firmware
+ * believes about the maze, sent on the link's debug channels (docs/protocol.md). */
+enum {
+  UNIMOUSE_REPORT_WALLS = 1,   /* cell x, y: walls and known, side bits N 1, E 2, S 4, W 8 */
+  UNIMOUSE_REPORT_VISITED = 2, /* cell x, y */
+  UNIMOUSE_REPORT_PATH = 3,    /* cells, the path it plans: ncells pairs x, y */
+  UNIMOUSE_REPORT_VALUE = 4    /* a named number */
+};
+
+typedef struct unimouse_report {
+  uint32_t size; /* sizeof(unimouse_report) as the component saw it */
+  int kind;      /* UNIMOUSE_REPORT_* */
+  int x, y;
+  int walls, known;
+  const int* cells; /* PATH: x0, y0, x1, y1, ... */
+  int ncells;
+  const char* name; /* VALUE */
+  double value;     /* VALUE */
+} unimouse_report;
 
 /* Everything a hook may touch during one tick. In sense, data is read-only by contract. */
 typedef struct unimouse_tick {
@@ -109,10 +140,15 @@ typedef struct unimouse_tick {
   /* messages logged since this component's previous hook call, oldest first */
   const unimouse_message* messages;
   int nmessages;
+  /* appended in 0.2 */
+  void (*report)(void* ctx, const unimouse_report* report); /* see unimouse_report */
+  /* 1: the firmware sets the pace (lock-step), so the run does not pace to the wall clock */
+  void (*set_firmware_paced)(void* ctx, int paced);
 } unimouse_tick;
 
 /* One component type. create, bind and destroy are required; the hooks are optional. finish
- * runs once at the end of a run, however it ends, so a component can write out what it holds. */
+ * runs once at the end of a run, however it ends, so a component can write out what it holds.
+ * The first published layout ends at destroy (UNIMOUSE_COMPONENT_TYPE_V1_SIZE). */
 typedef struct unimouse_component_type {
   uint32_t size;       /* sizeof(unimouse_component_type) as the plugin saw it */
   const char* name;    /* dotted, globally unique: "unimouse.dc_motor" */
@@ -128,7 +164,14 @@ typedef struct unimouse_component_type {
   void (*actuate)(const void* self, const unimouse_tick* tick); /* before mj_step2 */
   void (*finish)(const void* self, const unimouse_tick* tick);  /* once, when the run ends */
   void (*destroy)(void* self);
+  /* appended in 0.2: opens what the instance needs outside the process (a port, a child
+   * process, a file) before the run's first reset; `unimouse check` never calls it. Returns 0,
+   * or non-zero after writing a reason into err. */
+  int (*start)(void* self, char* err, int err_size);
 } unimouse_component_type;
+
+/* the size of unimouse_component_type as ABI version 1 first published it */
+#define UNIMOUSE_COMPONENT_TYPE_V1_SIZE (offsetof(unimouse_component_type, destroy) + sizeof(void*))
 
 /* What a plugin library hands the loader. */
 typedef struct unimouse_plugin_info {

@@ -7,8 +7,33 @@
 #include "commands.h"
 #include "install_paths.h"
 #include "maze_commands.h"
+#include "plugin_registry.h"
 #include "scenario.h"
 #include "unimouse/errors.h"
+
+namespace {
+
+// the link plugin's own words for its transports (its `transport` parameter), so that this help
+// lists exactly the transports the installed link has
+std::string LinkHelp() {
+  const std::string fallback = "connect firmware (`unimouse plugins` lists the transports)";
+  try {
+    unimouse::PluginRegistry registry;
+    registry.AddSearchPath(unimouse::PluginSearchPath(""));
+    const unimouse::PluginRegistry::Entry* link = registry.Find("unimouse.link");
+    for (int i = 0; link != nullptr && i < link->type->nparam; ++i) {
+      const unimouse_param& p = link->type->params[i];
+      if (std::string(p.name) == "transport" && p.doc != nullptr) {
+        return std::string("connect firmware: ") + p.doc;
+      }
+    }
+  } catch (const std::exception&) {
+    // a broken plugin is reported when a command loads it, not in the help
+  }
+  return fallback;
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   using namespace unimouse;
@@ -38,9 +63,7 @@ int main(int argc, char** argv) {
   run_cmd->add_flag("--realtime", run.realtime,
                     "pace the simulation to the wall clock (always, with --link, until the "
                     "firmware turns lock-step on)");
-  run_cmd->add_option("--link", run.link,
-                      "connect firmware: pty, pty:LINK, serial:/dev/ttyUSB0@115200, tcp::5760 or "
-                      "native:PROGRAM");
+  run_cmd->add_option("--link", run.link, LinkHelp());
 
   // pictures: none of these changes what is run
   run_cmd->add_option("--camera", run.camera, "camera of the pictures: top, chase or free")

@@ -89,7 +89,7 @@ void Viewer::SaveScreenshot(const std::string& file) {
   std::printf("  screenshot: %s\n", path.c_str());
 }
 
-void Viewer::Draw(const Run& run) {
+void Viewer::Draw(Session& run) {
   int width = 0, height = 0;
   glfwGetFramebufferSize(window_, &width, &height);
   const mjrRect viewport{0, 0, width, height};
@@ -98,20 +98,21 @@ void Viewer::Draw(const Run& run) {
     controls_.preset.clear();
   }
   if (controls_.follow) {
-    const Pose2D p = run.kernel->world().RobotPose(run.kernel->state().data());
+    const Pose2D p = run.kernel().world().RobotPose(run.kernel().state().data());
     camera_.lookat[0] = p.x_m;
     camera_.lookat[1] = p.y_m;
   }
   DrawOptions draw;
   draw.beams = controls_.beams;
   draw.beliefs = controls_.beliefs;
-  draw.firmware = run.beliefs;
-  if (controls_.hud && run.hud) draw.hud = run.hud();
+  draw.firmware = &run.beliefs();
+  if (controls_.hud) draw.hud = run.hud();
   mjr_setBuffer(mjFB_WINDOW, &renderer_->context());
   renderer_->Draw(viewport, camera_, draw);
 
-  const bool over = run.over();
-  std::string state = over ? "run over" + (run.verdict ? ": " + run.verdict() : "") + "\n"
+  const bool over = run.Over();
+  const std::string verdict = run.verdict();
+  std::string state = over ? "run over" + (verdict.empty() ? "" : ": " + verdict) + "\n"
                       : controls_.paused ? "paused\n"
                                          : "";
   char speed[64];
@@ -126,31 +127,31 @@ void Viewer::Draw(const Run& run) {
   }
 }
 
-void Viewer::Show(const Run& run) {
+void Viewer::Show(Session& run) {
   controls_.restart = false;
   glfwMakeContextCurrent(window_);
-  renderer_ = std::make_unique<SceneRenderer>(*run.kernel, mjFONTSCALE_150);
+  renderer_ = std::make_unique<SceneRenderer>(run.kernel(), mjFONTSCALE_150);
   glfwMakeContextCurrent(nullptr);
   if (frames_ == 0) controls_.preset = "free";
   using Clock = std::chrono::steady_clock;
   auto last = Clock::now();
   double behind_s = 0;  // sim time owed to the wall clock
-  const double dt = run.kernel->timestep_s();
+  const double dt = run.kernel().timestep_s();
   while (!glfwWindowShouldClose(window_) && !controls_.quit && !controls_.restart) {
     const auto now = Clock::now();
     const double wall_s = std::chrono::duration<double>(now - last).count();
     last = now;
-    if (!run.over()) {
+    if (!run.Over()) {
       if (controls_.paused) {
-        for (; controls_.steps_wanted > 0 && !run.over(); --controls_.steps_wanted) run.step();
+        for (; controls_.steps_wanted > 0 && !run.Over(); --controls_.steps_wanted) run.Step();
         behind_s = 0;
       } else {
         // catch up with the wall clock, but never spend more than a frame's time on it: a slow
         // machine shows the run slower, not in jumps
         behind_s += wall_s * controls_.speed;
         const auto until = now + std::chrono::milliseconds(30);
-        while (behind_s >= dt && !run.over() && Clock::now() < until) {
-          run.step();
+        while (behind_s >= dt && !run.Over() && Clock::now() < until) {
+          run.Step();
           behind_s -= dt;
         }
         if (behind_s > 0.1 * controls_.speed) behind_s = 0;

@@ -11,9 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "firmware_beliefs.h"
-#include "kernel.h"
-#include "robot_spec.h"
+#include "session.h"
 #include "viewer_controls.h"
 
 struct GLFWwindow;
@@ -31,20 +29,9 @@ class Viewer {
   Viewer& operator=(const Viewer&) = delete;
   ~Viewer();
 
-  /// What the viewer needs of a run.
-  struct Run {
-    Kernel* kernel = nullptr;
-    const RobotSpec* robot = nullptr;
-    const FirmwareBeliefs* beliefs = nullptr;       ///< what the firmware reported
-    std::function<void()> step;                     ///< one tick, with its pictures
-    std::function<bool()> over;                     ///< decided, out of time, or failed
-    std::function<std::vector<std::string>()> hud;  ///< the scenario's lines
-    std::function<std::string()> verdict;           ///< shown once the run is over
-  };
-
-  /// Shows a run until the window is closed, Q is pressed or the run is to start again (see
-  /// restart_requested()). Stepping errors (RuntimeFault) pass through.
-  void Show(const Run& run);
+  /// Shows a run, stepping it at the chosen speed, until the window is closed, Q is pressed or
+  /// the run is to start again (see restart_requested()).
+  void Show(Session& session);
 
   bool restart_requested() const { return controls_.restart; }
   /// Frames drawn since the window opened.
@@ -52,7 +39,7 @@ class Viewer {
 
  private:
   void OnMouseMove(double x, double y);
-  void Draw(const Run& run);
+  void Draw(Session& session);
   void SaveScreenshot(const std::string& file);
 
   GLFWwindow* window_ = nullptr;

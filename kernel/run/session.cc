@@ -1,0 +1,305 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "session.h"
+
+#include <cmath>
+#include <filesystem>
+
+#include "install_paths.h"
+#include "maze_explorer.h"
+#include "maze_plot.h"
+#include "text_file.h"
+#include "unimouse/errors.h"
+#include "unimouse/plugin_abi.h"
+
+namespace unimouse {
+namespace {
+
+namespace fs = std::filesystem;
+
+// a scalar YAML node that says where it came from: the command line
+YamlNode Scalar(const std::string& text, const std::string& option) {
+  YamlNode node;
+  node.kind = YamlNode::Kind::kScalar;
+  node.scalar = text;
+  node.location = {option, 1, 1};
+  return node;
+}
+
+// the firmware link's component, as a robot file would declare it, from the command line
+ComponentSpec LinkComponent(const std::string& transport) {
+  ComponentSpec link;
+  link.type = "unimouse.link";
+  link.name = "link";
+  link.location = {"--link", 1, 1};
+  link.params.kind = YamlNode::Kind::kMap;
+  link.params.location = link.location;
+  link.params.entries.emplace_back(Scalar("transport", "--link"), Scalar(transport, "--link"));
+  // a firmware program the simulator starts runs in lock-step, so that its runs repeat exactly
+  if (transport.rfind("native:", 0) == 0) {
+    link.params.entries.emplace_back(Scalar("start_with_lockstep", "--link"),
+                                     Scalar("true", "--link"));
+  }
+  return link;
+}
+
+// the record goes to a temporary file first, so a reader never sees half of it
+void WriteRecord(const std::string& out_dir, const nlohmann::json& record) {
+  fs::create_directories(out_dir);
+  const fs::path path = fs::path(out_dir) / "result.json";
+  const fs::path temporary = fs::path(out_dir) / ".result.json.tmp";
+  WriteTextFile(temporary.string(),
+                record.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
+  fs::rename(temporary, path);
+}
+
+}  // namespace
+
+std::unique_ptr<Session> Session::Open(const SessionOptions& options) {
+  std::unique_ptr<Session> session(new Session(options));
+  std::error_code ec;
+  fs::remove(fs::path(options.out_dir) / "result.json", ec);
+  try {
+    session->Assemble();
+  } catch (const std::exception& e) {
+    // a run that could not start says so where its result would be
+    const bool bad_input = dynamic_cast<const InputError*>(&e) != nullptr;
+    nlohmann::json record = {{"status", "error"},
+                             {"error", e.what()},
+                             {"exit_code", bad_input ? kExitBadInput : kExitRuntimeFault},
+                             {"seed", options.seed}};
+    if (session->scenario_ && !session->scenario_->traceback().empty()) {
+      record["traceback"] = session->scenario_->traceback();
+    }
+    try {
+      WriteRecord(options.out_dir, record);
+    } catch (const std::exception&) {
+      // an output directory that cannot be written: the error above is the one to report
+    }
+    throw;
+  }
+  return session;
+}
+
+Session::~Session() = default;
+
+void Session::Assemble() {
+  const SessionOptions& o = options_;
+  UNIMOUSE_THROW_UNLESS(o.duration_s > 0 && std::isfinite(o.duration_s),
+                        "--duration must be a positive number of seconds");
+  robot_file_ = ResolveDataFile(o.robot, "robots/", ".yaml");
+  robot_ = LoadRobotSpec(robot_file_);
+  if (!o.link.empty()) robot_.components.push_back(LinkComponent(o.link));
+
+  // a scenario builds its own world
+  ScenarioWorld world;
+  duration_s_ = o.duration_s;
+  if (!o.scenario.empty()) {
+    std::map<std::string, std::string> overrides;
+    for (const auto& set : o.sets) {
+      const size_t eq = set.find('=');
+      UNIMOUSE_THROW_UNLESS(eq != std::string::npos && eq > 0,
+                            "--set " + set + ": write name=value");
+      overrides[set.substr(0, eq)] = set.substr(eq + 1);
+    }
+    scenario_file_ = ResolveDataFile(o.scenario, "scenarios/", ".lua");
+    scenario_ = Scenario::Load(scenario_file_, overrides, o.seed);
+    world = scenario_->BuildWorld();
+    maze_ = std::move(world.maze);
+    // a second beyond the limit lets the scenario give its own reason
+    if (!o.duration_given && scenario_->time_limit_s() > 0) {
+      duration_s_ = scenario_->time_limit_s() + 1;
+    }
+  } else {
+    UNIMOUSE_THROW_UNLESS(o.sets.empty() && o.controller.empty(),
+                          "--set and --controller go with --scenario");
+    if (o.maze != "none") {
+      maze_file_ = ResolveDataFile(o.maze, "mazes/", ".txt");
+      maze_ = std::make_unique<Maze>(LoadMaze(maze_file_));
+    }
+  }
+  UNIMOUSE_THROW_UNLESS(o.snapshot_on.empty() || scenario_,
+                        "--snapshot-on watches a scenario's events: give --scenario");
+  const PluginRegistry* registry = o.registry;
+  if (registry == nullptr) {
+    own_registry_.emplace();
+    own_registry_->AddSearchPath(PluginSearchPath(o.plugin_path));
+    registry = &*own_registry_;
+  }
+
+  // every message goes into the run's log, line by line, and to the console with its sim time
+  fs::create_directories(o.out_dir);
+  const std::string log_path = (fs::path(o.out_dir) / "log.txt").string();
+  log_.reset(std::fopen(log_path.c_str(), "w"));
+  UNIMOUSE_THROW_UNLESS(log_ != nullptr, log_path + ": cannot write the run's log");
+  KernelOptions kernel_options;
+  kernel_options.seed = o.seed;
+  kernel_options.output_dir = o.out_dir;
+  kernel_options.boxes = std::move(world.boxes);
+  kernel_options.spawn = world.spawn;
+  kernel_options.log_sink = [this](double time_s, int level, const std::string& component,
+                                   const std::string& message) {
+    const char* kind = level == UNIMOUSE_LOG_ERROR     ? "error: "
+                       : level == UNIMOUSE_LOG_WARNING ? "warning: "
+                                                       : "";
+    if (options_.console) {
+      std::fprintf(stderr, "[%9.3f s] %s: %s%s\n", time_s, component.c_str(), kind,
+                   message.c_str());
+    }
+    std::fprintf(log_.get(), "%.6f\t%s\t%s%s\n", time_s, component.c_str(), kind, message.c_str());
+    std::fflush(log_.get());
+  };
+  kernel_ = Kernel::Create(robot_, maze_.get(), *registry, kernel_options);
+  kernel_->AddReportListener(
+      [this](const std::string&, const unimouse_report& report) { beliefs_.Apply(report); });
+  if (scenario_) scenario_->Attach(*kernel_, o.controller);
+
+  // the pictures asked for; without any, final.png whenever the machine can draw
+  if (o.pictures.Any() || o.only_asked_pictures) {
+    pictures_ = std::make_unique<RunPictures>(*kernel_, o.pictures, &beliefs_, o.out_dir);
+  } else {
+    PictureOptions final_only = o.pictures;
+    final_only.at_end = true;
+    try {
+      pictures_ = std::make_unique<RunPictures>(*kernel_, final_only, &beliefs_, o.out_dir);
+    } catch (const RenderUnavailable& e) {
+      no_pictures_ = e.what();
+      pictures_ = std::make_unique<RunPictures>(*kernel_, o.pictures, &beliefs_, o.out_dir);
+    }
+  }
+  if (scenario_) {
+    pictures_->SetHudSource([this] { return scenario_->hud(); });
+    scenario_->SetPictureTaker(
+        [this](const std::string& file, const std::string& camera, int width, int height) {
+          return pictures_->Save(file, camera, width, height);
+        });
+    for (const auto& kind : o.snapshot_on) {
+      scenario_->SnapshotOn(kind, o.pictures.camera, o.pictures.width, o.pictures.height);
+    }
+  }
+
+  steps_ = std::llround(duration_s_ / kernel_->timestep_s());
+  // hardware runs on the wall clock; firmware in lock-step sets the pace itself
+  pace_ = !o.paced_by_caller && (o.realtime || !o.link.empty());
+  pacer_ = std::make_unique<RealTimePacer>(kernel_->timestep_s());
+  start_ = std::chrono::steady_clock::now();
+}
+
+void Session::Step() {
+  if (Over()) return;
+  try {
+    kernel_->Step();
+    pictures_->AfterStep();
+  } catch (const RuntimeFault& e) {
+    fault_ = e.what();
+    return;
+  }
+  if (pace_ && !kernel_->firmware_paced()) pacer_->Wait(kernel_->state().step());
+}
+
+bool Session::Over() const {
+  return !fault_.empty() || kernel_->state().step() >= steps_ ||
+         (scenario_ && scenario_->finished());
+}
+
+std::vector<std::string> Session::hud() const {
+  return scenario_ ? scenario_->hud() : std::vector<std::string>{};
+}
+
+std::string Session::verdict() const {
+  if (!fault_.empty()) return "error: " + fault_;
+  if (!scenario_) return "";
+  const ScenarioOutcome& o = scenario_->outcome();
+  return o.status + (o.reason.empty() ? "" : ": " + o.reason);
+}
+
+std::string Session::where() const {
+  if (scenario_) return "in scenario " + scenario_->name();
+  if (maze_) {
+    return "in maze " + options_.maze + " (" + std::to_string(maze_->width()) + "x" +
+           std::to_string(maze_->height()) + ")";
+  }
+  return "on an open floor";
+}
+
+// the maze as the firmware reported it on its debug channels: cells it knows (with their true
+// walls dark), cells it visited, the path it last planned
+void Session::DrawFirmwareMaze() {
+  const Maze& maze = *maze_;
+  WallKnowledge knowledge(maze);
+  auto sense = [&](Cell c) {
+    if (maze.Contains(c)) knowledge.Sense(maze, c);
+  };
+  for (const auto& [cell, walls] : beliefs_.walls) sense({cell.first, cell.second});
+  for (const Cell& c : beliefs_.visited) sense(c);
+  MazePicture picture;
+  picture.maze = &maze;
+  picture.knowledge = &knowledge;
+  picture.closed_path = DescribeRoute(beliefs_.path, maze.start_heading());
+  const fs::path base = fs::path(options_.out_dir) / "maze";
+  WriteMazePicture(picture, base.string() + ".png");
+  WriteMazePicture(picture, base.string() + ".svg");
+}
+
+SessionResult Session::Finish(const nlohmann::json& extra) {
+  UNIMOUSE_DEMAND(!finished_);
+  finished_ = true;
+  try {
+    if (scenario_ && fault_.empty()) scenario_->Finish();
+  } catch (const RuntimeFault& e) {
+    fault_ = e.what();
+  }
+  pictures_->Finish();
+  kernel_->Finish();
+  const bool firmware_maze = maze_ && !options_.link.empty();
+  if (firmware_maze) DrawFirmwareMaze();
+  const double wall_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+
+  // the run's record is written whatever happened to the run
+  const mjData& d = kernel_->state().data();
+  const Pose2D pose = kernel_->world().RobotPose(d);
+  nlohmann::json r;
+  r["robot"] = robot_file_;
+  r["maze"] = maze_file_.empty() ? nlohmann::json(nullptr) : nlohmann::json(maze_file_);
+  r["seed"] = options_.seed;
+  r["duration_s"] = duration_s_;
+  r["status"] = fault_.empty() ? "completed" : "fault";
+  if (!fault_.empty()) r["error"] = fault_;
+  r["sim_time_s"] = d.time;
+  r["steps"] = kernel_->state().step();
+  r["wall_time_s"] = wall_s;
+  r["real_time_factor"] = wall_s > 0 ? d.time / wall_s : 0.0;
+  r["robot_pose"] = {{"x_m", pose.x_m}, {"y_m", pose.y_m}, {"yaw_rad", pose.yaw_rad}};
+  r["collision_proxy_overflows"] = kernel_->world().proxy_overflows();
+  SessionResult result;
+  result.exit_code = fault_.empty() ? kExitPassed : kExitRuntimeFault;
+  if (scenario_) {
+    ScenarioOutcome outcome = scenario_->outcome();
+    if (outcome.status == "running") {
+      outcome.status = fault_.empty() ? "failed" : "error";
+      outcome.reason = fault_.empty()
+                           ? "not decided when the run ended at " + std::to_string(d.time) + " s"
+                           : fault_;
+    }
+    r["scenario"] = {{"name", scenario_->name()},     {"file", scenario_file_},
+                     {"params", scenario_->params()}, {"status", outcome.status},
+                     {"reason", outcome.reason},      {"scores", outcome.scores},
+                     {"hud", scenario_->hud()}};
+    if (!scenario_->traceback().empty()) r["scenario"]["traceback"] = scenario_->traceback();
+    if (fault_.empty()) result.exit_code = outcome.status == "passed" ? kExitPassed : kExitFailed;
+  }
+  if (pace_) r["real_time_pacing"] = pacer_->Report();
+  if (pictures_->written() > 0) {
+    r["pictures"] = {{"written", pictures_->written()}, {"renderer", pictures_->renderer()}};
+  } else if (!no_pictures_.empty()) {
+    r["pictures"] = {{"written", 0}, {"unavailable", no_pictures_}};
+  }
+  if (firmware_maze) r["firmware_maze"] = "maze.png";
+  r["exit_code"] = result.exit_code;
+  if (extra.is_object()) r.update(extra);
+  WriteRecord(options_.out_dir, r);
+  result.record = std::move(r);
+  return result;
+}
+
+}  // namespace unimouse

@@ -1,0 +1,121 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// A run as a library object: the robot, its firmware link, a scenario, the pictures, pacing and
+// the record of the run, assembled from options. The command line, the viewer, benchmarks and
+// tests all run through it:
+//
+//   auto session = Session::Open(options);   // throws InputError (exit 2), RuntimeFault (3)
+//   while (!session->Over()) session->Step();
+//   const SessionResult result = session->Finish();  // result.json written, however it ended
+#ifndef UNIMOUSE_RUN_SESSION_H_
+#define UNIMOUSE_RUN_SESSION_H_
+
+#include <chrono>
+#include <cstdint>
+#include <cstdio>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "firmware_beliefs.h"
+#include "kernel.h"
+#include "maze.h"
+#include "plugin_registry.h"
+#include "real_time_pacer.h"
+#include "robot_spec.h"
+#include "run_pictures.h"
+#include "scenario.h"
+
+namespace unimouse {
+
+/// Everything a run is made of; what `unimouse run` takes, parsed.
+struct SessionOptions {
+  std::string robot = "unimouse";  ///< robot file or bundled robot name
+  std::string maze =
+      "japan2018";              ///< maze file, bundled name, or "none"; a scenario builds its own
+  double duration_s = 10;       ///< simulated seconds
+  bool duration_given = false;  ///< false: a scenario's time limit (+1 s) decides
+  uint64_t seed = 1;
+  std::string out_dir = "out";
+  std::string plugin_path;                   ///< extra plugin directories, ':'-separated
+  const PluginRegistry* registry = nullptr;  ///< default: the plugins on the search path
+  std::string link;                          ///< transport spec ("pty", "native:PROGRAM"); "" none
+  bool realtime = false;                     ///< pace to the wall clock (always with a link)
+  bool paced_by_caller = false;              ///< a viewer paces the run itself
+  std::string scenario;                      ///< scenario file or bundled name; "" for none
+  std::vector<std::string> sets;             ///< scenario parameters, "name=value"
+  std::string controller;                    ///< Lua controller file; "" for none
+  PictureOptions pictures;                   ///< pictures asked for
+  std::vector<std::string> snapshot_on;      ///< scenario events that take a picture
+  /// false: final.png whenever the machine can draw, though no picture was asked for
+  bool only_asked_pictures = false;
+  bool console = true;  ///< every log line also to stderr, with its sim time
+};
+
+/// How a run ended.
+struct SessionResult {
+  int exit_code = 0;      ///< kExitPassed, kExitFailed or kExitRuntimeFault
+  nlohmann::json record;  ///< what result.json holds
+};
+
+class Session {
+ public:
+  /// Assembles a run and writes nothing but its log until it ends. A previous result.json in
+  /// the output directory is removed first; when assembling fails, a result.json saying why is
+  /// written before the error is thrown: InputError (exit 2) or RuntimeFault (exit 3).
+  static std::unique_ptr<Session> Open(const SessionOptions& options);
+  Session(const Session&) = delete;
+  Session& operator=(const Session&) = delete;
+  ~Session();
+
+  /// Advances one tick, with its pictures, paced to the wall clock where asked. A fault (a
+  /// component, the scenario, the firmware or MuJoCo) ends the run: Over() is then true.
+  void Step();
+  /// Whether the run is over: out of time, decided by the scenario, or faulted.
+  bool Over() const;
+  /// Ends the run once: the scenario's finish, the last pictures, every component's finish, the
+  /// maze as the firmware saw it; writes result.json (with `extra` merged in) atomically.
+  SessionResult Finish(const nlohmann::json& extra = {});
+
+  Kernel& kernel() { return *kernel_; }
+  const RobotSpec& robot() const { return robot_; }
+  /// What the firmware reported of the maze so far.
+  const FirmwareBeliefs& beliefs() const { return beliefs_; }
+  /// The scenario's HUD lines; empty without a scenario.
+  std::vector<std::string> hud() const;
+  /// The scenario's status and reason, or "" without a scenario.
+  std::string verdict() const;
+  /// Where the run takes place, for a console line: "in scenario x", "in maze y (16x16)".
+  std::string where() const;
+
+ private:
+  explicit Session(const SessionOptions& options) : options_(options) {}
+  void Assemble();
+  void DrawFirmwareMaze();
+
+  SessionOptions options_;
+  std::optional<PluginRegistry> own_registry_;
+  std::string robot_file_;
+  RobotSpec robot_;
+  std::unique_ptr<Scenario> scenario_;
+  std::string scenario_file_;
+  std::unique_ptr<Maze> maze_;
+  std::string maze_file_;
+  double duration_s_ = 0;
+  int64_t steps_ = 0;
+  std::unique_ptr<std::FILE, int (*)(std::FILE*)> log_{nullptr, &std::fclose};
+  std::unique_ptr<Kernel> kernel_;
+  FirmwareBeliefs beliefs_;
+  std::unique_ptr<RunPictures> pictures_;
+  std::unique_ptr<RealTimePacer> pacer_;
+  bool pace_ = false;
+  std::string fault_;
+  std::string no_pictures_;  // why not even final.png could be drawn
+  bool finished_ = false;
+  std::chrono::steady_clock::time_point start_;
+};
+
+}  // namespace unimouse
+
+#endif  // UNIMOUSE_RUN_SESSION_H_

@@ -117,7 +117,9 @@ TEST_F(MazePlotTest, SvgHasOneLinePerWallAndThePathThroughEveryCell) {
 TEST_F(MazePlotTest, ThePictureKindFollowsTheFileName) {
   MazePicture picture;
   picture.maze = &maze_;
-  EXPECT_THROW(WriteMazePicture(picture, "/tmp/picture.jpg"), InputError);
+  EXPECT_THROW(
+      WriteMazePicture(picture, (std::filesystem::temp_directory_path() / "picture.jpg").string()),
+      InputError);
   EXPECT_THROW(WriteMazePicture(picture, "/nonexistent/dir/picture.png"), InputError);
 }
 

@@ -101,17 +101,16 @@ TEST_F(NativeLinkTest, WhatTheFirmwareReportsIsKeptAndDrawn) {
     for (int i = 0; i < 10; ++i) kernel->Step();
     kernel->Finish();
   }
-  const auto o = testing::Unimouse(
-      "run --maze japan2018 --duration 0.2 --out "
-      "/tmp/unimouse_native_beliefs --link native:" +
-      std::string(UNIMOUSE_TEST_FIRMWARE));
+  const std::filesystem::path scratch = std::filesystem::temp_directory_path() / "native_beliefs";
+  const auto o = testing::Unimouse("run --maze japan2018 --duration 0.2 --out " + scratch.string() +
+                                   " --link native:" + std::string(UNIMOUSE_TEST_FIRMWARE));
   ASSERT_EQ(o.exit_code, 0) << o.output;
-  const std::string beliefs = ReadTextFile("/tmp/unimouse_native_beliefs/firmware_beliefs.json");
+  const std::string beliefs = ReadTextFile((scratch / "firmware_beliefs.json").string());
   EXPECT_EQ(beliefs,
             "{\"walls\": [[0, 0, 14, 15]],\n \"visited\": [[0, 0]],\n \"path\": [[0, 0], [0, 1], "
             "[0, 2]]}\n");
-  EXPECT_TRUE(std::filesystem::exists("/tmp/unimouse_native_beliefs/maze.png"));
-  EXPECT_NE(ReadTextFile("/tmp/unimouse_native_beliefs/maze.svg").find("class='closed-path'"),
+  EXPECT_TRUE(std::filesystem::exists(scratch / "maze.png"));
+  EXPECT_NE(ReadTextFile((scratch / "maze.svg").string()).find("class='closed-path'"),
             std::string::npos);
   EXPECT_NE(o.output.find("debug path (0, 0) (0, 1) (0, 2)"), std::string::npos) << o.output;
 }
@@ -139,10 +138,12 @@ TEST_F(NativeLinkTest, WhatTheFirmwareReportsReachesTheHostAsTypedReports) {
 }
 
 TEST_F(NativeLinkTest, TheRunCommandRunsLockstepFirmwareFasterThanRealTime) {
-  const auto o = testing::Unimouse(
-      "run --maze none --duration 3 --out /tmp/unimouse_native_fast "
-      "--link native:" +
-      std::string(UNIMOUSE_TEST_FIRMWARE));
+  const auto o =
+      testing::Unimouse("run --maze none --duration 3 --out " +
+                        (std::filesystem::temp_directory_path() / "native_fast").string() +
+                        " "
+                        "--link native:" +
+                        std::string(UNIMOUSE_TEST_FIRMWARE));
   ASSERT_EQ(o.exit_code, 0) << o.output;
   std::smatch m;
   ASSERT_TRUE(std::regex_search(o.output, m, std::regex("([0-9.]+) s wall time"))) << o.output;

@@ -50,4 +50,11 @@ void SignalRelay::Actuate(const ActuateContext& ctx) const {
   if (out_.index >= 0) ctx.Write(out_, (in_.index >= 0 ? ctx.Read(in_) : 0) + 1);
 }
 
+void MujocoError::Actuate(const ActuateContext& ctx) const {
+  if (ctx.step() != p_.at_step) return;
+  mjData& d = ctx.mutable_data();
+  const int free = d.nstack - d.pstack;
+  mj_stackAlloc(&d, p_.where == "hook" ? free + 1 : free - 1);
+}
+
 }  // namespace unimouse::testing

@@ -125,6 +125,33 @@ class Talker final : public Component {
   Params p_;
 };
 
+struct MujocoErrorParams {
+  int at_step = 5;
+  std::string where = "hook";
+  template <class V>
+  void Visit(V& v) {
+    v("at_step", at_step, "the step at which MuJoCo reports an error", param::NonNegative{});
+    v("where", where, "hook: in this component's own MuJoCo call; physics: in mj_step2",
+      param::OneOf{"hook|physics"});
+  }
+};
+
+/// Makes MuJoCo report an error at a chosen step: asks its stack for more than it holds, or
+/// leaves it so full that the physics step after the hooks runs out.
+class MujocoError final : public Component {
+ public:
+  static constexpr const char* kTypeName = "test.mujoco_error";
+  static constexpr const char* kSummary = "makes MuJoCo report an error";
+  static constexpr double kDefaultPeriod_s = 0;
+  using Params = MujocoErrorParams;
+  explicit MujocoError(Params p) : p_(std::move(p)) {}
+  void Bind(BindContext&) override {}
+  void Actuate(const ActuateContext& ctx) const override;
+
+ private:
+  Params p_;
+};
+
 }  // namespace unimouse::testing
 
 #endif  // UNIMOUSE_TESTS_PROBE_COMPONENTS_H_

@@ -1,0 +1,123 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// A run as a library object, in this process: scenarios decided, faults of MuJoCo turned into a
+// result that says why, and a result.json that always belongs to the run that wrote it.
+#include "session.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "plugin_rig.h"
+#include "probe_components.h"
+#include "text_file.h"
+#include "unimouse/errors.h"
+
+namespace unimouse {
+namespace {
+
+namespace fs = std::filesystem;
+
+class SessionTest : public ::testing::Test {
+ protected:
+  SessionTest() : registry_(testing::BundledComponents()) {
+    registry_.AddStatic(ComponentType<testing::MujocoError>());
+    options_.registry = &registry_;
+    options_.out_dir = (fs::temp_directory_path() / "session").string();
+    options_.only_asked_pictures = true;  // no picture: this is about the run
+    options_.console = false;
+  }
+
+  SessionResult RunToTheEnd() {
+    std::unique_ptr<Session> session = Session::Open(options_);
+    while (!session->Over()) session->Step();
+    return session->Finish();
+  }
+
+  nlohmann::json ResultFile() const {
+    return nlohmann::json::parse(ReadTextFile(options_.out_dir + "/result.json"));
+  }
+
+  // a robot file in the scratch directory: the test rig with the given components
+  std::string RobotFile(const std::string& components) const {
+    const std::string path = (fs::temp_directory_path() / "robot.yaml").string();
+    WriteTextFile(path, testing::RigYaml(0, components));
+    return path;
+  }
+
+  PluginRegistry registry_;
+  SessionOptions options_;
+};
+
+std::string Controller(const std::string& name) {
+  return std::string(UNIMOUSE_SOURCE_DIR) + "/tests/scenarios/" + name;
+}
+
+TEST_F(SessionTest, AScenarioIsDecidedInThisProcess) {
+  options_.scenario = "speed_control";
+  options_.controller = Controller("speed_controller.lua");
+  const SessionResult passed = RunToTheEnd();
+  EXPECT_EQ(passed.exit_code, kExitPassed);
+  EXPECT_EQ(passed.record["scenario"]["status"], "passed");
+  EXPECT_EQ(ResultFile(), passed.record);
+
+  options_.controller = Controller("too_slow_controller.lua");
+  const SessionResult failed = RunToTheEnd();
+  EXPECT_EQ(failed.exit_code, kExitFailed);
+  EXPECT_EQ(failed.record["scenario"]["status"], "failed");
+  EXPECT_NE(failed.record["scenario"]["reason"].get<std::string>().find("too slow"),
+            std::string::npos)
+      << failed.record.dump();
+}
+
+TEST_F(SessionTest, AMujocoErrorInAComponentsCallEndsTheRunWithExitCode3AndSaysWhy) {
+  options_.robot = RobotFile(
+      "  - { type: test.mujoco_error, name: boom, params: { at_step: 5, where: hook } }\n");
+  options_.maze = "none";
+  const SessionResult result = RunToTheEnd();
+  EXPECT_EQ(result.exit_code, kExitRuntimeFault);
+  EXPECT_EQ(result.record["status"], "fault");
+  EXPECT_EQ(result.record["steps"], 5);
+  const std::string error = ResultFile()["error"];
+  EXPECT_NE(error.find("MuJoCo error"), std::string::npos) << error;
+  EXPECT_NE(error.find("boom"), std::string::npos) << error;
+}
+
+TEST_F(SessionTest, AMujocoErrorInThePhysicsStepEndsTheRunWithExitCode3AndSaysWhy) {
+  options_.robot = RobotFile(
+      "  - { type: test.mujoco_error, name: boom, params: { at_step: 3, where: physics } }\n");
+  options_.maze = "none";
+  const SessionResult result = RunToTheEnd();
+  EXPECT_EQ(result.exit_code, kExitRuntimeFault);
+  const std::string error = ResultFile()["error"];
+  EXPECT_EQ(error.rfind("MuJoCo error", 0), 0u) << error;
+  EXPECT_EQ(result.record["steps"], 3);
+}
+
+TEST_F(SessionTest, AResultFromAnEarlierRunNeverSurvivesAFailedStart) {
+  fs::create_directories(options_.out_dir);
+  WriteTextFile(options_.out_dir + "/result.json", R"({"status": "completed"})");
+  options_.robot = (fs::temp_directory_path() / "no_such_robot.yaml").string();
+  EXPECT_THROW(Session::Open(options_), InputError);
+  const nlohmann::json result = ResultFile();
+  EXPECT_EQ(result["status"], "error");
+  EXPECT_EQ(result["exit_code"], kExitBadInput);
+  EXPECT_NE(result["error"].get<std::string>().find("no_such_robot.yaml"), std::string::npos);
+}
+
+TEST_F(SessionTest, OverAndStepAgreeWithTheDuration) {
+  options_.maze = "none";
+  options_.duration_s = 0.01;
+  std::unique_ptr<Session> session = Session::Open(options_);
+  int steps = 0;
+  while (!session->Over()) {
+    session->Step();
+    ++steps;
+  }
+  EXPECT_EQ(steps, 10);
+  session->Step();  // past the end: nothing happens
+  EXPECT_EQ(session->kernel().state().step(), 10);
+  EXPECT_EQ(session->Finish().record["steps"], 10);
+}
+
+}  // namespace
+}  // namespace unimouse

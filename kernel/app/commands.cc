@@ -161,6 +161,14 @@ int CheckCommand(const std::string& robot_name, const std::string& plugin_path) 
   std::printf("%s: ok: robot '%s', %d bodies, %d joints, %d actuators, %zu components\n",
               robot_file.c_str(), robot.name.c_str(), m.nbody - 1, m.njnt, m.nu,
               kernel->model().components.size());
+  const Model& model = kernel->model();
+  for (const EarlyRead& e : model.early_reads) {
+    std::printf(
+        "  note: '%s' reads signal '%s' before '%s' writes it, so within a phase it sees "
+        "the previous tick's value\n",
+        model.components[e.reader].name.c_str(), model.signal_names[e.signal].c_str(),
+        model.components[e.writer].name.c_str());
+  }
   kernel.reset();
   std::filesystem::remove_all(scratch);
   return kExitPassed;

@@ -67,6 +67,7 @@ struct Kernel::BindSession {
       k.model_.signal_names.emplace_back(name);
       k.signal_writer_.push_back(-1);
       k.signal_first_reader_.push_back(-1);
+      k.signal_readers_.emplace_back();
     }
     if (write) {
       // a component may take over an input, as a test controller does
@@ -79,8 +80,9 @@ struct Kernel::BindSession {
         return -1;
       }
       k.signal_writer_[id] = component;
-    } else if (k.signal_first_reader_[id] < 0) {
-      k.signal_first_reader_[id] = component;
+    } else {
+      if (k.signal_first_reader_[id] < 0) k.signal_first_reader_[id] = component;
+      k.signal_readers_[id].push_back(component);
     }
     return id;
   }
@@ -110,6 +112,7 @@ std::unique_ptr<Kernel> Kernel::Create(const RobotSpec& robot, const Maze* maze,
     k->model_.signal_names.push_back(input);
     k->signal_writer_.push_back(kOutsideWriter);
     k->signal_first_reader_.push_back(-1);
+    k->signal_readers_.emplace_back();
   }
 
   // create every component from validated parameters
@@ -159,6 +162,16 @@ std::unique_ptr<Kernel> Kernel::Create(const RobotSpec& robot, const Maze* maze,
       throw InputError(reader.location.ToString() + ": component '" + reader.name +
                        "' reads signal '" + k->model_.signal_names[s] +
                        "', which no component writes");
+    }
+  }
+
+  // within a phase components run in YAML order: a reader before its writer sees, in the same
+  // phase, the value of the previous tick
+  for (size_t s = 0; s < k->model_.signal_names.size(); ++s) {
+    for (int reader : k->signal_readers_[s]) {
+      if (reader < k->signal_writer_[s]) {
+        k->model_.early_reads.push_back({static_cast<int>(s), reader, k->signal_writer_[s]});
+      }
     }
   }
 

@@ -128,6 +128,7 @@ class Kernel {
   // bind-time bookkeeping: which component writes, and first reads, each signal
   std::vector<int> signal_writer_;
   std::vector<int> signal_first_reader_;
+  std::vector<std::vector<int>> signal_readers_;
   std::function<void()> boundary_hook_;
   std::vector<LogSink> listeners_;
   std::vector<ReportSink> report_listeners_;

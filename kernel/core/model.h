@@ -35,6 +35,14 @@ struct BeamSpec {
   double range_max_m = 0;  ///< a length this long means no target
 };
 
+/// A component that reads a signal before its writer runs, in YAML order: within a phase it sees
+/// the value the writer left on the previous tick.
+struct EarlyRead {
+  int signal = -1;
+  int reader = -1;  ///< component indices
+  int writer = -1;
+};
+
 struct Model {
   Model() = default;
   Model(const Model&) = delete;
@@ -51,6 +59,7 @@ struct Model {
   std::vector<std::string> signal_names;
   std::vector<std::string> rng_names;
   std::vector<BeamSpec> beams;
+  std::vector<EarlyRead> early_reads;  ///< in signal order
   int component_state_size = 0;
 };
 

@@ -3,6 +3,7 @@
 // created; bind-time names are checked against the model.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <string>
 
 #include "inline_assets.h"
@@ -120,6 +121,27 @@ TEST_F(ComponentConfigTest, SignalsPassFromWriterToReader) {
   kernel->Step();
   EXPECT_EQ(kernel->state().signals()[kernel->model().FindSignal("one")], 1);
   EXPECT_EQ(kernel->state().signals()[kernel->model().FindSignal("two")], 2);
+}
+
+TEST_F(ComponentConfigTest, AReaderBeforeItsWriterIsDeclaredAndSeesThePreviousTick) {
+  const RobotSpec robot = ParseRobotSpec(
+      BundledRobotWith("  - { type: test.relay, name: b, params: { read: one, write: two } }\n"
+                       "  - { type: test.relay, name: a, params: { write: one } }\n")
+          .text,
+      "robot.yaml");
+  auto kernel = Kernel::Create(robot, nullptr, registry_, 1);
+  const Model& model = kernel->model();
+  std::vector<std::string> early;
+  for (const EarlyRead& e : model.early_reads) {
+    early.push_back(model.components[e.reader].name + " < " + model.components[e.writer].name +
+                    ": " + model.signal_names[e.signal]);
+  }
+  EXPECT_NE(std::find(early.begin(), early.end(), "b < a: one"), early.end());
+  EXPECT_EQ(std::find(early.begin(), early.end(), "a < b: two"), early.end());
+  kernel->Step();
+  EXPECT_EQ(kernel->state().signals()[model.FindSignal("two")], 1);  // one was still 0
+  kernel->Step();
+  EXPECT_EQ(kernel->state().signals()[model.FindSignal("two")], 2);
 }
 
 TEST(ComponentBindTest, NamesResolvedAtBindTimeMustExistInTheModel) {

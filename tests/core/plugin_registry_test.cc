@@ -7,7 +7,9 @@
 
 #include <string>
 
+#include "kernel.h"
 #include "probe_components.h"
+#include "robot_spec.h"
 #include "unimouse/errors.h"
 
 namespace unimouse {
@@ -48,6 +50,33 @@ TEST(PluginLoaderTest, RefusesAWrongStructSize) {
   const std::string e = LoadError(FakeLibrary("wrong_size"));
   EXPECT_NE(e.find("built with an older plugin header"), std::string::npos) << e;
   EXPECT_NE(e.find(FakeLibrary("wrong_size")), std::string::npos) << e;
+}
+
+TEST(PluginLoaderTest, AcceptsAPluginBuiltAgainstAnOlderShorterHeaderAndReadsNothingBeyond) {
+  PluginRegistry registry;
+  registry.AddLibrary(FakeLibrary("old_header"));
+  const PluginRegistry::Entry* widget = registry.Find("fake.widget");
+  ASSERT_NE(widget, nullptr);
+  EXPECT_EQ(widget->type->size, sizeof(unimouse_component_type));
+  EXPECT_EQ(widget->type->start, nullptr);  // beyond its table: a hook it does not have
+  EXPECT_NE(widget->original->start, nullptr);
+  // and a run uses it: a start read from beyond its table would fail the kernel's creation
+  const RobotSpec robot = ParseRobotSpec(
+      "name: tiny\n"
+      "chassis:\n"
+      "  name: body\n"
+      "  geoms: [{ type: sphere, radius_m: 0.02, mass_kg: 0.1 }]\n"
+      "components:\n"
+      "  - { type: fake.widget, name: w }\n",
+      "robot.yaml");
+  auto kernel = Kernel::Create(robot, nullptr, registry, 1);
+  kernel->Step();
+  EXPECT_EQ(kernel->state().step(), 1);
+}
+
+TEST(PluginLoaderTest, RefusesATypeTableShorterThanTheFirstPublishedOne) {
+  const std::string e = LoadError(FakeLibrary("too_short"));
+  EXPECT_NE(e.find("built with an older plugin header"), std::string::npos) << e;
 }
 
 TEST(PluginLoaderTest, RefusesAWrongMujocoVersion) {

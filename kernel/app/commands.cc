@@ -74,6 +74,7 @@ int RunOnce(const RunOptions& options, Viewer* viewer) {
   o.out_dir = options.out_dir;
   o.plugin_path = options.plugin_path;
   o.link = options.link;
+  o.link_sets = options.link_sets;
   o.realtime = options.realtime;
   o.paced_by_caller = viewer != nullptr;
   o.scenario = options.scenario;

@@ -17,10 +17,11 @@ struct RunOptions {
   std::string out_dir = "out";
   std::string plugin_path;
   std::string link;  ///< firmware link transport, "" for none: pty, serial:PATH@BAUD, tcp::PORT
-  bool realtime = false;          ///< pace to the wall clock; always on with a link
-  std::string scenario;           ///< scenario file or bundled name; "" for none
-  std::vector<std::string> sets;  ///< scenario parameters, "name=value"
-  std::string controller;         ///< Lua controller file for the scenario; "" for none
+  std::vector<std::string> link_sets;  ///< link parameters, "name=value"
+  bool realtime = false;               ///< pace to the wall clock; always on with a link
+  std::string scenario;                ///< scenario file or bundled name; "" for none
+  std::vector<std::string> sets;       ///< scenario parameters, "name=value"
+  std::string controller;              ///< Lua controller file for the scenario; "" for none
   bool duration_given = false;
   // pictures (docs/pictures.md)
   std::string camera = "top";             ///< top, chase or free

@@ -64,6 +64,9 @@ int main(int argc, char** argv) {
                     "pace the simulation to the wall clock (always, with --link, until the "
                     "firmware turns lock-step on)");
   run_cmd->add_option("--link", run.link, LinkHelp());
+  run_cmd->add_option("--link-set", run.link_sets,
+                      "a link parameter, name=value, as `unimouse plugins` lists them for "
+                      "unimouse.link (repeatable), e.g. --link-set failsafe_s=0");
 
   // pictures: none of these changes what is run
   run_cmd->add_option("--camera", run.camera, "camera of the pictures: top, chase or free")

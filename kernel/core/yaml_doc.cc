@@ -73,6 +73,8 @@ size_t EditDistance(std::string_view a, std::string_view b) {
 }  // namespace
 
 std::string SourceLocation::ToString() const {
+  // a value from the command line has no line: its option names it
+  if (line == 0) return file;
   return file + ":" + std::to_string(line) + ":" + std::to_string(column);
 }
 

@@ -13,13 +13,14 @@
 
 namespace unimouse {
 
-/// A place in an input file; line and column count from 1.
+/// A place in an input file; line and column count from 1. Line 0: a command-line option,
+/// named by `file` ("--link-set failsafe_s=0").
 struct SourceLocation {
   std::string file;
   int line = 0;
   int column = 0;
 
-  /// Returns "file:line:col".
+  /// Returns "file:line:col", or just `file` for a command-line option.
   std::string ToString() const;
 };
 

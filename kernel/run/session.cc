@@ -16,28 +16,37 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// a scalar YAML node that says where it came from: the command line
+// a scalar YAML node that says where it came from: a command-line option
 YamlNode Scalar(const std::string& text, const std::string& option) {
   YamlNode node;
   node.kind = YamlNode::Kind::kScalar;
   node.scalar = text;
-  node.location = {option, 1, 1};
+  node.location = {option, 0, 0};
   return node;
 }
 
-// the firmware link's component, as a robot file would declare it, from the command line
-ComponentSpec LinkComponent(const std::string& transport) {
+// the firmware link's component, as a robot file would declare it, from the command line;
+// --link-set values are validated like a robot file's, and win over earlier ones
+ComponentSpec LinkComponent(const std::string& transport, const std::vector<std::string>& sets) {
   ComponentSpec link;
   link.type = "unimouse.link";
   link.name = "link";
-  link.location = {"--link", 1, 1};
+  link.location = {"--link " + transport, 0, 0};
   link.params.kind = YamlNode::Kind::kMap;
   link.params.location = link.location;
-  link.params.entries.emplace_back(Scalar("transport", "--link"), Scalar(transport, "--link"));
+  const std::string option = link.location.file;
+  link.params.entries.emplace_back(Scalar("transport", option), Scalar(transport, option));
   // a firmware program the simulator starts runs in lock-step, so that its runs repeat exactly
   if (transport.rfind("native:", 0) == 0) {
-    link.params.entries.emplace_back(Scalar("start_with_lockstep", "--link"),
-                                     Scalar("true", "--link"));
+    link.params.entries.emplace_back(Scalar("start_with_lockstep", option), Scalar("true", option));
+  }
+  for (const std::string& set : sets) {
+    const size_t eq = set.find('=');
+    UNIMOUSE_THROW_UNLESS(eq != std::string::npos && eq > 0,
+                          "--link-set " + set + ": write name=value");
+    const std::string where = "--link-set " + set;
+    link.params.entries.emplace_back(Scalar(set.substr(0, eq), where),
+                                     Scalar(set.substr(eq + 1), where));
   }
   return link;
 }
@@ -88,7 +97,8 @@ void Session::Assemble() {
                         "--duration must be a positive number of seconds");
   robot_file_ = ResolveDataFile(o.robot, "robots/", ".yaml");
   robot_ = LoadRobotSpec(robot_file_);
-  if (!o.link.empty()) robot_.components.push_back(LinkComponent(o.link));
+  UNIMOUSE_THROW_UNLESS(o.link_sets.empty() || !o.link.empty(), "--link-set goes with --link");
+  if (!o.link.empty()) robot_.components.push_back(LinkComponent(o.link, o.link_sets));
 
   // a scenario builds its own world
   ScenarioWorld world;

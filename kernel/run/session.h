@@ -41,6 +41,7 @@ struct SessionOptions {
   std::string plugin_path;                   ///< extra plugin directories, ':'-separated
   const PluginRegistry* registry = nullptr;  ///< default: the plugins on the search path
   std::string link;                          ///< transport spec ("pty", "native:PROGRAM"); "" none
+  std::vector<std::string> link_sets;        ///< link parameters, "name=value"
   bool realtime = false;                     ///< pace to the wall clock (always with a link)
   bool paced_by_caller = false;              ///< a viewer paces the run itself
   std::string scenario;                      ///< scenario file or bundled name; "" for none

@@ -53,6 +53,35 @@ TEST_F(CliTest, RunWritesAResultWithPoseTimeAndSpeed) {
   EXPECT_GT(result["wall_time_s"].get<double>(), 0);
 }
 
+TEST_F(CliTest, LinkParametersComeFromTheCommandLineAndAreCheckedLikeARobotFiles) {
+  const std::string run = "run --maze none --duration 0.05 --no-pictures --out " + dir_.string() +
+                          " --link pty --link-set ";
+  Outcome o = Unimouse(run + "failsafe_s=0");
+  EXPECT_EQ(o.exit_code, 0) << o.output;
+
+  o = Unimouse(run + "failsafe=0");
+  EXPECT_EQ(o.exit_code, 2) << o.output;
+  EXPECT_NE(o.output.find("unimouse: error: --link-set failsafe=0: component 'link' "
+                          "(unimouse.link): unknown parameter 'failsafe' (did you mean "
+                          "'failsafe_s'?)"),
+            std::string::npos)
+      << o.output;
+
+  o = Unimouse(run + "failsafe_s=-1");
+  EXPECT_EQ(o.exit_code, 2) << o.output;
+  EXPECT_NE(o.output.find("--link-set failsafe_s=-1: component 'link' (unimouse.link): "
+                          "failsafe_s must be at least 0, not -1"),
+            std::string::npos)
+      << o.output;
+
+  o = Unimouse(run + "tof_full_scale_m=wide");
+  EXPECT_EQ(o.exit_code, 2) << o.output;
+  o = Unimouse("run --maze none --duration 0.05 --out " + dir_.string() +
+               " --link-set failsafe_s=0 --robot unimouse");
+  EXPECT_EQ(o.exit_code, 2) << o.output;
+  EXPECT_NE(o.output.find("--link-set goes with --link"), std::string::npos) << o.output;
+}
+
 TEST_F(CliTest, RunOnAnOpenFloor) {
   const Outcome o = Unimouse("run --maze none --duration 0.1 --out " + dir_.string());
   ASSERT_EQ(o.exit_code, 0) << o.output;

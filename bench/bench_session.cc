@@ -1,0 +1,36 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// A whole run through Session, as the command line makes it: the speed-control challenge with
+// its Lua controller (scenario, robot, pictures off), reported as a real-time factor.
+#include <benchmark/benchmark.h>
+
+#include <filesystem>
+
+#include "bundled_components.h"
+#include "session.h"
+
+namespace {
+
+using namespace unimouse;
+
+void BM_SessionSpeedControlScenario(benchmark::State& bench) {
+  PluginRegistry registry;
+  AddBundledComponents(registry);
+  SessionOptions options;
+  options.registry = &registry;
+  options.scenario = UNIMOUSE_SOURCE_DIR "/scenarios/speed_control.lua";
+  options.controller = UNIMOUSE_SOURCE_DIR "/tests/scenarios/speed_controller.lua";
+  options.out_dir = (std::filesystem::temp_directory_path() / "unimouse-bench-session").string();
+  options.only_asked_pictures = true;
+  options.console = false;
+  for (auto _ : bench) {
+    std::unique_ptr<Session> session = Session::Open(options);
+    while (!session->Over()) session->Step();
+    const SessionResult result = session->Finish();
+    bench.counters["real_time_factor"] = result.record["real_time_factor"].get<double>();
+    bench.counters["sim_time_s"] = result.record["sim_time_s"].get<double>();
+  }
+  std::filesystem::remove_all(options.out_dir);
+}
+BENCHMARK(BM_SessionSpeedControlScenario)->Unit(benchmark::kMillisecond)->Iterations(3);
+
+}  // namespace

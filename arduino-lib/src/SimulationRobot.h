@@ -61,10 +61,12 @@ class SimulationRobot {
 #endif
 
   /// Asks the simulator for sensor frames and, with `lockstep`, to run step by step with the
-  /// firmware. Returns at once.
+  /// firmware; says that it resends its commands, so that the simulator may stop the motors
+  /// when it falls silent. Returns at once.
   void begin(bool lockstep = kLockstepByDefault) {
     lockstep_ = lockstep;
     manager(UNIMOUSE_MANAGER_SENSORS_ON);
+    manager(UNIMOUSE_MANAGER_REPEATS_COMMANDS);
     if (lockstep) manager(UNIMOUSE_MANAGER_LOCKSTEP_ON);
   }
 

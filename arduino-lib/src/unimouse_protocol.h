@@ -41,9 +41,12 @@ enum {
   UNIMOUSE_MANAGER_SENSORS_ON = 0x02,
   UNIMOUSE_MANAGER_SENSORS_OFF = 0x03,
   /* extensions */
-  UNIMOUSE_MANAGER_LOCKSTEP_ON = 0x10, /* from the next step on, the simulator sends a clock
-                                          frame after each step's sensor frames and waits */
-  UNIMOUSE_MANAGER_STEP_DONE = 0x11    /* the firmware has sent everything for this step */
+  UNIMOUSE_MANAGER_LOCKSTEP_ON = 0x10,     /* from the next step on, the simulator sends a clock
+                                              frame after each step's sensor frames and waits */
+  UNIMOUSE_MANAGER_STEP_DONE = 0x11,       /* the firmware has sent everything for this step */
+  UNIMOUSE_MANAGER_REPEATS_COMMANDS = 0x12 /* the firmware resends its motor commands at least
+                                              every 50 ms, so silence means it is in trouble:
+                                              the simulator stops the motors after failsafe_s */
 };
 
 /* sides in a debug walls frame: bits of `walls` and `known` */

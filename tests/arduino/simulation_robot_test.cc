@@ -20,11 +20,12 @@ void unimousePcClock(uint32_t) {}
 namespace unimouse {
 namespace {
 
-TEST(FirmwareSimulationRobotTest, BeginAsksForSensorsAndLockStepWithoutWaiting) {
+TEST(FirmwareSimulationRobotTest, BeginAsksForSensorsAnnouncesItselfAndAsksForLockStep) {
   ByteStream stream;
   SimulationRobot robot(stream);
   robot.begin(true);
-  EXPECT_EQ(stream.out, (std::vector<uint8_t>{7, 0x02, 7, 0x10}));
+  // sensors on, "I resend my commands" (so silence may stop the motors), lock-step on
+  EXPECT_EQ(stream.out, (std::vector<uint8_t>{7, 0x02, 7, 0x12, 7, 0x10}));
   EXPECT_FLOAT_EQ(robot.frontDistance(), 1.2f);  // nothing yet: the full scale
 }
 

@@ -3,7 +3,6 @@
 
 #include <unistd.h>
 
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -16,7 +15,6 @@
 #include "kernel.h"
 #include "session.h"
 #include "unimouse/errors.h"
-#include "unimouse/plugin_abi.h"
 #include "viewer.h"
 
 namespace unimouse {
@@ -117,9 +115,9 @@ int RunOnce(const RunOptions& options, Viewer* viewer) {
                 r["pictures"]["renderer"].get<std::string>().c_str());
   }
   std::printf("  result: %s\n", (std::filesystem::path(out_dir) / "result.json").string().c_str());
-  if (r.contains("error"))
+  if (r.contains("error")) {
     std::fprintf(stderr, "unimouse: error: %s\n", r["error"].get<std::string>().c_str());
-  if (r.contains("scenario") && !r.contains("error")) {
+  } else if (r.contains("scenario")) {
     const std::string status = r["scenario"]["status"];
     const std::string reason = r["scenario"]["reason"];
     std::printf("  scenario %s: %s%s%s\n", r["scenario"]["name"].get<std::string>().c_str(),

@@ -24,9 +24,20 @@ std::string Sides(uint8_t bits) {
   return out.empty() ? "none" : out;
 }
 
+std::unique_ptr<Transport> Open(const LinkParams& p) {
+  if (p.transport.rfind("avr:", 0) == 0) {
+#ifdef UNIMOUSE_HAVE_SIMAVR
+    return OpenAvrBoard(p.transport.substr(4), p.mcu, p.f_cpu_hz);
+#else
+    throw InputError("avr: this build has no emulated board (it needs libsimavr-dev, libelf-dev)");
+#endif
+  }
+  return OpenTransport(p.transport);
+}
+
 }  // namespace
 
-Link::Link(Params params) : p_(std::move(params)), transport_(OpenTransport(p_.transport)) {}
+Link::Link(Params params) : p_(std::move(params)), transport_(Open(p_)) {}
 
 Link::~Link() = default;
 
@@ -41,6 +52,7 @@ void Link::Bind(BindContext& ctx) {
   lockstep_ = ctx.WriteSignal(p_.lockstep_out);
   const double steps = p_.tof_period_s / ctx.period_s();
   tof_every_n_steps_ = std::max(1, static_cast<int>(std::lround(steps)));
+  period_s_ = ctx.period_s();
   UNIMOUSE_THROW_UNLESS(std::fabs(steps - tof_every_n_steps_) < 1e-6 * steps,
                         "tof_period_s must be a whole number of the link's steps");
   ctx.SetStateSize(5);
@@ -65,6 +77,8 @@ void Link::Reset(const ResetContext& ctx) const {
   ctx.Write(motor_[1], 0);
   ctx.Write(lockstep_, 0);
   decoder_.Reset();
+  late_steps_ = 0;
+  last_step_done_s_ = 0;
   ctx.Log("firmware link: " + transport_->Describe());
 }
 
@@ -283,6 +297,32 @@ void Link::Sense(const SenseContext& ctx) const {
   if (lockstep) PutClockFrame(static_cast<uint64_t>(std::llround(ctx.time_s() * 1e6)), out);
   Send(ctx, out, lockstep);
 
+  // an emulated board keeps its own time: it runs the step's cycles, never waits
+  if (transport_->clocked()) {
+    ctx.SetFirmwarePaced(true);
+    const std::string fault = transport_->RunUntil(ctx.time_s() + period_s_);
+    if (!fault.empty()) {
+      ctx.Fail(fault);
+      return;
+    }
+    Receive(ctx, &step_done);
+    if (!lockstep) return;
+    if (step_done) {
+      last_step_done_s_ = ctx.time_s();
+      return;
+    }
+    ++late_steps_;
+    if (ctx.time_s() - last_step_done_s_ > p_.lockstep_timeout_s) {
+      char text[160];
+      std::snprintf(text, sizeof(text),
+                    "the firmware did not finish a step for %g s of its own time at t=%.3f s "
+                    "(lock-step)",
+                    p_.lockstep_timeout_s, ctx.time_s());
+      ctx.Fail(text);
+    }
+    return;
+  }
+
   // lock-step: this step is over when the firmware says so
   if (!lockstep) return;
   const auto deadline =
@@ -334,6 +374,12 @@ void Link::Finish(const SenseContext& ctx) const {
                 static_cast<unsigned long long>(decoder_.unknown_bytes()),
                 static_cast<unsigned long long>(dropped_bytes_));
   ctx.Log(text);
+  const std::string summary = transport_->Summary();
+  if (!summary.empty()) {
+    std::snprintf(text, sizeof(text), "; %llu lock-step steps late",
+                  static_cast<unsigned long long>(late_steps_));
+    ctx.Log("link: " + summary + text);
+  }
 }
 
 }  // namespace unimouse::link

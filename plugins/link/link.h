@@ -36,10 +36,13 @@ struct LinkParams {
   int queue_bytes = 1024;
   std::string lockstep_out = "link.lockstep";
   std::string beliefs_out = "firmware_beliefs.json";
+  std::string mcu = "atmega2560";
+  double f_cpu_hz = 16000000;
 
   template <class V>
   void Visit(V& v) {
-    v("transport", transport, "pty, pty:LINK, serial:PATH@BAUD, tcp::PORT or native:PROGRAM");
+    v("transport", transport,
+      "pty, pty:LINK, serial:PATH@BAUD, tcp::PORT, native:PROGRAM or avr:PATH.elf");
     v("tof_left", tof_left, "signal sent as frame 0: left ToF reading, metres");
     v("tof_right", tof_right, "signal sent as frame 1: right ToF reading, metres");
     v("tof_front", tof_front, "signal sent as frame 2: front ToF reading, metres");
@@ -70,6 +73,11 @@ struct LinkParams {
       "channels (walls, visited cells, path); empty for none");
     v("lockstep_out", lockstep_out,
       "signal it writes: 1 once the firmware runs in lock-step (the run stops pacing then)");
+    v("mcu", mcu,
+      "avr: the emulated part, unless the image names its own (simavr's AVR_MCU section)",
+      param::OneOf{"atmega2560|atmega328p"});
+    v("f_cpu_hz", f_cpu_hz, "avr: the emulated clock, unless the image names its own",
+      param::Range{1e6, 32e6});
   }
 };
 
@@ -118,6 +126,10 @@ class Link final : public Component {
   mutable double budget_bytes_ = 0;
   mutable uint64_t dropped_bytes_ = 0;
   double bytes_per_step_ = 0;
+  double period_s_ = 0;
+  // lock-step on a clocked board: steps it did not finish within its cycles, and when it last did
+  mutable uint64_t late_steps_ = 0;
+  mutable double last_step_done_s_ = 0;
 };
 
 }  // namespace unimouse::link

@@ -29,7 +29,21 @@ class Transport {
   virtual bool Connected() const = 0;
   /// One line for the console: what it is and where to connect.
   virtual std::string Describe() const = 0;
+  /// Whether the transport carries the firmware's own clock (an emulated board): then the link
+  /// runs it for each step with RunUntil instead of waiting for it.
+  virtual bool clocked() const { return false; }
+  /// Runs a clocked peer until simulated time `time_s`: what was written goes in at its line's
+  /// pace and what it sends meanwhile can be read after. Returns "", or why the firmware cannot
+  /// go on (a crash, say), which ends the run.
+  virtual std::string RunUntil(double /*time_s*/) { return ""; }
+  /// Returns a line of what the transport measured over the run, for the link's last line.
+  virtual std::string Summary() const { return ""; }
 };
+
+/// Opens the emulated board: the image at `path` on an emulated `mcu` at `f_cpu_hz`, unless the
+/// image names its own (avr_transport.cc; throws InputError without simavr in the build).
+std::unique_ptr<Transport> OpenAvrBoard(const std::string& path, const std::string& mcu,
+                                        double f_cpu_hz);
 
 /// Opens a transport from its spec: "pty" or "pty:LINK" (a symlink to the pty for convenience),
 /// "serial:PATH@BAUD", "tcp::PORT" or "tcp:HOST:PORT", or "native:PROGRAM [ARGS]" (a firmware

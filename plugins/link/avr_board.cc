@@ -1,0 +1,447 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "avr_board.h"
+
+#include <fcntl.h>
+#include <gelf.h>
+#include <libelf.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <ctime>
+#include <filesystem>
+
+#include "unimouse/errors.h"
+#include "unimouse_protocol.h"
+
+extern "C" {
+#include "avr_uart.h"
+#include "sim_avr.h"
+#include "sim_cycle_timers.h"
+#include "sim_elf.h"
+#include "sim_io.h"
+#include "sim_irq.h"
+}
+
+namespace unimouse::link {
+namespace {
+
+// UART0's registers, at the same data addresses on the ATmega328P and ATmega2560
+constexpr uint16_t kUcsr0a = 0xC0, kUcsr0b = 0xC1, kUcsr0c = 0xC2, kUbrr0l = 0xC4, kUbrr0h = 0xC5;
+constexpr uint32_t kDataOffset = 0x800000;  // where avr-ld puts the data space
+
+// the logger is global in simavr: each board registers its MCU here to get its own messages
+std::vector<std::pair<avr_t*, AvrBoard*>>& Boards() {
+  static std::vector<std::pair<avr_t*, AvrBoard*>> boards;
+  return boards;
+}
+
+double ThreadCpu_s() {
+  timespec t{};
+  ::clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
+// SRAM starts after the extended I/O space: 0x200 on the parts with many ports, else 0x100
+uint32_t RamStart(const std::string& mcu) {
+  for (const char* big : {"atmega640", "atmega1280", "atmega1281", "atmega2560", "atmega2561"}) {
+    if (mcu == big) return 0x200;
+  }
+  return 0x100;
+}
+
+}  // namespace
+
+double AvrBoardStats::LatencyQuantile_s(double q) const {
+  if (latency_cycles.empty() || f_cpu_hz == 0) return -1;
+  std::vector<uint32_t> sorted = latency_cycles;
+  const size_t k = std::min(sorted.size() - 1, static_cast<size_t>(q * (sorted.size() - 1) + 0.5));
+  std::nth_element(sorted.begin(), sorted.begin() + static_cast<long>(k), sorted.end());
+  return static_cast<double>(sorted[k]) / f_cpu_hz;
+}
+
+std::string AvrBoardStats::Describe() const {
+  char text[640];
+  const double s = emulated_s();
+  std::snprintf(
+      text, sizeof(text),
+      "%s at %.0f MHz: %.3f s emulated, %llu instructions (%.2f MIPS emulated, %.0f %% asleep), "
+      "%.1f MHz on this host; RAM high-water %u of %u bytes (data %u, heap %u, stack %u); UART "
+      "%u baud: %llu bytes in, %llu out, %llu RX overruns, %llu lost in, %llu lost out, %llu "
+      "before the receiver was on; sensor-to-command latency p50 %.3f ms, p99 %.3f ms (%zu)",
+      mcu.c_str(), f_cpu_hz / 1e6, s, static_cast<unsigned long long>(instructions),
+      s > 0 ? instructions / s / 1e6 : 0.0, cycles ? 100.0 * sleep_cycles / cycles : 0.0,
+      emulated_mhz(), ram_high_water_bytes, sram_bytes, static_bytes, heap_bytes, stack_max_bytes,
+      baud, static_cast<unsigned long long>(bytes_to_mcu),
+      static_cast<unsigned long long>(bytes_from_mcu), static_cast<unsigned long long>(rx_overruns),
+      static_cast<unsigned long long>(dropped_to_mcu),
+      static_cast<unsigned long long>(dropped_from_mcu),
+      static_cast<unsigned long long>(before_receiver_on), LatencyQuantile_s(0.5) * 1e3,
+      LatencyQuantile_s(0.99) * 1e3, latency_cycles.size());
+  return text;
+}
+
+AvrBoard::AvrBoard(const std::string& elf_path, const Options& options) : options_(options) {
+  std::error_code ec;
+  UNIMOUSE_THROW_UNLESS(std::filesystem::is_regular_file(elf_path, ec),
+                        elf_path + ": no such firmware image");
+  elf_firmware_t fw;
+  std::memset(&fw, 0, sizeof(fw));
+  avr_global_logger_set(&Logger);
+  UNIMOUSE_THROW_UNLESS(elf_read_firmware(elf_path.c_str(), &fw) == 0 && fw.flashsize > 0,
+                        elf_path + ": not an AVR .elf image");
+  // the image's own AVR_MCU section wins over the link's parameters
+  stats_.mcu = fw.mmcu[0] ? fw.mmcu : options.mcu;
+  stats_.f_cpu_hz = fw.frequency ? fw.frequency : options.f_cpu_hz;
+  avr_ = avr_make_mcu_by_name(stats_.mcu.c_str());
+  if (avr_ == nullptr) {
+    std::free(fw.flash);
+    throw InputError(elf_path + ": simavr does not know the MCU '" + stats_.mcu + "'");
+  }
+  Boards().emplace_back(avr_, this);
+  avr_init(avr_);
+  avr_->log = LOG_ERROR;
+  fw.frequency = stats_.f_cpu_hz;
+  avr_load_firmware(avr_, &fw);
+  avr_->frequency = stats_.f_cpu_hz;
+  std::free(fw.flash);
+  std::free(fw.eeprom);
+  for (uint32_t i = 0; i < fw.symbolcount; ++i) std::free(fw.symbol[i]);
+  std::free(fw.symbol);
+
+  // lock-step: never wait for the wall clock while the firmware sleeps
+  avr_->sleep = [](avr_t*, avr_cycle_count_t) {};
+  run_ = avr_->run;
+  uint32_t flags = 0;
+  avr_ioctl(avr_, AVR_IOCTL_UART_GET_FLAGS('0'), &flags);
+  flags &= ~(AVR_UART_FLAG_POLL_SLEEP | AVR_UART_FLAG_STDIO);
+  avr_ioctl(avr_, AVR_IOCTL_UART_SET_FLAGS('0'), &flags);
+  uart_in_ = avr_io_getirq(avr_, AVR_IOCTL_UART_GETIRQ('0'), UART_IRQ_INPUT);
+  UNIMOUSE_THROW_UNLESS(uart_in_ != nullptr, stats_.mcu + " has no UART0");
+  avr_irq_register_notify(avr_io_getirq(avr_, AVR_IOCTL_UART_GETIRQ('0'), UART_IRQ_OUTPUT),
+                          &OnOutput, this);
+  avr_irq_register_notify(avr_io_getirq(avr_, AVR_IOCTL_UART_GETIRQ('0'), UART_IRQ_OUT_XON), &OnXon,
+                          this);
+  avr_irq_register_notify(avr_io_getirq(avr_, AVR_IOCTL_UART_GETIRQ('0'), UART_IRQ_OUT_XOFF),
+                          &OnXoff, this);
+
+  ReadSymbols(elf_path);
+  ram_end_ = avr_->ramend;
+  const int64_t data_start = DataSymbol("__data_start");
+  ram_start_ = data_start >= 0 ? static_cast<uint32_t>(data_start) : RamStart(stats_.mcu);
+  // without symbols, the image's sizes say where the data ends
+  int64_t heap_start = DataSymbol("__heap_start");
+  if (heap_start < 0) heap_start = DataSymbol("_end");
+  data_top_ =
+      heap_start >= 0 ? static_cast<uint32_t>(heap_start) : ram_start_ + fw.datasize + fw.bsssize;
+  brkval_ = DataSymbol("__brkval");
+  stats_.sram_bytes = ram_end_ + 1 - ram_start_;
+  stats_.static_bytes = data_top_ - ram_start_;
+}
+
+AvrBoard::~AvrBoard() {
+  auto& boards = Boards();
+  std::erase_if(boards, [this](const auto& b) { return b.second == this; });
+  if (avr_ != nullptr) avr_terminate(avr_);
+}
+
+void AvrBoard::ReadSymbols(const std::string& elf_path) {
+  if (elf_version(EV_CURRENT) == EV_NONE) return;
+  const int fd = ::open(elf_path.c_str(), O_RDONLY);
+  if (fd < 0) return;
+  Elf* elf = elf_begin(fd, ELF_C_READ, nullptr);
+  for (Elf_Scn* scn = nullptr; elf && (scn = elf_nextscn(elf, scn)) != nullptr;) {
+    GElf_Shdr shdr;
+    if (gelf_getshdr(scn, &shdr) == nullptr || shdr.sh_type != SHT_SYMTAB) continue;
+    Elf_Data* data = elf_getdata(scn, nullptr);
+    const size_t n = shdr.sh_entsize ? shdr.sh_size / shdr.sh_entsize : 0;
+    for (size_t i = 0; data && i < n; ++i) {
+      GElf_Sym sym;
+      if (gelf_getsym(data, static_cast<int>(i), &sym) == nullptr) continue;
+      const char* name = elf_strptr(elf, shdr.sh_link, sym.st_name);
+      if (name == nullptr || name[0] == '\0') continue;
+      const auto value = static_cast<uint32_t>(sym.st_value);
+      if (GELF_ST_TYPE(sym.st_info) == STT_FUNC) {
+        functions_[value] = {static_cast<uint32_t>(sym.st_size), name};
+      } else if (value >= kDataOffset && value < kDataOffset + 0x10000) {
+        data_symbols_[name] = value - kDataOffset;
+      }
+    }
+  }
+  if (elf) elf_end(elf);
+  ::close(fd);
+}
+
+std::string AvrBoard::FunctionAt(uint32_t pc) const {
+  auto it = functions_.upper_bound(pc);
+  if (it == functions_.begin()) return "";
+  --it;
+  // a size of 0 (hand-written assembly) claims everything up to the next symbol
+  if (it->second.size != 0 && pc >= it->first + it->second.size) return "";
+  return it->second.name;
+}
+
+int64_t AvrBoard::DataSymbol(const std::string& name) const {
+  const auto it = data_symbols_.find(name);
+  return it == data_symbols_.end() ? int64_t{-1} : int64_t{it->second};
+}
+
+uint64_t AvrBoard::cycle() const { return avr_->cycle; }
+
+uint32_t AvrBoard::CyclesPerBit() const {
+  const uint8_t* d = avr_->data;
+  const uint32_t ubrr = d[kUbrr0l] | (d[kUbrr0h] & 0x0F) << 8;
+  return (ubrr + 1) * (d[kUcsr0a] & 0x02 ? 8 : 16);
+}
+
+uint32_t AvrBoard::Baud() const { return stats_.f_cpu_hz / CyclesPerBit(); }
+
+uint32_t AvrBoard::CyclesPerByte() const {
+  const uint8_t* d = avr_->data;
+  const int size = (d[kUcsr0c] >> 1 & 3) | (d[kUcsr0b] & 0x04);
+  static constexpr int kDataBits[] = {5, 6, 7, 8, 8, 8, 8, 9};
+  const int stop_bits = 1 + (d[kUcsr0c] >> 3 & 1);
+  // start, data, a parity bit (simavr always counts one) and stop bits
+  return CyclesPerBit() * static_cast<uint32_t>(1 + kDataBits[size] + 1 + stop_bits);
+}
+
+void AvrBoard::Stop(const std::string& why) {
+  if (!fault_.empty()) return;
+  char where[96];
+  const std::string function = FunctionAt(avr_->pc);
+  std::snprintf(where, sizeof(where), " at pc 0x%05x (%s), t=%.6f s", avr_->pc,
+                function.empty() ? "no symbol" : function.c_str(),
+                static_cast<double>(avr_->cycle) / stats_.f_cpu_hz);
+  fault_ = "the emulated " + stats_.mcu + " stopped: " + why + where;
+}
+
+void AvrBoard::NoteSp() {
+  const uint8_t* d = avr_->data;
+  min_sp_ = static_cast<uint16_t>(d[R_SPL] | d[R_SPH] << 8);
+  uint32_t heap_top = data_top_;
+  if (brkval_ >= 0) {
+    const uint32_t brk = d[brkval_] | d[brkval_ + 1] << 8;
+    if (brk > heap_top) heap_top = brk;
+  }
+  stats_.heap_bytes = heap_top - data_top_;
+  stats_.stack_max_bytes = min_sp_ < ram_end_ ? ram_end_ - min_sp_ : 0;
+  stats_.ram_high_water_bytes = stats_.static_bytes + stats_.heap_bytes + stats_.stack_max_bytes;
+  // the stack's lowest byte is SP + 1
+  if (min_sp_ + 1u < heap_top) {
+    char why[160];
+    std::snprintf(why, sizeof(why),
+                  "its stack (SP 0x%04x) ran into the data and heap below 0x%04x: RAM high-water "
+                  "%u of %u bytes",
+                  min_sp_, heap_top, stats_.ram_high_water_bytes, stats_.sram_bytes);
+    Stop(why);
+  }
+}
+
+std::string AvrBoard::RunUntilTime(double time_s) {
+  return RunUntil(static_cast<uint64_t>(std::llround(time_s * stats_.f_cpu_hz)));
+}
+
+std::string AvrBoard::RunUntil(uint64_t target) {
+  if (!fault_.empty() || target <= avr_->cycle) return fault_;
+  const double cpu0 = ThreadCpu_s();
+  // a sleeping MCU skips to its next timer: one at the boundary keeps it from going past
+  avr_cycle_timer_register(avr_, target - avr_->cycle, &StepEnd, this);
+  while (avr_->cycle < target && fault_.empty()) {
+    if (avr_->run != run_) {
+      Stop("the watchdog reset it");
+      break;
+    }
+    const int before = avr_->state;
+    const uint64_t cycle = avr_->cycle;
+    const int state = avr_run(avr_);
+    if (before == cpu_Running) {
+      ++stats_.instructions;
+    } else if (before == cpu_Sleeping) {
+      stats_.sleep_cycles += avr_->cycle - cycle;
+    }
+    if ((avr_->data[R_SPL] | avr_->data[R_SPH] << 8) < min_sp_) NoteSp();
+    if (state == cpu_Done) {
+      Stop("it went to sleep with interrupts off, so nothing can wake it");
+    } else if (state == cpu_Crashed || state == cpu_Stopped) {
+      Stop("it crashed (" + (last_error_.empty() ? std::string("simavr stopped it") : last_error_) +
+           ")");
+    } else if (avr_->pc == 0) {
+      Stop("it jumped to address 0, a restart without a reset");
+    }
+  }
+  stats_.host_cpu_s += ThreadCpu_s() - cpu0;
+  return fault_;
+}
+
+uint64_t AvrBoard::StepEnd(avr_t*, uint64_t, void*) { return 0; }
+
+void AvrBoard::Write(std::span<const uint8_t> bytes) {
+  if (bytes.empty()) return;
+  receiver_on_ = avr_->data[kUcsr0b] & 0x10;
+  // nothing listens before Serial.begin(); the line does not wait for it either
+  if (!receiver_on_) {
+    stats_.before_receiver_on += bytes.size();
+    return;
+  }
+  if (to_mcu_.size() + bytes.size() > options_.queue_bytes) {
+    stats_.dropped_to_mcu += bytes.size();
+    return;
+  }
+  to_mcu_.insert(to_mcu_.end(), bytes.begin(), bytes.end());
+  ends_write_.insert(ends_write_.end(), bytes.size() - 1, false);
+  ends_write_.push_back(true);
+  StartLine();
+}
+
+void AvrBoard::StartLine() {
+  if (line_busy_ || to_mcu_.empty()) return;
+  line_busy_ = true;
+  avr_cycle_timer_register(avr_, 1, &FeedByte, this);
+}
+
+uint64_t AvrBoard::FeedByte(avr_t* avr, uint64_t when, void* param) {
+  auto* b = static_cast<AvrBoard*>(param);
+  if (b->to_mcu_.empty()) {
+    b->line_busy_ = false;
+    return 0;
+  }
+  const uint8_t byte = b->to_mcu_.front();
+  const bool ends = b->ends_write_.front();
+  b->to_mcu_.pop_front();
+  b->ends_write_.pop_front();
+  const uint32_t per_byte = b->CyclesPerByte();
+  b->stats_.baud = b->Baud();
+  b->receiver_on_ = avr->data[kUcsr0b] & 0x10;
+  if (!b->receiver_on_) {
+    ++b->stats_.before_receiver_on;
+  } else {
+    // the UART counts a byte it has no room for as an overrun (logged, see Logger)
+    const uint64_t overruns = b->stats_.rx_overruns;
+    avr_raise_irq(b->uart_in_, byte);
+    if (b->stats_.rx_overruns == overruns) {
+      ++b->stats_.bytes_to_mcu;
+    } else {
+      ++b->stats_.dropped_to_mcu;
+    }
+    if (ends) {
+      b->mark_cycle_ = when + per_byte;
+      b->mark_pending_ = true;
+    }
+  }
+  return when + per_byte;
+}
+
+void AvrBoard::OnOutput(avr_irq_t*, uint32_t value, void* param) {
+  auto* b = static_cast<AvrBoard*>(param);
+  const uint64_t now = b->avr_->cycle;
+  const uint32_t per_byte = b->CyclesPerByte();
+  // the transmitter holds one byte in its shift register and one in UDR; a third is lost
+  if (b->tx_free_at_ > now + per_byte) {
+    ++b->stats_.dropped_from_mcu;
+    return;
+  }
+  const uint64_t arrival = std::max(now, b->tx_free_at_) + per_byte;
+  b->tx_free_at_ = arrival;
+  if (b->from_mcu_.size() >= (1u << 16)) {
+    ++b->stats_.dropped_from_mcu;
+    return;
+  }
+  b->from_mcu_.emplace_back(static_cast<uint8_t>(value), arrival);
+  b->WalkOutgoing(static_cast<uint8_t>(value), arrival);
+}
+
+void AvrBoard::OnXon(avr_irq_t*, uint32_t value, void* param) {
+  auto* b = static_cast<AvrBoard*>(param);
+  if (value) b->fifo_full_ = false;
+  b->receiver_on_ = b->avr_->data[kUcsr0b] & 0x10;
+}
+
+void AvrBoard::OnXoff(avr_irq_t*, uint32_t value, void* param) {
+  static_cast<AvrBoard*>(param)->fifo_full_ = value != 0;
+}
+
+void AvrBoard::WalkOutgoing(uint8_t byte, uint64_t arrival) {
+  bool complete = false;
+  switch (walk_) {
+    case Walk::kId: {
+      const int size = unimouse_payload_size(byte);
+      walk_command_ = std::find(options_.command_ids.begin(), options_.command_ids.end(), byte) !=
+                      options_.command_ids.end();
+      walk_text_after_ = byte == UNIMOUSE_ID_DEBUG_VALUE;
+      if (size >= 0) {
+        walk_need_ = size;
+        walk_ = size > 0 ? Walk::kFixed : Walk::kId;
+        complete = size == 0;
+      } else if (byte == UNIMOUSE_ID_DEBUG_PATH) {
+        walk_ = Walk::kPathCount;
+      } else if (byte == UNIMOUSE_ID_DEBUG_VALUE) {
+        walk_need_ = 4;
+        walk_ = Walk::kFixed;
+      } else if (size == UNIMOUSE_FRAME_VARIABLE) {
+        walk_ = Walk::kText;
+      }
+      break;
+    }
+    case Walk::kFixed:
+      if (--walk_need_ == 0) {
+        walk_ = walk_text_after_ ? Walk::kText : Walk::kId;
+        complete = !walk_text_after_;
+      }
+      break;
+    case Walk::kText:
+      if (byte == 0) walk_ = Walk::kId;
+      break;
+    case Walk::kPathCount:
+      walk_need_ = 2 * byte;
+      walk_ = byte > 0 ? Walk::kFixed : Walk::kId;
+      break;
+  }
+  if (complete && walk_command_ && mark_pending_ && arrival > mark_cycle_) {
+    stats_.latency_cycles.push_back(static_cast<uint32_t>(arrival - mark_cycle_));
+    mark_pending_ = false;
+  }
+}
+
+void AvrBoard::Read(std::vector<uint8_t>& out, size_t max_bytes) {
+  const uint64_t now = avr_->cycle;
+  while (max_bytes > 0 && !from_mcu_.empty() && from_mcu_.front().second <= now) {
+    out.push_back(from_mcu_.front().first);
+    from_mcu_.pop_front();
+    ++stats_.bytes_from_mcu;
+    --max_bytes;
+  }
+}
+
+AvrBoardStats AvrBoard::stats() const {
+  AvrBoardStats s = stats_;
+  s.cycles = avr_->cycle;
+  return s;
+}
+
+void AvrBoard::Logger(avr_t* avr, int level, const char* format, va_list ap) {
+  if (level > LOG_ERROR || avr == nullptr) return;
+  for (const auto& [mcu, board] : Boards()) {
+    if (mcu != avr) continue;
+    char text[256];
+    std::vsnprintf(text, sizeof(text), format, ap);
+    std::string line = text;
+    // simavr colours its errors
+    for (size_t at; (at = line.find('\x1b')) != std::string::npos;) {
+      const size_t end = line.find('m', at);
+      line.erase(at, end == std::string::npos ? std::string::npos : end - at + 1);
+    }
+    while (!line.empty() && (line.back() == '\n' || line.back() == ' ')) line.pop_back();
+    if (line.find("RX buffer overrun") != std::string::npos) {
+      ++board->stats_.rx_overruns;
+    } else if (line.find("Invalid Opcode") != std::string::npos) {
+      board->Stop("it ran an invalid instruction");
+    } else {
+      board->last_error_ = line;
+    }
+    return;
+  }
+}
+
+}  // namespace unimouse::link

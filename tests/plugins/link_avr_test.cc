@@ -1,0 +1,97 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The link with the emulated board (avr:): a board image drives the robot, in lock-step when the
+// library asks for it, runs repeat exactly, and a firmware that crashes ends the run with its
+// reason.
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <filesystem>
+#include <regex>
+
+#include "inline_assets.h"
+#include "plugin_rig.h"
+#include "unimouse/errors.h"
+
+namespace unimouse {
+namespace {
+
+std::string Image(const std::string& name) {
+#ifdef UNIMOUSE_AVR_TEST_FIRMWARE_DIR
+  const std::string path = std::string(UNIMOUSE_AVR_TEST_FIRMWARE_DIR) + "/" + name + ".elf";
+  if (std::filesystem::exists(path)) return path;
+#endif
+  return "";
+}
+
+Maze Corridor() {
+  std::string text = "o---o\n";
+  for (int i = 0; i < 6; ++i) text += i == 5 ? "| S |\no---o\n" : "|   |\no   o\n";
+  return ParseMazeText(text, "corridor.txt");
+}
+
+class AvrLinkTest : public ::testing::Test {
+ protected:
+  std::unique_ptr<Kernel> Make(const std::string& image) {
+    const std::string yaml =
+        testing::ReadBundledRobot() +
+        "  - { type: unimouse.link, name: link, params: { transport: 'avr:" + image + "' } }\n";
+    KernelOptions options;
+    options.seed = 5;
+    options.log_sink = [this](double, int, const std::string&, const std::string& message) {
+      messages_.push_back(message);
+    };
+    return testing::MakeKernel(yaml, &maze_, options);
+  }
+  bool Logged(const std::string& pattern) const {
+    for (const auto& m : messages_) {
+      if (std::regex_search(m, std::regex(pattern))) return true;
+    }
+    return false;
+  }
+
+  const Maze maze_ = Corridor();
+  std::vector<std::string> messages_;
+};
+
+TEST_F(AvrLinkTest, TheLibrarysLockstepRunsOnTheBoardAndRepeats) {
+  const std::string image = Image("lockstep_robot");
+  if (image.empty()) GTEST_SKIP() << "no AVR test firmware: gcc-avr or arduino-core-avr missing";
+  std::vector<mjtNum> first;
+  for (int run = 0; run < 2; ++run) {
+    messages_.clear();
+    auto kernel = Make(image);
+    for (int i = 0; i < 600; ++i) kernel->Step();
+    kernel->Finish();
+    const mjData& d = kernel->state().data();
+    std::vector<mjtNum> q(d.qpos, d.qpos + kernel->mj_model().nq);
+    EXPECT_GT(q[1], 0.05) << "it drove north";
+    if (run == 0) {
+      first = q;
+    } else {
+      EXPECT_EQ(std::memcmp(first.data(), q.data(), q.size() * sizeof(mjtNum)), 0);
+    }
+  }
+  EXPECT_TRUE(Logged("^lock-step on"));
+  EXPECT_TRUE(Logged("^lockstep$"));
+  EXPECT_TRUE(Logged("emulated atmega2560 at 16 MHz"));
+  // every step finished within its 16 000 cycles, and nothing was lost
+  EXPECT_TRUE(Logged("RX overruns.*; 0 lock-step steps late")) << messages_.back();
+  EXPECT_TRUE(Logged(" 0 RX overruns, 0 lost in, 0 lost out")) << messages_.back();
+  EXPECT_TRUE(Logged("latency p50 0\\.[0-9]+ ms")) << messages_.back();
+}
+
+TEST_F(AvrLinkTest, AStackOverflowEndsTheRunWithTheFunction) {
+  const std::string image = Image("stack_overflow");
+  if (image.empty()) GTEST_SKIP() << "no AVR test firmware: gcc-avr or arduino-core-avr missing";
+  auto kernel = Make(image);
+  try {
+    for (int i = 0; i < 100; ++i) kernel->Step();
+    FAIL() << "the overflow went unnoticed";
+  } catch (const RuntimeFault& e) {
+    EXPECT_NE(std::string(e.what()).find("recurse"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("high-water"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace unimouse

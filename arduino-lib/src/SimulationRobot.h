@@ -3,7 +3,7 @@
 // distance sensors, two encoders, two motors and the log over one Stream, usually Serial.
 //
 //   SimulationRobot robot(Serial);
-//   void setup() { Serial.begin(115200); robot.begin(); }
+//   void setup() { Serial.begin(UNIMOUSE_BAUD); robot.begin(); }  // 1 Mbaud
 //   void loop() { robot.update(); robot.motorLeft(robot.frontDistance() > 0.3 ? 500 : 0); ... }
 //
 // begin() never blocks (the original waited for the first readings). In lock-step (begin(true),

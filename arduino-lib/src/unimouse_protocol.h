@@ -61,6 +61,9 @@ enum {
 #define UNIMOUSE_TOF_NO_TARGET 0xFFFF /* no target, or out of range */
 #define UNIMOUSE_TOF_FULL_SCALE_M 1.2 /* VL53L0X maximum range (dissertation table 3.8) */
 #define UNIMOUSE_LOG_MAX 255          /* longest log line; longer ones are cut there */
+/* the line rate to open Serial at: exact at 16 MHz (UBRR 1 with U2X), and room for a 1 kHz
+ * stream; 115200 baud cannot carry one in lock-step (eq. 4.1: 11 bytes a step take 0.95 ms) */
+#define UNIMOUSE_BAUD 1000000UL
 #define UNIMOUSE_FRAME_VARIABLE (-1)
 
 /* Payload bytes of a frame, UNIMOUSE_FRAME_VARIABLE for logs, paths and values, -2 for an id

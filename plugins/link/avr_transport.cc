@@ -28,13 +28,19 @@ class AvrTransport final : public Transport {
     std::snprintf(clock, sizeof(clock), "%g MHz", s.f_cpu_hz / 1e6);
     return "emulated " + s.mcu + " at " + clock + " running " + path_;
   }
-  std::string RunUntil(double time_s) override { return board_.RunUntilTime(time_s); }
+  std::string RunUntil(double time_s) override {
+    // the board never goes back: when the simulation starts again, its time runs on
+    if (time_s < last_s_) offset_s_ += last_s_;
+    last_s_ = time_s;
+    return board_.RunUntilTime(offset_s_ + time_s);
+  }
   bool clocked() const override { return true; }
   std::string Summary() const override { return board_.stats().Describe(); }
 
  private:
   std::string path_;
   AvrBoard board_;
+  double last_s_ = 0, offset_s_ = 0;
 };
 
 }  // namespace

@@ -10,6 +10,8 @@
 
 #include "inline_assets.h"
 #include "plugin_rig.h"
+#include "run_program.h"
+#include "text_file.h"
 #include "unimouse/errors.h"
 
 namespace unimouse {
@@ -91,6 +93,33 @@ TEST_F(AvrLinkTest, AStackOverflowEndsTheRunWithTheFunction) {
     EXPECT_NE(std::string(e.what()).find("recurse"), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("high-water"), std::string::npos) << e.what();
   }
+}
+
+TEST(AvrRunTest, AStackIntoTheDataEndsTheRunWithExitCode3AndItsHighWaterMark) {
+  const std::string image = Image("stack_overflow");
+  if (image.empty()) GTEST_SKIP() << "no AVR test firmware: gcc-avr or arduino-core-avr missing";
+  const testing::RunResult r =
+      testing::UnimouseRun("--duration 1 --link avr:" + image, "unimouse_avr_stack");
+  EXPECT_EQ(r.outcome.exit_code, 3) << r.outcome.output;
+  EXPECT_EQ(r.result["status"], "fault");
+  const std::string error = r.result["error"];
+  EXPECT_NE(error.find("ran into the data"), std::string::npos) << error;
+  EXPECT_NE(error.find("RAM high-water"), std::string::npos) << error;
+  EXPECT_NE(error.find("(recurse)"), std::string::npos) << error;
+}
+
+TEST(AvrRunTest, AFirmwareThatNeverReadsLosesBytesAndTheRunSaysHowMany) {
+  const std::string image = Image("rx_overflow");
+  if (image.empty()) GTEST_SKIP() << "no AVR test firmware: gcc-avr or arduino-core-avr missing";
+  const testing::RunResult r =
+      testing::UnimouseRun("--duration 0.2 --link avr:" + image, "unimouse_avr_rx");
+  EXPECT_EQ(r.outcome.exit_code, 0) << r.outcome.output;
+  // 6 bytes of encoder frames a step and 9 of ToF every 30 ms: 1221 bytes, 63 of them fit
+  const std::regex counts("([0-9]+) bytes in, [0-9]+ out, ([0-9]+) RX overruns");
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(r.outcome.output, m, counts)) << r.outcome.output;
+  EXPECT_EQ(m[1], "63");
+  EXPECT_GT(std::stoi(m[2]), 1000);
 }
 
 }  // namespace

@@ -84,7 +84,7 @@ void recordWall(Direction side, bool wall) {
 }
 
 void setup() {
-  Serial.begin(115200);
+  Serial.begin(UNIMOUSE_BAUD);
   robot.begin();
   // the classic start cell: open to the north only
   maze.placeWall(0, 0, Direction::East);

@@ -22,7 +22,7 @@ uint32_t lastMs = 0;
 float clampCommand(float c) { return c > 1023 ? 1023 : c < -1023 ? -1023 : c; }
 
 void setup() {
-  Serial.begin(115200);
+  Serial.begin(UNIMOUSE_BAUD);
   robot.begin();
 }
 

@@ -16,7 +16,7 @@ const int kGain = 900;  // per metre of error
 const int kMaxTurn = 300;
 
 void setup() {
-  Serial.begin(115200);
+  Serial.begin(UNIMOUSE_BAUD);
   robot.begin();
 }
 

@@ -124,11 +124,9 @@ int RunOnce(const RunOptions& options, Viewer* viewer) {
   const std::string robot_file = ResolveDataFile(options.robot, "robots/", ".yaml");
   RobotSpec robot = LoadRobotSpec(robot_file);
   if (!options.link.empty()) {
-    // the firmware drives the robot's inputs through the link, added as the last component; a
-    // firmware program the simulator starts is run in lock-step, so that its runs repeat exactly
-    const bool native = options.link.rfind("native:", 0) == 0;
-    const std::string params = "{transport: '" + options.link +
-                               "', start_with_lockstep: " + (native ? "true" : "false") + "}";
+    // the firmware drives the robot's inputs through the link, added as the last component; the
+    // transport itself says whether it runs in lock-step from the first step
+    const std::string params = "{transport: '" + options.link + "'}";
     robot.components.push_back(
         {"unimouse.link", "link", std::nullopt, ParseYaml(params, "--link"), {"--link", 1, 1}});
   }
@@ -334,6 +332,8 @@ int CheckCommand(const std::string& robot_name, const std::string& plugin_path) 
       std::filesystem::temp_directory_path() / ("unimouse-check-" + std::to_string(::getpid()));
   KernelOptions kernel_options;
   kernel_options.output_dir = scratch.string();
+  // checking opens no port, starts no firmware and makes no link outside the scratch directory
+  kernel_options.start_components = false;
   std::unique_ptr<Kernel> kernel;
   try {
     kernel = Kernel::Create(robot, nullptr, registry, kernel_options);

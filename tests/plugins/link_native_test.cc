@@ -33,7 +33,7 @@ class NativeLinkTest : public ::testing::Test {
         testing::ReadBundledRobot() +
         "  - { type: unimouse.link, name: link, params: { transport: 'native:" +
         std::string(UNIMOUSE_TEST_FIRMWARE) + firmware_args +
-        "', start_with_lockstep: true, lockstep_timeout_s: " + std::to_string(timeout_s) + " } }\n";
+        "', lockstep_timeout_s: " + std::to_string(timeout_s) + " } }\n";
     KernelOptions options;
     options.seed = 5;
     options.log_sink = [this](double, int, const std::string&, const std::string& message) {

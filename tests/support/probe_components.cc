@@ -50,4 +50,14 @@ void SignalRelay::Actuate(const ActuateContext& ctx) const {
   if (out_.index >= 0) ctx.Write(out_, (in_.index >= 0 ? ctx.Read(in_) : 0) + 1);
 }
 
+void Gyro::Bind(BindContext& ctx) {
+  body_ = ctx.BodyId(p_.body);
+  rate_ = ctx.WriteSignal(p_.rate_out);
+}
+
+void Gyro::Sense(const SenseContext& ctx) const {
+  // cvel holds the rotation first, in world axes: its z is the yaw rate
+  ctx.Write(rate_, ctx.data().cvel[6 * body_ + 2]);
+}
+
 }  // namespace unimouse::testing

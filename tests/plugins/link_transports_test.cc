@@ -9,6 +9,7 @@
 #include "inline_assets.h"
 #include "plugin_rig.h"
 #include "run_program.h"
+#include "text_file.h"
 #include "transport.h"
 #include "unimouse/errors.h"
 
@@ -47,6 +48,14 @@ TEST(LinkTransportsTest, EachTransportSaysWhetherItPacesFromTheFirstStepAndItsLi
   const auto native = link::OpenTransport(std::string("native:") + UNIMOUSE_TEST_FIRMWARE);
   EXPECT_TRUE(native->lockstep_from_start());
   EXPECT_EQ(native->line_baud(), 0);
+}
+
+TEST(LinkTransportsTest, TheProtocolDocumentListsEveryTransportInTheTablesWords) {
+  const std::string doc = ReadTextFile(UNIMOUSE_SOURCE_DIR "/docs/protocol.md");
+  for (const link::TransportKind& kind : link::Transports()) {
+    const std::string row = std::string("| ") + kind.usage + " | " + kind.summary + " |";
+    EXPECT_NE(doc.find(row), std::string::npos) << "docs/protocol.md lacks the row\n" << row;
+  }
 }
 
 class CheckOpensNothingTest : public ::testing::Test {

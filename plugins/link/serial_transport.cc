@@ -9,9 +9,6 @@
 namespace unimouse::link {
 namespace {
 
-namespace asio = boost::asio;
-using boost::system::error_code;
-
 class SerialTransport final : public StreamTransport {
  public:
   SerialTransport(std::string path, unsigned baud) : path_(std::move(path)), baud_(baud) {
@@ -31,7 +28,7 @@ class SerialTransport final : public StreamTransport {
     const auto now = std::chrono::steady_clock::now();
     if (now - last_try_ < std::chrono::milliseconds(500)) return false;
     last_try_ = now;
-    error_code ec;
+    boost::system::error_code ec;
     port_.open(path_, ec);
     if (ec) {
       error_ = ec.message();
@@ -54,7 +51,7 @@ class SerialTransport final : public StreamTransport {
   void Drop() override {
     // unplugged: reopened when it comes back
     CloseStream();
-    error_code ec;
+    boost::system::error_code ec;
     port_.close(ec);
   }
 

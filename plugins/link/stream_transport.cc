@@ -8,11 +8,8 @@
 namespace unimouse::link {
 namespace {
 
-namespace asio = boost::asio;
-using boost::system::error_code;
-
 // errors that mean the peer is gone rather than busy
-bool Lost(const error_code& ec) {
+bool Lost(const boost::system::error_code& ec) {
   return ec && ec != asio::error::would_block && ec != asio::error::try_again &&
          ec != asio::error::interrupted;
 }
@@ -20,7 +17,7 @@ bool Lost(const error_code& ec) {
 }  // namespace
 
 void StreamTransport::Adopt(int fd) {
-  error_code ec;
+  boost::system::error_code ec;
   stream_.close(ec);
   stream_.assign(fd);
   stream_.non_blocking(true);
@@ -28,7 +25,7 @@ void StreamTransport::Adopt(int fd) {
 }
 
 void StreamTransport::CloseStream() {
-  error_code ec;
+  boost::system::error_code ec;
   stream_.close(ec);
 }
 
@@ -38,11 +35,10 @@ void StreamTransport::Settle(bool lost) {
 }
 
 void StreamTransport::Read(std::vector<uint8_t>& out, size_t max_bytes) {
-  if (!connected_ && !Reconnect()) return;
-  if (!stream_.is_open()) return;
+  if (max_bytes == 0 || (!connected_ && !Reconnect()) || !stream_.is_open()) return;
   uint8_t buffer[4096];
   for (size_t total = 0; total < max_bytes;) {
-    error_code ec;
+    boost::system::error_code ec;
     const size_t n =
         stream_.read_some(asio::buffer(buffer, std::min(sizeof(buffer), max_bytes - total)), ec);
     out.insert(out.end(), buffer, buffer + n);
@@ -63,9 +59,8 @@ bool StreamTransport::WaitReadable(std::chrono::milliseconds timeout) {
 }
 
 size_t StreamTransport::Write(std::span<const uint8_t> bytes) {
-  if (!connected_ && !Reconnect()) return 0;
-  if (!stream_.is_open()) return 0;
-  error_code ec;
+  if ((!connected_ && !Reconnect()) || !stream_.is_open()) return 0;
+  boost::system::error_code ec;
   const size_t n = stream_.write_some(asio::buffer(bytes.data(), bytes.size()), ec);
   if (Lost(ec)) Settle(true);
   return n;

@@ -15,6 +15,10 @@
 
 namespace unimouse::link {
 
+namespace asio = boost::asio;
+
+/// A transport over one stream descriptor: a pty master, a serial line, a TCP client, a socket
+/// to a child process.
 class StreamTransport : public Transport {
  public:
   StreamTransport(const StreamTransport&) = delete;
@@ -30,7 +34,7 @@ class StreamTransport : public Transport {
   StreamTransport() = default;
 
   /// Returns the I/O context the transport's other Asio objects use.
-  boost::asio::io_context& io() { return io_; }
+  asio::io_context& io() { return io_; }
   /// Takes `fd` as the stream, non-blocking, with a peer on it.
   void Adopt(int fd);
   /// Closes the stream, if open.
@@ -45,8 +49,8 @@ class StreamTransport : public Transport {
   // notes how the last read or write went
   void Settle(bool lost);
 
-  boost::asio::io_context io_;
-  boost::asio::posix::stream_descriptor stream_{io_};
+  asio::io_context io_;
+  asio::posix::stream_descriptor stream_{io_};
   bool connected_ = false;
 };
 

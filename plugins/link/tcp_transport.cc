@@ -6,13 +6,10 @@
 namespace unimouse::link {
 namespace {
 
-namespace asio = boost::asio;
-using boost::system::error_code;
-
 class TcpTransport final : public StreamTransport {
  public:
   TcpTransport(const std::string& host, unsigned short port) {
-    error_code ec;
+    boost::system::error_code ec;
     const auto address = asio::ip::make_address(host.empty() ? "0.0.0.0" : host, ec);
     UNIMOUSE_THROW_UNLESS(!ec, "tcp: '" + host + "' is not an IP address");
     const asio::ip::tcp::endpoint endpoint(address, port);
@@ -30,7 +27,7 @@ class TcpTransport final : public StreamTransport {
 
  protected:
   bool Reconnect() override {
-    error_code ec;
+    boost::system::error_code ec;
     asio::ip::tcp::socket client(io());
     acceptor_.accept(client, ec);
     if (ec) return false;

@@ -36,12 +36,12 @@ class Transport {
   virtual bool lockstep_from_start() const { return false; }
 };
 
-/// One kind of transport: the scheme its spec starts with, how a spec is written, what it is,
-/// and how it opens from what follows "scheme:" ("" when the spec is the bare scheme).
+/// One kind of transport, an entry of the link's transport table.
 struct TransportKind {
-  const char* scheme;
-  const char* usage;
-  const char* summary;
+  const char* scheme;   ///< what its spec starts with: "tcp"
+  const char* usage;    ///< how a spec is written: "tcp::PORT or tcp:HOST:PORT"
+  const char* summary;  ///< what it is, in a sentence for the docs
+  /// Opens it from what follows "scheme:" ("" for the bare scheme); throws InputError.
   std::unique_ptr<Transport> (*open)(const std::string& rest);
 };
 

@@ -11,23 +11,17 @@ namespace unimouse::link {
 namespace {
 
 // the message a table is refused with, or "" when it is accepted
-std::string SendError(const std::string& text) {
+std::string ErrorOf(std::vector<TableEntry> (*parse)(const std::string&), const std::string& text) {
   try {
-    ParseSendTable(text);
+    parse(text);
   } catch (const InputError& e) {
     return e.what();
   }
   return "";
 }
 
-std::string ReceiveError(const std::string& text) {
-  try {
-    ParseReceiveTable(text);
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
-}
+std::string SendError(const std::string& text) { return ErrorOf(&ParseSendTable, text); }
+std::string ReceiveError(const std::string& text) { return ErrorOf(&ParseReceiveTable, text); }
 
 TEST(FrameTableTest, TheDefaultSendTableIsTheOriginalsEncodersThenToFsEvery30Ms) {
   const std::vector<TableEntry> t = ParseSendTable(kOriginalSend);

@@ -18,6 +18,7 @@
 #include "probe_components.h"
 #include "pty_board.h"
 #include "run_program.h"
+#include "text_file.h"
 #include "unimouse/errors.h"
 #include "unimouse_protocol.h"
 
@@ -100,6 +101,12 @@ class LinkTableTest : public ::testing::Test {
       if (it->rfind(start, 0) == 0) return *it;
     }
     return "";
+  }
+
+  int CountMessages(const std::string& start) const {
+    int n = 0;
+    for (const std::string& m : messages_) n += m.rfind(start, 0) == 0;
+    return n;
   }
 
   std::string dir_;
@@ -211,7 +218,7 @@ TEST_F(LinkTableTest, AResetForgetsQueuedBytesCountersAndUnknownIds) {
   // 9600 baud carries under a byte a step: the queue fills with frames of a robot in motion
   Make(PtyLinkRobot(dir_ + "/board", ", baud: 9600"));
   testing::PtyBoard board(dir_ + "/board");
-  board.Send({0xEE});
+  board.Send({0xEE, UNIMOUSE_ID_DEBUG_VISITED, 1, 2});
   for (int i = 0; i < 40; ++i) {
     board.Motors(800, 800);
     for (int j = 0; j < 50; ++j) kernel_->Step();
@@ -222,9 +229,11 @@ TEST_F(LinkTableTest, AResetForgetsQueuedBytesCountersAndUnknownIds) {
                         "link: %lu frames from the firmware, %lu unknown bytes; %lu bytes dropped",
                         &frames, &unknown, &dropped),
             3);
-  EXPECT_EQ(frames, 80u);
+  EXPECT_EQ(frames, 81u);
   EXPECT_EQ(unknown, 1u);
   EXPECT_GT(dropped, 1000u);
+  const std::string beliefs = dir_ + "/firmware_beliefs.json";
+  EXPECT_NE(ReadTextFile(beliefs).find("\"visited\": [[1, 2]]"), std::string::npos);
   board.Bytes();
 
   kernel_->Reset();
@@ -239,8 +248,10 @@ TEST_F(LinkTableTest, AResetForgetsQueuedBytesCountersAndUnknownIds) {
   kernel_->Finish();
   EXPECT_EQ(LastMessageStartingWith("link: "),
             "link: 0 frames from the firmware, 1 unknown bytes; 0 bytes dropped");
-  // the unknown id is news again after the reset
-  EXPECT_NE(LastMessageStartingWith("unknown frame id 0xee"), "");
+  EXPECT_NE(ReadTextFile(beliefs).find("\"visited\": []"), std::string::npos);
+  // the unknown id and the board's arrival are news again after the reset
+  EXPECT_EQ(CountMessages("unknown frame id 0xee"), 2);
+  EXPECT_EQ(CountMessages("firmware connected"), 2);
 }
 
 TEST_F(LinkTableTest, AFirmwareThatFloodsIsReadAtMost64KiBAStep) {

@@ -13,6 +13,7 @@
 #include <map>
 #include <sstream>
 
+#include "frame_codec.h"
 #include "inline_assets.h"
 #include "plugin_rig.h"
 #include "probe_components.h"
@@ -178,6 +179,29 @@ std::vector<uint8_t> Frame(uint8_t id, T value) {
   f[0] = id;
   std::memcpy(f.data() + 1, &value, sizeof(T));
   return f;
+}
+
+TEST_F(LinkTableTest, TheDefaultTablesSendTheOriginalsBytes) {
+  Make(PtyLinkRobot(dir_ + "/board", ""));
+  testing::PtyBoard board(dir_ + "/board");
+  // what the original sent: both encoders every step, the three ToF sensors every 30th
+  std::string expected;
+  for (int step = 0; step < 65; ++step) {
+    if (step % 20 == 0) board.Motors(700, 500);
+    kernel_->Step();
+    link::PutEncoderFrame(UNIMOUSE_ID_ENCODER_LEFT,
+                          std::lround(SignalValue(*kernel_, "left.encoder_counts")), expected);
+    link::PutEncoderFrame(UNIMOUSE_ID_ENCODER_RIGHT,
+                          std::lround(SignalValue(*kernel_, "right.encoder_counts")), expected);
+    if (step % 30 != 0) continue;
+    int id = UNIMOUSE_ID_TOF_LEFT;
+    for (const char* tof : {"tof.left_m", "tof.right_m", "tof.front_m"}) {
+      link::PutTofFrame(static_cast<uint8_t>(id++), SignalValue(*kernel_, tof), 1.2, expected);
+    }
+  }
+  const std::vector<uint8_t> sent = board.Bytes();
+  EXPECT_EQ(std::string(sent.begin(), sent.end()), expected);
+  EXPECT_GT(SignalValue(*kernel_, "left.encoder_counts"), 0);  // it moved: the counts are real
 }
 
 TEST_F(LinkTableTest, ReceivedFramesWriteTheSignalsOfTheReceiveTable) {

@@ -30,6 +30,7 @@ class ScriptError : public std::runtime_error {
  public:
   explicit ScriptError(const std::string& message, bool located = false)
       : std::runtime_error(message), located_(located) {}
+  /// Whether the message starts with its file:line already.
   bool located() const { return located_; }
 
  private:
@@ -76,6 +77,7 @@ class LuaCall {
  public:
   LuaCall(lua_State* L, const char* name) : L_(L), name_(name) {}
 
+  /// The Lua state (or thread) the function runs on.
   lua_State* state() const { return L_; }
   /// The function's name as scripts call it, e.g. "sim.wall_add".
   const char* name() const { return name_; }

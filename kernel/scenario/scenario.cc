@@ -59,11 +59,11 @@ std::unique_ptr<Scenario> Scenario::Load(const std::string& path,
 
   // from here on, every use of the Lua API is inside a protected call: whatever the file
   // returns, an error is a message, never a crash
-  s->CallStep(HostStep<OpenSandbox>, 0, 0, "");
-  s->CallStep(HostStep<LoadChunk>, 0, 1, "");
+  s->CallStep<OpenSandbox>(0, 0, "");
+  s->CallStep<LoadChunk>(0, 1, "");
   s->Call(0, 1, "");
   s->chunk_ = {};
-  s->CallStep(HostStep<KeepStages>, 1, 0, "");
+  s->CallStep<KeepStages>(1, 0, "");
 
   // --set must name a declared parameter and fit its type
   for (const auto& [name, value] : overrides) {
@@ -86,7 +86,7 @@ std::unique_ptr<Scenario> Scenario::Load(const std::string& path,
     s->param_text_[name] = value;
   }
   s->overrides_ = overrides;
-  s->CallStep(HostStep<ApplyOverrides>, 0, 0, "");
+  s->CallStep<ApplyOverrides>(0, 0, "");
   return s;
 }
 
@@ -272,8 +272,9 @@ void Scenario::Call(int nargs, int nresults, const char* what) {
   }
 }
 
-void Scenario::CallStep(int (*step)(lua_State*), int nargs, int nresults, const char* what) {
-  lua_pushcfunction(L_, step);
+template <int (*kStep)(LuaCall&)>
+void Scenario::CallStep(int nargs, int nresults, const char* what) {
+  lua_pushcfunction(L_, HostStep<kStep>);
   lua_insert(L_, -nargs - 1);
   Call(nargs, nresults, what);
 }
@@ -301,7 +302,7 @@ void Scenario::Attach(Kernel& kernel, const std::string& controller) {
   if (!controller.empty()) {
     // the controller file runs in the scenario's sandbox, with the same sim API
     chunk_ = {ReadTextFile(controller), "@" + controller};
-    CallStep(HostStep<LoadChunk>, 0, 1, "");
+    CallStep<LoadChunk>(0, 1, "");
     chunk_ = {};
     Call(0, 1, "");
     if (!lua_isfunction(L_, -1)) {

@@ -113,9 +113,10 @@ class Scenario {
   // calls the function under its `nargs` arguments, leaving `nresults` results; a Lua error
   // throws Throw's fault. A fresh instruction budget for each call.
   void Call(int nargs, int nresults, const char* what);
-  // calls `step` (a body, see lua_call.h) as a Lua function on the `nargs` values on top, as
+  // calls the body `kStep` (see lua_call.h) as a Lua function on the `nargs` values on top, as
   // Call does: how the host uses the Lua API under protection
-  void CallStep(int (*step)(lua_State*), int nargs, int nresults, const char* what);
+  template <int (*kStep)(LuaCall&)>
+  void CallStep(int nargs, int nresults, const char* what);
   void ResetBudget();
   // keeps and logs a Lua error's traceback, then throws its first line (file:line) as the fault
   [[noreturn]] void Throw(const std::string& traceback, const char* what);

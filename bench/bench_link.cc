@@ -24,13 +24,11 @@ RobotSpec Robot(const std::string& link) {
   std::erase_if(robot.components,
                 [](const ComponentSpec& c) { return c.type == "unimouse.logger"; });
   if (!link.empty()) {
-    robot.components.push_back(
-        {"unimouse.link",
-         "link",
-         std::nullopt,
-         ParseYaml("{transport: '" + link + "', start_with_lockstep: true, beliefs_out: ''}",
-                   "bench"),
-         {"bench", 1, 1}});
+    robot.components.push_back({"unimouse.link",
+                                "link",
+                                std::nullopt,
+                                ParseYaml("{transport: '" + link + "', beliefs_out: ''}", "bench"),
+                                {"bench", 1, 1}});
   }
   return robot;
 }

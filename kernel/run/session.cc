@@ -25,8 +25,9 @@ YamlNode Scalar(const std::string& text, const std::string& option) {
   return node;
 }
 
-// the firmware link's component, as a robot file would declare it, from the command line;
-// --link-set values are validated like a robot file's, and win over earlier ones
+// the firmware link's component, as a robot file would declare it, from the command line (the
+// transport itself says whether it runs in lock-step from the first step); --link-set values
+// are validated like a robot file's, and win over earlier ones
 ComponentSpec LinkComponent(const std::string& transport, const std::vector<std::string>& sets) {
   ComponentSpec link;
   link.type = "unimouse.link";
@@ -36,10 +37,6 @@ ComponentSpec LinkComponent(const std::string& transport, const std::vector<std:
   link.params.location = link.location;
   const std::string option = link.location.file;
   link.params.entries.emplace_back(Scalar("transport", option), Scalar(transport, option));
-  // a firmware program the simulator starts runs in lock-step, so that its runs repeat exactly
-  if (transport.rfind("native:", 0) == 0) {
-    link.params.entries.emplace_back(Scalar("start_with_lockstep", option), Scalar("true", option));
-  }
   for (const std::string& set : sets) {
     const size_t eq = set.find('=');
     UNIMOUSE_THROW_UNLESS(eq != std::string::npos && eq > 0,

@@ -8,6 +8,8 @@
 #include <cmath>
 #include <cstring>
 
+#include "lua_call.h"
+#include "prelude.h"
 #include "scenario_api.h"
 #include "text_file.h"
 #include "unimouse/errors.h"
@@ -18,263 +20,210 @@ namespace {
 
 constexpr int kBudget = 20'000'000;  // instructions between two yields
 constexpr int kHookEvery = 1000;
-int instructions = 0;
-
-void CountInstructions(lua_State* L, lua_Debug*) {
-  instructions += kHookEvery;
-  if (instructions > kBudget) {
-    instructions = 0;
-    // where the script is: level 0 in a hook is the running Lua function
-    lua_Debug ar;
-    std::string where;
-    if (lua_getstack(L, 0, &ar) && lua_getinfo(L, "Sl", &ar) && ar.source[0] == '@') {
-      where = std::string(ar.source + 1) + ":" + std::to_string(ar.currentline) + ": ";
-    }
-    lua_pushstring(L, (where + "instruction budget exhausted: a loop that never waits "
-                               "(use sim.wait)?")
-                          .c_str());
-    lua_error(L);
-  }
-}
-
-// waits, in Lua: one yield per tick
-constexpr const char* kPrelude = R"lua(
-local sim, yield, take_firmware_lines = ...
-function sim.next_tick() yield() end
-
--- walls from many straight pieces
-function sim.wall_polyline(w)
-  assert(type(w) == "table" and type(w.points) == "table" and #w.points >= 2,
-         "sim.wall_polyline{points = {{x_m, y_m}, ...}}: at least two points")
-  for i = 1, #w.points - 1 do
-    local a, b = w.points[i], w.points[i + 1]
-    sim.wall_add { x1_m = a[1], y1_m = a[2], x2_m = b[1], y2_m = b[2],
-                   thickness_m = w.thickness_m, height_m = w.height_m }
-  end
-end
-function sim.wall_arc(w)
-  assert(type(w) == "table" and w.cx_m and w.cy_m and w.radius_m and w.from_deg and w.to_deg,
-         "sim.wall_arc{cx_m, cy_m, radius_m, from_deg, to_deg}")
-  local n = w.segments or math.max(1, math.ceil(math.abs(w.to_deg - w.from_deg) / 10))
-  local points = {}
-  for i = 0, n do
-    local a = math.rad(w.from_deg + (w.to_deg - w.from_deg) * i / n)
-    points[#points + 1] = { w.cx_m + w.radius_m * math.cos(a), w.cy_m + w.radius_m * math.sin(a) }
-  end
-  sim.wall_polyline { points = points, thickness_m = w.thickness_m, height_m = w.height_m }
-end
-
--- events, checked once a tick at the boundary, before run resumes, in the order added
-local handlers, gates = {}, {}
-function sim.on(kind, handler)
-  assert(kind == "cell_entered" or kind == "wall_contact" or kind == "gate_crossed"
-         or kind == "firmware_log",
-         "sim.on: unknown event '" .. tostring(kind) .. "'")
-  handlers[kind] = handlers[kind] or {}
-  table.insert(handlers[kind], handler)
-end
-function sim.gate_add(g)
-  assert(type(g) == "table" and g.name and g.x1_m and g.y1_m and g.x2_m and g.y2_m,
-         "sim.gate_add{name, x1_m, y1_m, x2_m, y2_m}")
-  table.insert(gates, g)
-end
-local last_cell, touching, last_pose
-local function fire(kind, event)
-  for _, handler in ipairs(handlers[kind] or {}) do handler(event) end
-end
-local function dispatch()
-  local now = sim.time()
-  for _, line in ipairs(take_firmware_lines()) do fire("firmware_log", line) end
-  if handlers.cell_entered then
-    local c = sim.robot_get_cell()
-    if not last_cell or c.x ~= last_cell.x or c.y ~= last_cell.y then
-      fire("cell_entered", { x = c.x, y = c.y, time_s = now })
-    end
-    last_cell = c
-  end
-  if handlers.wall_contact then
-    local t = sim.robot_is_touching_wall()
-    if t and not touching then fire("wall_contact", { time_s = now }) end
-    touching = t
-  end
-  if handlers.gate_crossed then
-    local p = sim.robot_get_pose()
-    for _, g in ipairs(last_pose and gates or {}) do
-      -- the centre's path since the last tick against the gate: which side before and after
-      local gx, gy = g.x2_m - g.x1_m, g.y2_m - g.y1_m
-      local before = gx * (last_pose.y_m - g.y1_m) - gy * (last_pose.x_m - g.x1_m)
-      local after = gx * (p.y_m - g.y1_m) - gy * (p.x_m - g.x1_m)
-      if (before < 0) ~= (after < 0) then
-        local mx, my = p.x_m - last_pose.x_m, p.y_m - last_pose.y_m
-        local t0 = ((g.x1_m - last_pose.x_m) * my - (g.y1_m - last_pose.y_m) * mx) / (mx * gy - my * gx)
-        if t0 >= 0 and t0 <= 1 then
-          -- +1 when crossing from the gate's right side to its left, looking from 1 to 2
-          fire("gate_crossed", { name = g.name, direction = after > 0 and 1 or -1, time_s = now })
-        end
-      end
-    end
-    last_pose = p
-  end
-end
-function sim.wait(seconds)
-  local until_s = sim.time() + seconds - 1e-9
-  while sim.time() < until_s do yield() end
-end
-function sim.wait_until(condition, options)
-  local timeout_s = options and options.timeout_s
-  local start_s = sim.time()
-  while not condition() do
-    if timeout_s and sim.time() - start_s >= timeout_s then return false end
-    yield()
-  end
-  return true
-end
-return dispatch
-)lua";
 
 // first line of a Lua error, which starts with file:line
 std::string Headline(const std::string& message) { return message.substr(0, message.find('\n')); }
 
+// keeps field `key` of a plain table in the registry: its reference, or LUA_REFNIL for nil
+int RefField(lua_State* L, int table, const char* key) {
+  lua_getfield(L, table, key);
+  return luaL_ref(L, LUA_REGISTRYINDEX);
+}
+
 }  // namespace
 
+Scenario& Scenario::Of(lua_State* L) { return **static_cast<Scenario**>(lua_getextraspace(L)); }
+
 Scenario::~Scenario() {
-  if (L_ != nullptr) lua_close(L_);
+  if (L_ == nullptr) return;
+  // a script's __gc may still call the API while the state closes: no kernel, no pictures then
+  kernel_ = nullptr;
+  picture_taker_ = nullptr;
+  ResetBudget();
+  lua_close(L_);
 }
 
 std::unique_ptr<Scenario> Scenario::Load(const std::string& path,
                                          const std::map<std::string, std::string>& overrides,
                                          uint64_t seed) {
+  static_assert(kNoRef == LUA_NOREF);
   std::unique_ptr<Scenario> s(new Scenario());
   s->file_ = path;
-  s->seed_ = seed;
-  const std::string text = ReadTextFile(path);
+  s->rng_ = RngStream(seed, "scenario");
+  s->chunk_ = {ReadTextFile(path), "@" + path};
   lua_State* L = s->L_ = luaL_newstate();
   UNIMOUSE_DEMAND(L != nullptr);
-  luaL_openlibs(L);
-  lua_pushlightuserdata(L, s.get());
-  lua_setfield(L, LUA_REGISTRYINDEX, "unimouse.scenario");
-  auto* rng = static_cast<RngStream*>(lua_newuserdatauv(L, sizeof(RngStream), 0));
-  new (rng) RngStream(seed, "scenario");
-  lua_setfield(L, LUA_REGISTRYINDEX, "unimouse.rng");
+  // the API and the hook find their scenario here, from every thread of the state
+  *static_cast<Scenario**>(lua_getextraspace(L)) = s.get();
   lua_sethook(L, CountInstructions, LUA_MASKCOUNT, kHookEvery);
 
-  // the sandbox: a fresh environment with the safe parts of the standard library
-  lua_newtable(L);
-  const int env = lua_gettop(L);
-  for (const char* name :
-       {"assert",   "error",        "ipairs",       "pairs",  "next",     "select", "tostring",
-        "tonumber", "type",         "pcall",        "xpcall", "rawequal", "rawget", "rawlen",
-        "rawset",   "setmetatable", "getmetatable", "string", "table",    "utf8",   "coroutine"}) {
-    lua_getglobal(L, name);
-    lua_setfield(L, env, name);
-  }
-  lua_newtable(L);  // math, with the seeded random
-  lua_getglobal(L, "math");
-  lua_pushnil(L);
-  while (lua_next(L, -2) != 0) {
-    lua_pushvalue(L, -2);
-    lua_insert(L, -2);
-    lua_settable(L, -5);
-  }
-  lua_pop(L, 1);
-  lua_pushcfunction(L, ScenarioSandboxFunctions().random);
-  lua_setfield(L, -2, "random");
-  lua_pushnil(L);
-  lua_setfield(L, -2, "randomseed");
-  lua_setfield(L, env, "math");
-  lua_pushcfunction(L, ScenarioSandboxFunctions().print);
-  lua_setfield(L, env, "print");
+  // from here on, every use of the Lua API is inside a protected call: whatever the file
+  // returns, an error is a message, never a crash
+  s->CallStep<OpenSandbox>(0, 0, "");
+  s->CallStep<LoadChunk>(0, 1, "");
+  s->Call(0, 1, "");
+  s->chunk_ = {};
+  s->CallStep<KeepStages>(1, 0, "");
 
-  lua_createtable(L, 0, static_cast<int>(ScenarioApiEntries().size()));
-  for (const ApiEntry& e : ScenarioApiEntries()) {
-    if (e.fn == nullptr) continue;  // written in Lua, in the prelude
-    lua_pushcfunction(L, e.fn);
-    lua_setfield(L, -2, e.name);
-  }
-  const int sim = lua_gettop(L);
-  lua_pushvalue(L, sim);
-  lua_setfield(L, env, "sim");
-  if (luaL_loadbufferx(L, kPrelude, std::strlen(kPrelude), "=prelude", "t") != LUA_OK) {
-    std::fprintf(stderr, "%s\n", lua_tostring(L, -1));
-    UNIMOUSE_DEMAND(!"the scenario prelude compiles");
-  }
-  lua_pushvalue(L, sim);
-  lua_getglobal(L, "coroutine");
-  lua_getfield(L, -1, "yield");
-  lua_remove(L, -2);
-  lua_pushcfunction(L, ScenarioSandboxFunctions().take_firmware_lines);
-  if (lua_pcall(L, 3, 1, 0) != LUA_OK) {
-    std::fprintf(stderr, "%s\n", lua_tostring(L, -1));
-    UNIMOUSE_DEMAND(!"the scenario prelude runs");
-  }
-  s->dispatch_ref_ = luaL_ref(L, LUA_REGISTRYINDEX);
-  lua_pop(L, 1);  // sim
-
-  // the scenario file, in the sandbox, text only
-  if (luaL_loadbufferx(L, text.data(), text.size(), ("@" + path).c_str(), "t") != LUA_OK) {
-    throw RuntimeFault(Headline(lua_tostring(L, -1)));
-  }
-  lua_pushvalue(L, env);
-  lua_setfield(L, LUA_REGISTRYINDEX, "unimouse.env");
-  lua_pushvalue(L, env);
-  lua_setupvalue(L, -2, 1);
-  instructions = 0;
-  if (lua_pcall(L, 0, 1, 0) != LUA_OK) throw RuntimeFault(Headline(lua_tostring(L, -1)));
-  if (!lua_istable(L, -1)) {
-    throw RuntimeFault(path + ": a scenario file returns sim.scenario { name = ..., run = ... }");
-  }
-  lua_getfield(L, -1, "name");
-  s->name_ = lua_tostring(L, -1);
-  lua_pop(L, 1);
-
-  // parameters: the declared defaults, then --set, which must name one and fit its type
-  lua_getfield(L, -1, "params");
-  if (lua_isnil(L, -1)) {
-    lua_pop(L, 1);
-    lua_newtable(L);
-  }
-  std::vector<std::string> declared;
-  lua_pushnil(L);
-  while (lua_next(L, -2) != 0) {
-    declared.push_back(lua_tostring(L, -2));
-    s->param_text_[declared.back()] = luaL_tolstring(L, -1, nullptr);
-    lua_pop(L, 2);
-  }
+  // --set must name a declared parameter and fit its type
   for (const auto& [name, value] : overrides) {
-    lua_getfield(L, -1, name.c_str());
-    const int type = lua_type(L, -1);
-    lua_pop(L, 1);
-    if (type == LUA_TNIL) {
+    const auto declared = s->declared_.find(name);
+    if (declared == s->declared_.end()) {
       std::string known;
-      for (const auto& d : declared) known += (known.empty() ? "" : ", ") + d;
+      for (const auto& d : s->declared_) known += (known.empty() ? "" : ", ") + d.first;
       throw InputError("--set " + name + ": scenario '" + s->name_ + "' has no parameter '" + name +
                        "' (it has: " + (known.empty() ? "none" : known) + ")");
     }
-    if (type == LUA_TNUMBER) {
+    if (declared->second == "number") {
       char* end = nullptr;
       const double v = std::strtod(value.c_str(), &end);
       if (value.empty() || *end != '\0' || !std::isfinite(v)) {
         throw InputError("--set " + name + "=" + value + ": '" + name + "' is a number");
       }
-      lua_pushnumber(L, v);
-    } else if (type == LUA_TBOOLEAN) {
-      if (value != "true" && value != "false") {
-        throw InputError("--set " + name + "=" + value + ": '" + name + "' is true or false");
-      }
+    } else if (declared->second == "boolean" && value != "true" && value != "false") {
+      throw InputError("--set " + name + "=" + value + ": '" + name + "' is true or false");
+    }
+    s->param_text_[name] = value;
+  }
+  s->overrides_ = overrides;
+  s->CallStep<ApplyOverrides>(0, 0, "");
+  return s;
+}
+
+int Scenario::OpenSandbox(LuaCall& call) {
+  lua_State* L = call.state();
+  Scenario& s = Of(L);
+  luaL_openlibs(L);
+  // the prelude's arguments: sim with its C++ functions, the empty sandbox, the host's functions
+  const std::string_view prelude = PreludeSource();
+  if (luaL_loadbufferx(L, prelude.data(), prelude.size(), kPreludeChunk, "t") != LUA_OK) {
+    throw std::logic_error("the scenario prelude does not compile: " + ErrorText(L, -1));
+  }
+  lua_createtable(L, 0, static_cast<int>(ScenarioApiEntries().size()));
+  for (const ApiEntry& e : ScenarioApiEntries()) {
+    if (e.body == nullptr) continue;  // written in Lua, in the prelude
+    PushLuaFunction(L, e.body, e.name, "sim.");
+    lua_setfield(L, -2, e.name);
+  }
+  lua_newtable(L);
+  lua_pushvalue(L, -1);
+  s.env_ref_ = luaL_ref(L, LUA_REGISTRYINDEX);
+  lua_createtable(L, 0, static_cast<int>(ScenarioHostEntries().size()));
+  for (const ApiEntry& e : ScenarioHostEntries()) {
+    PushLuaFunction(L, e.body, e.name);
+    lua_setfield(L, -2, e.name);
+  }
+  call.ProtectedCall(3, 1);
+  const int internals = lua_gettop(L);
+  s.dispatch_ref_ = RefField(L, internals, "dispatch");
+  s.inspect_ref_ = RefField(L, internals, "inspect");
+  s.apply_ref_ = RefField(L, internals, "apply");
+  return 0;
+}
+
+int Scenario::LoadChunk(LuaCall& call) {
+  lua_State* L = call.state();
+  const Scenario& s = Of(L);
+  if (luaL_loadbufferx(L, s.chunk_.text.data(), s.chunk_.text.size(), s.chunk_.name.c_str(), "t") !=
+      LUA_OK) {
+    throw ScriptError(ErrorText(L, -1), /*located=*/true);
+  }
+  // in the sandbox: a main chunk's one upvalue is its _ENV
+  lua_rawgeti(L, LUA_REGISTRYINDEX, s.env_ref_);
+  lua_setupvalue(L, -2, 1);
+  return 1;
+}
+
+int Scenario::KeepStages(LuaCall& call) {
+  lua_State* L = call.state();
+  Scenario& s = Of(L);
+  // the prelude reads the returned value (any metamethod runs there), and gives plain tables
+  lua_settop(L, 1);
+  lua_rawgeti(L, LUA_REGISTRYINDEX, s.inspect_ref_);
+  lua_insert(L, 1);
+  lua_pushstring(L, s.file_.c_str());
+  call.ProtectedCall(2, 2);
+  s.name_ = call.StringField(1, "name", "");
+  s.params_ref_ = RefField(L, 1, "params");
+  s.world_ref_ = RefField(L, 1, "world");
+  s.run_ref_ = RefField(L, 1, "run");
+  s.finish_ref_ = RefField(L, 1, "finish");
+  // each parameter as {name, type, value as text}
+  const auto count = static_cast<lua_Integer>(lua_rawlen(L, 2));
+  for (lua_Integer i = 1; i <= count; ++i) {
+    lua_rawgeti(L, 2, i);
+    std::string fields[3];
+    for (int f = 0; f < 3; ++f) {
+      lua_rawgeti(L, -1, f + 1);
+      fields[f] = ErrorText(L, -1);
+      lua_pop(L, 1);
+    }
+    lua_pop(L, 1);
+    s.declared_[fields[0]] = fields[1];
+    s.param_text_[fields[0]] = fields[2];
+  }
+  return 0;
+}
+
+int Scenario::ApplyOverrides(LuaCall& call) {
+  lua_State* L = call.state();
+  Scenario& s = Of(L);
+  lua_rawgeti(L, LUA_REGISTRYINDEX, s.apply_ref_);
+  lua_rawgeti(L, LUA_REGISTRYINDEX, s.params_ref_);
+  // {{name, value}, ...}, each value of its parameter's type (Load has checked them)
+  lua_createtable(L, static_cast<int>(s.overrides_.size()), 0);
+  lua_Integer n = 0;
+  for (const auto& [name, value] : s.overrides_) {
+    lua_createtable(L, 2, 0);
+    lua_pushstring(L, name.c_str());
+    lua_rawseti(L, -2, 1);
+    const std::string& type = s.declared_.at(name);
+    if (type == "number") {
+      lua_pushnumber(L, std::strtod(value.c_str(), nullptr));
+    } else if (type == "boolean") {
       lua_pushboolean(L, value == "true");
     } else {
       lua_pushstring(L, value.c_str());
     }
-    lua_setfield(L, -2, name.c_str());
-    s->param_text_[name] = value;
+    lua_rawseti(L, -2, 2);
+    lua_rawseti(L, -2, ++n);
   }
-  lua_getfield(L, -1, "time_limit_s");
-  s->time_limit_s_ = lua_isnumber(L, -1) ? lua_tonumber(L, -1) : 0;
-  lua_pop(L, 1);
-  s->params_ref_ = luaL_ref(L, LUA_REGISTRYINDEX);
-  s->scenario_ref_ = luaL_ref(L, LUA_REGISTRYINDEX);
-  lua_settop(L, 0);
-  return s;
+  call.ProtectedCall(2, 1);
+  s.time_limit_s_ = lua_tonumber(L, -1);
+  return 0;
+}
+
+int Scenario::Traceback(LuaCall& call) {
+  lua_State* L = call.state();
+  // an error value that is not text is named by its type
+  if (lua_type(L, 1) != LUA_TSTRING) {
+    lua_pushstring(L, ErrorText(L, 1).c_str());
+    lua_replace(L, 1);
+  }
+  luaL_traceback(L, L, lua_tostring(L, 1), 1);
+  return 1;
+}
+
+int Scenario::SpendInstructions(LuaCall& call) {
+  Scenario& s = Of(call.state());
+  if (s.budget_error_.empty()) {
+    s.instructions_ += kHookEvery;
+    if (s.instructions_ <= kBudget) return 0;
+    // where the script is: in a hook, level 0 is the running function
+    s.budget_error_ = ScriptLine(call.state(), 0) +
+                      "instruction budget exhausted: a loop that never waits (use sim.wait)?";
+  }
+  // once spent, the budget raises at every hook until the host is back in control
+  throw ScriptError(s.budget_error_, /*located=*/true);
+}
+
+void Scenario::CountInstructions(lua_State* L, lua_Debug*) {
+  RunBody(L, SpendInstructions, "the instruction budget");
+}
+
+void Scenario::ResetBudget() {
+  instructions_ = 0;
+  budget_error_.clear();
 }
 
 void Scenario::SnapshotOn(const std::string& kind, const std::string& camera, int width,
@@ -289,7 +238,7 @@ end)
 )lua";
   lua_State* L = L_;
   UNIMOUSE_DEMAND(luaL_loadbufferx(L, kChunk, std::strlen(kChunk), "=snapshot_on", "t") == LUA_OK);
-  lua_getfield(L, LUA_REGISTRYINDEX, "unimouse.env");
+  lua_rawgeti(L, LUA_REGISTRYINDEX, env_ref_);
   lua_setupvalue(L, -2, 1);
   lua_pushstring(L, kind.c_str());
   lua_createtable(L, 0, 3);
@@ -299,6 +248,7 @@ end)
   lua_setfield(L, -2, "width");
   lua_pushinteger(L, height);
   lua_setfield(L, -2, "height");
+  ResetBudget();
   if (lua_pcall(L, 2, 0, 0) != LUA_OK) {
     lua_pop(L, 1);
     throw InputError("--snapshot-on " + kind +
@@ -307,36 +257,40 @@ end)
   }
 }
 
-void Scenario::Call(int nargs, const char* what) {
-  lua_getglobal(L_, "debug");
-  lua_getfield(L_, -1, "traceback");
-  lua_remove(L_, -2);
-  const int handler = lua_gettop(L_) - nargs - 1;
+void Scenario::Call(int nargs, int nresults, const char* what) {
+  // under the function: the message handler, which adds the traceback
+  const int handler = lua_gettop(L_) - nargs;
+  lua_pushcfunction(L_, HostStep<Traceback>);
   lua_insert(L_, handler);
-  instructions = 0;
-  if (lua_pcall(L_, nargs, 0, handler) != LUA_OK) {
-    const std::string message = lua_tostring(L_, -1);
+  ResetBudget();
+  const int status = lua_pcall(L_, nargs, nresults, handler);
+  lua_remove(L_, handler);
+  if (status != LUA_OK) {
+    const std::string message = ErrorText(L_, -1);
     lua_settop(L_, 0);
     Throw(message, what);
   }
-  lua_settop(L_, 0);
+}
+
+template <int (*kStep)(LuaCall&)>
+void Scenario::CallStep(int nargs, int nresults, const char* what) {
+  lua_pushcfunction(L_, HostStep<kStep>);
+  lua_insert(L_, -nargs - 1);
+  Call(nargs, nresults, what);
 }
 
 void Scenario::Throw(const std::string& traceback, const char* what) {
   traceback_ = traceback;
   if (kernel_ != nullptr) kernel_->Log(UNIMOUSE_LOG_INFO, "scenario", traceback);
-  throw RuntimeFault(Headline(traceback) + " (in " + what + ")");
+  throw RuntimeFault(Headline(traceback) +
+                     (*what != '\0' ? " (in " + std::string(what) + ")" : ""));
 }
 
 ScenarioWorld Scenario::BuildWorld() {
-  lua_rawgeti(L_, LUA_REGISTRYINDEX, scenario_ref_);
-  lua_getfield(L_, -1, "world");
-  lua_remove(L_, -2);
-  if (lua_isfunction(L_, -1)) {
+  if (world_ref_ != LUA_REFNIL) {
+    lua_rawgeti(L_, LUA_REGISTRYINDEX, world_ref_);
     lua_rawgeti(L_, LUA_REGISTRYINDEX, params_ref_);
-    Call(1, "world");
-  } else {
-    lua_settop(L_, 0);
+    Call(1, 0, "world");
   }
   return std::move(world_);
 }
@@ -347,15 +301,12 @@ void Scenario::Attach(Kernel& kernel, const std::string& controller) {
   coroutine_ref_ = luaL_ref(L_, LUA_REGISTRYINDEX);
   if (!controller.empty()) {
     // the controller file runs in the scenario's sandbox, with the same sim API
-    const std::string text = ReadTextFile(controller);
-    if (luaL_loadbufferx(L_, text.data(), text.size(), ("@" + controller).c_str(), "t") != LUA_OK) {
-      throw RuntimeFault(Headline(lua_tostring(L_, -1)));
-    }
-    lua_getfield(L_, LUA_REGISTRYINDEX, "unimouse.env");
-    lua_setupvalue(L_, -2, 1);
-    instructions = 0;
-    if (lua_pcall(L_, 0, 1, 0) != LUA_OK) throw RuntimeFault(Headline(lua_tostring(L_, -1)));
+    chunk_ = {ReadTextFile(controller), "@" + controller};
+    CallStep<LoadChunk>(0, 1, "");
+    chunk_ = {};
+    Call(0, 1, "");
     if (!lua_isfunction(L_, -1)) {
+      lua_settop(L_, 0);
       throw RuntimeFault(controller + ": a controller file returns function(time_s) ... end");
     }
     controller_ref_ = luaL_ref(L_, LUA_REGISTRYINDEX);
@@ -370,25 +321,24 @@ void Scenario::Attach(Kernel& kernel, const std::string& controller) {
 void Scenario::Tick() {
   if (!finished() && started_) {
     lua_rawgeti(L_, LUA_REGISTRYINDEX, dispatch_ref_);
-    Call(0, "an event handler");
+    Call(0, 0, "an event handler");
   }
   if (!finished()) {
     // the first resume starts run(params); later ones continue it after its yield
     int nargs = 0;
     if (!started_) {
       started_ = true;
-      lua_rawgeti(coroutine_, LUA_REGISTRYINDEX, scenario_ref_);
-      lua_getfield(coroutine_, -1, "run");
-      lua_remove(coroutine_, -2);
+      lua_rawgeti(coroutine_, LUA_REGISTRYINDEX, run_ref_);
       lua_rawgeti(coroutine_, LUA_REGISTRYINDEX, params_ref_);
       nargs = 1;
     }
     if (lua_status(coroutine_) == LUA_YIELD || nargs == 1) {
       int nres = 0;
-      instructions = 0;
+      ResetBudget();
       const int status = lua_resume(coroutine_, L_, nargs, &nres);
       if (status != LUA_OK && status != LUA_YIELD) {
-        luaL_traceback(L_, coroutine_, lua_tostring(coroutine_, -1), 0);
+        const std::string message = ErrorText(coroutine_, -1);
+        luaL_traceback(L_, coroutine_, message.c_str(), 0);
         const std::string traceback = lua_tostring(L_, -1);
         lua_settop(L_, 0);
         Throw(traceback, "run");
@@ -400,23 +350,18 @@ void Scenario::Tick() {
       }
     }
   }
-  if (controller_ref_ >= 0) {
+  if (controller_ref_ != kNoRef) {
     lua_rawgeti(L_, LUA_REGISTRYINDEX, controller_ref_);
     lua_pushnumber(L_, kernel_->state().data().time);
-    Call(1, "the controller");
+    Call(1, 0, "the controller");
   }
 }
 
 void Scenario::Finish() {
   if (finish_called_) return;
   finish_called_ = true;
-  lua_rawgeti(L_, LUA_REGISTRYINDEX, scenario_ref_);
-  lua_getfield(L_, -1, "finish");
-  lua_remove(L_, -2);
-  if (!lua_isfunction(L_, -1)) {
-    lua_settop(L_, 0);
-    return;
-  }
+  if (finish_ref_ == LUA_REFNIL) return;
+  lua_rawgeti(L_, LUA_REGISTRYINDEX, finish_ref_);
   lua_rawgeti(L_, LUA_REGISTRYINDEX, params_ref_);
   lua_createtable(L_, 0, 3);
   lua_pushstring(L_, outcome_.status.c_str());
@@ -425,7 +370,7 @@ void Scenario::Finish() {
   lua_setfield(L_, -2, "reason");
   lua_pushnumber(L_, kernel_->state().data().time);
   lua_setfield(L_, -2, "time_s");
-  Call(2, "finish");
+  Call(2, 0, "finish");
 }
 
 }  // namespace unimouse

@@ -10,8 +10,10 @@
 //   - finish(p, ended), optional: once the run is over, for last scores or a late decision.
 //
 // Sandboxed: no io, os, load, dofile or require; math.random is the run's seeded stream; print
-// goes to the run's log; an instruction budget stops a script that never yields, naming its
-// file:line. A script error stops the run with exit code 3, its Lua traceback kept.
+// goes to the run's log; an instruction budget, one per scenario, stops a script that never
+// yields, naming its file:line, and no pcall can catch it. A script error stops the run with
+// exit code 3, its Lua traceback kept. Every C++ function Lua calls crosses the Lua boundary of
+// lua_call.h, and loading uses the Lua API only inside protected calls.
 #ifndef UNIMOUSE_SCENARIO_SCENARIO_H_
 #define UNIMOUSE_SCENARIO_SCENARIO_H_
 
@@ -25,11 +27,15 @@
 
 #include "kernel.h"
 #include "maze.h"
+#include "rng.h"
 #include "world.h"
 
 struct lua_State;
+struct lua_Debug;
 
 namespace unimouse {
+
+class LuaCall;
 
 /// The scenario API's level: new functions carry the level they came with.
 inline constexpr int kScenarioApiLevel = 2;
@@ -93,31 +99,65 @@ class Scenario {
   void Finish();
 
  private:
+  static constexpr int kNoRef = -2;  // LUA_NOREF, checked in scenario.cc
+  // the text and chunk name LoadChunk compiles next
+  struct Chunk {
+    std::string text;
+    std::string name;
+  };
+
   Scenario() = default;
+  // the scenario whose Lua state `L` is, or a thread of it
+  static Scenario& Of(lua_State* L);
   void Tick();
-  // calls the function under its `nargs` arguments on the stack; a Lua error throws Throw's fault
-  void Call(int nargs, const char* what);
+  // calls the function under its `nargs` arguments, leaving `nresults` results; a Lua error
+  // throws Throw's fault. A fresh instruction budget for each call.
+  void Call(int nargs, int nresults, const char* what);
+  // calls the body `kStep` (see lua_call.h) as a Lua function on the `nargs` values on top, as
+  // Call does: how the host uses the Lua API under protection
+  template <int (*kStep)(LuaCall&)>
+  void CallStep(int nargs, int nresults, const char* what);
+  void ResetBudget();
   // keeps and logs a Lua error's traceback, then throws its first line (file:line) as the fault
   [[noreturn]] void Throw(const std::string& traceback, const char* what);
+
+  // the host's steps and hooks, bodies run through the Lua boundary (lua_call.h)
+  static int OpenSandbox(LuaCall& call);
+  static int LoadChunk(LuaCall& call);
+  static int KeepStages(LuaCall& call);
+  static int ApplyOverrides(LuaCall& call);
+  static int Traceback(LuaCall& call);
+  static int SpendInstructions(LuaCall& call);
+  static void CountInstructions(lua_State* L, lua_Debug* ar);
 
   lua_State* L_ = nullptr;
   std::string file_;
   std::string name_;
-  int scenario_ref_ = -1;    // the returned table
-  int params_ref_ = -1;      // parameters after overrides
-  int coroutine_ref_ = -1;   // the run coroutine
-  int controller_ref_ = -1;  // the controller function
-  int dispatch_ref_ = -1;    // the prelude's event dispatcher
+  Chunk chunk_;
+  int env_ref_ = kNoRef;       // the sandbox
+  int dispatch_ref_ = kNoRef;  // the prelude's event dispatcher
+  int inspect_ref_ = kNoRef;   // the prelude's reader of a scenario's table
+  int apply_ref_ = kNoRef;     // the prelude's setter of overrides
+  int params_ref_ = kNoRef;    // parameters after overrides
+  int world_ref_ = kNoRef;     // the stages, nil when absent
+  int run_ref_ = kNoRef;
+  int finish_ref_ = kNoRef;
+  int coroutine_ref_ = kNoRef;   // the run coroutine
+  int controller_ref_ = kNoRef;  // the controller function
   lua_State* coroutine_ = nullptr;
   bool started_ = false;
   bool finish_called_ = false;
   Kernel* kernel_ = nullptr;
   ScenarioWorld world_;
   ScenarioOutcome outcome_;
+  std::map<std::string, std::string> declared_;   // parameter name -> its Lua type
+  std::map<std::string, std::string> overrides_;  // --set, checked against declared_
   std::map<std::string, std::string> param_text_;
   double time_limit_s_ = 0;
   std::vector<std::string> hud_;
-  uint64_t seed_ = 1;
+  RngStream rng_;             // math.random
+  int instructions_ = 0;      // since the host last called into Lua
+  std::string budget_error_;  // once the budget is spent: what every later hook raises
   std::unique_ptr<std::vector<Cell>> maze_goals_;  // of the maze the world loaded
   Cell maze_start_;
   std::string traceback_;

@@ -16,60 +16,44 @@
 
 namespace unimouse {
 
-// the C functions behind `sim.*`; a struct so that they may reach Scenario's private parts
+// the C++ bodies behind `sim.*`; a struct so that they may reach Scenario's private parts. Each
+// reads its arguments through LuaCall and reports a bad one by throwing (see lua_call.h).
 struct ScenarioApi {
-  static Scenario& Self(lua_State* L) {
-    lua_getfield(L, LUA_REGISTRYINDEX, "unimouse.scenario");
-    auto* s = static_cast<Scenario*>(lua_touserdata(L, -1));
-    lua_pop(L, 1);
-    return *s;
-  }
-  static Kernel& RunningKernel(lua_State* L, const char* function) {
-    Scenario& s = Self(L);
-    if (s.kernel_ == nullptr)
-      luaL_error(L, "%s works only in run, once the world exists", function);
+  static Scenario& Self(const LuaCall& call) { return Scenario::Of(call.state()); }
+  static Kernel& RunningKernel(const LuaCall& call) {
+    Scenario& s = Self(call);
+    if (s.kernel_ == nullptr) {
+      call.Fail(std::string(call.name()) + " works only in run, once the world exists");
+    }
     return *s.kernel_;
   }
-  static double Field(lua_State* L, int table, const char* key, double fallback, bool required) {
-    lua_getfield(L, table, key);
-    if (lua_isnil(L, -1)) {
-      lua_pop(L, 1);
-      if (required) luaL_error(L, "missing field '%s'", key);
-      return fallback;
+  static void NotInRun(const LuaCall& call) {
+    if (Self(call).kernel_ != nullptr) {
+      call.Fail(std::string(call.name()) + " works only in world, before the run");
     }
-    if (!lua_isnumber(L, -1)) luaL_error(L, "field '%s' must be a number", key);
-    const double v = lua_tonumber(L, -1);
-    lua_pop(L, 1);
-    if (!std::isfinite(v)) luaL_error(L, "field '%s' must be finite", key);
-    return v;
-  }
-  static void NotInRun(lua_State* L, const char* function) {
-    if (Self(L).kernel_ != nullptr)
-      luaL_error(L, "%s works only in world, before the run", function);
   }
 
-  static int ScenarioTable(lua_State* L) {
-    luaL_checktype(L, 1, LUA_TTABLE);
-    lua_getfield(L, 1, "name");
-    if (!lua_isstring(L, -1)) luaL_error(L, "sim.scenario needs a name");
-    lua_getfield(L, 1, "run");
-    if (!lua_isfunction(L, -1)) luaL_error(L, "sim.scenario needs a run function");
-    lua_getfield(L, 1, "finish");
-    if (!lua_isnil(L, -1) && !lua_isfunction(L, -1))
-      luaL_error(L, "sim.scenario: finish is a function");
-    lua_settop(L, 1);
+  static int ScenarioTable(LuaCall& call) {
+    call.CheckTable(1);
+    if (call.FieldType(1, "name") != LUA_TSTRING) call.Fail("sim.scenario needs a name");
+    if (call.FieldType(1, "run") != LUA_TFUNCTION) call.Fail("sim.scenario needs a run function");
+    const int finish = call.FieldType(1, "finish");
+    if (finish != LUA_TNIL && finish != LUA_TFUNCTION)
+      call.Fail("sim.scenario: finish is a function");
+    lua_settop(call.state(), 1);
     return 1;
   }
 
-  static int Time(lua_State* L) {
-    Scenario& s = Self(L);
-    lua_pushnumber(L, s.kernel_ ? s.kernel_->state().data().time : 0.0);
+  static int Time(LuaCall& call) {
+    const Scenario& s = Self(call);
+    lua_pushnumber(call.state(), s.kernel_ ? s.kernel_->state().data().time : 0.0);
     return 1;
   }
 
-  static int RobotGetPose(lua_State* L) {
-    const Kernel& k = RunningKernel(L, "sim.robot_get_pose");
+  static int RobotGetPose(LuaCall& call) {
+    const Kernel& k = RunningKernel(call);
     const Pose2D p = k.world().RobotPose(k.state().data());
+    lua_State* L = call.state();
     lua_createtable(L, 0, 3);
     lua_pushnumber(L, p.x_m);
     lua_setfield(L, -2, "x_m");
@@ -80,12 +64,13 @@ struct ScenarioApi {
     return 1;
   }
 
-  static int RobotGetVelocity(lua_State* L) {
-    const Kernel& k = RunningKernel(L, "sim.robot_get_velocity");
+  static int RobotGetVelocity(LuaCall& call) {
+    const Kernel& k = RunningKernel(call);
     const mjData& d = k.state().data();
     const Pose2D p = k.world().RobotPose(d);
     const int dof = k.mj_model().body_dofadr[k.world().robot_body()];
     // free joint: linear velocity in world axes, angular in the body's; the body is level
+    lua_State* L = call.state();
     lua_createtable(L, 0, 2);
     lua_pushnumber(L, d.qvel[dof] * std::cos(p.yaw_rad) + d.qvel[dof + 1] * std::sin(p.yaw_rad));
     lua_setfield(L, -2, "v_m_per_s");
@@ -94,10 +79,11 @@ struct ScenarioApi {
     return 1;
   }
 
-  static int RobotGetCell(lua_State* L) {
-    const Kernel& k = RunningKernel(L, "sim.robot_get_cell");
+  static int RobotGetCell(LuaCall& call) {
+    const Kernel& k = RunningKernel(call);
     const Pose2D p = k.world().RobotPose(k.state().data());
     const MazeDimensions dims;
+    lua_State* L = call.state();
     lua_createtable(L, 0, 2);
     lua_pushinteger(L, static_cast<lua_Integer>(std::floor(p.x_m / dims.cell_m)));
     lua_setfield(L, -2, "x");
@@ -106,26 +92,26 @@ struct ScenarioApi {
     return 1;
   }
 
-  static int RobotIsTouchingWall(lua_State* L) {
-    const Kernel& k = RunningKernel(L, "sim.robot_is_touching_wall");
-    lua_pushboolean(L, k.world().RobotTouchesScenery(k.state().data()));
+  static int RobotIsTouchingWall(LuaCall& call) {
+    const Kernel& k = RunningKernel(call);
+    lua_pushboolean(call.state(), k.world().RobotTouchesScenery(k.state().data()));
     return 1;
   }
 
-  static int MazeIsGoal(lua_State* L) {
-    Scenario& s = Self(L);
-    const Cell c{static_cast<int>(luaL_checkinteger(L, 1)),
-                 static_cast<int>(luaL_checkinteger(L, 2))};
+  static int MazeIsGoal(LuaCall& call) {
+    const Scenario& s = Self(call);
+    const Cell c{static_cast<int>(call.CheckInteger(1)), static_cast<int>(call.CheckInteger(2))};
     bool goal = false;
     if (s.maze_goals_) {
       for (const Cell& g : *s.maze_goals_) goal = goal || g == c;
     }
-    lua_pushboolean(L, goal);
+    lua_pushboolean(call.state(), goal);
     return 1;
   }
 
-  static int MazeGetStart(lua_State* L) {
-    Scenario& s = Self(L);
+  static int MazeGetStart(LuaCall& call) {
+    const Scenario& s = Self(call);
+    lua_State* L = call.state();
     lua_createtable(L, 0, 2);
     lua_pushinteger(L, s.maze_start_.x);
     lua_setfield(L, -2, "x");
@@ -134,11 +120,11 @@ struct ScenarioApi {
     return 1;
   }
 
-  static int RobotPlace(lua_State* L) {
-    luaL_checktype(L, 1, LUA_TTABLE);
-    const Pose2D pose{Field(L, 1, "x_m", 0, true), Field(L, 1, "y_m", 0, true),
-                      Field(L, 1, "yaw_deg", 90, false) * std::numbers::pi / 180};
-    Scenario& s = Self(L);
+  static int RobotPlace(LuaCall& call) {
+    call.CheckTable(1);
+    const Pose2D pose{call.NumberField(1, "x_m"), call.NumberField(1, "y_m"),
+                      call.NumberField(1, "yaw_deg", 90) * std::numbers::pi / 180};
+    Scenario& s = Self(call);
     if (s.kernel_ == nullptr) {
       s.world_.spawn = pose;
     } else {
@@ -147,149 +133,150 @@ struct ScenarioApi {
     return 0;
   }
 
-  static int RobotReset(lua_State* L) {
-    Scenario& s = Self(L);
-    if (s.kernel_ == nullptr) return luaL_error(L, "sim.robot_reset: only in run");
+  static int RobotReset(LuaCall& call) {
+    Scenario& s = Self(call);
+    if (s.kernel_ == nullptr) call.Fail("sim.robot_reset: only in run");
     s.kernel_->world().PlaceRobot(s.kernel_->state().data(), s.kernel_->world().spawn());
     return 0;
   }
 
-  static int SignalIndex(lua_State* L, const Kernel& k) {
-    const char* name = luaL_checkstring(L, 1);
+  static int SignalIndex(const LuaCall& call, const Kernel& k) {
+    const std::string name = call.CheckString(1);
     const int id = k.model().FindSignal(name);
-    if (id < 0) luaL_error(L, "no signal named '%s'", name);
+    if (id < 0) call.Fail("no signal named '" + name + "'");
     return id;
   }
-  static int SignalGet(lua_State* L) {
-    const Kernel& k = RunningKernel(L, "sim.signal_get");
-    lua_pushnumber(L, k.state().signals()[SignalIndex(L, k)]);
+  static int SignalGet(LuaCall& call) {
+    const Kernel& k = RunningKernel(call);
+    lua_pushnumber(call.state(), k.state().signals()[SignalIndex(call, k)]);
     return 1;
   }
-  static int SignalSet(lua_State* L) {
-    Kernel& k = RunningKernel(L, "sim.signal_set");
-    const int id = SignalIndex(L, k);
-    const double v = luaL_checknumber(L, 2);
-    if (!std::isfinite(v)) luaL_error(L, "a signal must be finite");
+  static int SignalSet(LuaCall& call) {
+    Kernel& k = RunningKernel(call);
+    const int id = SignalIndex(call, k);
+    const double v = call.CheckNumber(2);
+    if (!std::isfinite(v)) call.Fail("a signal must be finite");
     k.state().signals()[id] = v;
     return 0;
   }
 
-  static int WallAdd(lua_State* L) {
-    NotInRun(L, "sim.wall_add");
-    luaL_checktype(L, 1, LUA_TTABLE);
-    const double x1 = Field(L, 1, "x1_m", 0, true), y1 = Field(L, 1, "y1_m", 0, true);
-    const double x2 = Field(L, 1, "x2_m", 0, true), y2 = Field(L, 1, "y2_m", 0, true);
-    const double thickness = Field(L, 1, "thickness_m", 0.012, false);
-    const double height = Field(L, 1, "height_m", 0.05, false);
+  static int WallAdd(LuaCall& call) {
+    NotInRun(call);
+    call.CheckTable(1);
+    const double x1 = call.NumberField(1, "x1_m"), y1 = call.NumberField(1, "y1_m");
+    const double x2 = call.NumberField(1, "x2_m"), y2 = call.NumberField(1, "y2_m");
+    const double thickness = call.NumberField(1, "thickness_m", 0.012);
+    const double height = call.NumberField(1, "height_m", 0.05);
     const double length = std::hypot(x2 - x1, y2 - y1);
-    if (length <= 0 || thickness <= 0 || height <= 0)
-      luaL_error(L, "a wall needs a length, thickness and height");
-    Self(L).world_.boxes.push_back({StaticBox::Kind::kWall,
-                                    {(x1 + x2) / 2, (y1 + y2) / 2, height / 2},
-                                    {length / 2, thickness / 2, height / 2},
-                                    std::atan2(y2 - y1, x2 - x1)});
+    if (length <= 0 || thickness <= 0 || height <= 0) {
+      call.Fail("a wall needs a length, thickness and height");
+    }
+    Self(call).world_.boxes.push_back({StaticBox::Kind::kWall,
+                                       {(x1 + x2) / 2, (y1 + y2) / 2, height / 2},
+                                       {length / 2, thickness / 2, height / 2},
+                                       std::atan2(y2 - y1, x2 - x1)});
     return 0;
   }
 
-  static int BoxAdd(lua_State* L) {
-    NotInRun(L, "sim.box_add");
-    luaL_checktype(L, 1, LUA_TTABLE);
-    lua_getfield(L, 1, "size_m");
-    luaL_checktype(L, -1, LUA_TTABLE);
+  static int BoxAdd(LuaCall& call) {
+    NotInRun(call);
+    call.CheckTable(1);
+    lua_State* L = call.state();
+    if (call.FieldType(1, "size_m") != LUA_TTABLE) {
+      call.Fail("sim.box_add: field 'size_m' must be a table {x, y, z}");
+    }
+    lua_pushliteral(L, "size_m");
+    lua_rawget(L, 1);
     double size[3];
     for (int i = 0; i < 3; ++i) {
-      lua_geti(L, -1, i + 1);
+      lua_rawgeti(L, -1, i + 1);
       size[i] = lua_tonumber(L, -1);
-      if (!(size[i] > 0)) luaL_error(L, "size_m needs three sizes greater than 0");
       lua_pop(L, 1);
+      if (!(size[i] > 0) || !std::isfinite(size[i])) {
+        call.Fail("sim.box_add: size_m needs three sizes greater than 0");
+      }
     }
     lua_pop(L, 1);
-    Self(L).world_.boxes.push_back(
+    Self(call).world_.boxes.push_back(
         {StaticBox::Kind::kObstacle,
-         {Field(L, 1, "x_m", 0, true), Field(L, 1, "y_m", 0, true), size[2] / 2},
+         {call.NumberField(1, "x_m"), call.NumberField(1, "y_m"), size[2] / 2},
          {size[0] / 2, size[1] / 2, size[2] / 2},
-         Field(L, 1, "yaw_deg", 0, false) * std::numbers::pi / 180});
+         call.NumberField(1, "yaw_deg", 0) * std::numbers::pi / 180});
     return 0;
   }
 
-  static int MazeLoad(lua_State* L) {
-    NotInRun(L, "sim.maze_load");
-    const char* name = luaL_checkstring(L, 1);
-    try {
-      Scenario& s = Self(L);
-      s.world_.maze = std::make_unique<Maze>(LoadMaze(ResolveDataFile(name, "mazes/", ".txt")));
-      s.maze_goals_ = std::make_unique<std::vector<Cell>>(s.world_.maze->goals());
-      s.maze_start_ = s.world_.maze->start();
-    } catch (const InputError& e) {
-      return luaL_error(L, "%s", e.what());
-    }
+  static int MazeLoad(LuaCall& call) {
+    NotInRun(call);
+    const std::string name = call.CheckString(1);
+    // a maze that cannot be read throws InputError, which the boundary raises as the message
+    Scenario& s = Self(call);
+    s.world_.maze = std::make_unique<Maze>(LoadMaze(ResolveDataFile(name, "mazes/", ".txt")));
+    s.maze_goals_ = std::make_unique<std::vector<Cell>>(s.world_.maze->goals());
+    s.maze_start_ = s.world_.maze->start();
     return 0;
   }
 
-  static int HudSet(lua_State* L) {
-    const lua_Integer line = luaL_checkinteger(L, 1);
-    if (line < 1 || line > 16) luaL_error(L, "hud lines are 1 to 16");
-    std::vector<std::string>& hud = Self(L).hud_;
+  static int HudSet(LuaCall& call) {
+    const lua_Integer line = call.CheckInteger(1);
+    if (line < 1 || line > 16) call.Fail("hud lines are 1 to 16");
+    std::string text = call.CheckString(2);
+    std::vector<std::string>& hud = Self(call).hud_;
     if (hud.size() < static_cast<size_t>(line)) hud.resize(static_cast<size_t>(line));
-    hud[static_cast<size_t>(line - 1)] = luaL_checkstring(L, 2);
+    hud[static_cast<size_t>(line - 1)] = std::move(text);
     return 0;
   }
 
-  static int SnapshotSave(lua_State* L) {
-    const std::string file = luaL_checkstring(L, 1);
+  static int SnapshotSave(LuaCall& call) {
+    const std::string file = call.CheckString(1);
     std::string camera = "top";
     lua_Integer width = 640, height = 480;
-    if (!lua_isnoneornil(L, 2)) {
-      luaL_checktype(L, 2, LUA_TTABLE);
-      if (lua_getfield(L, 2, "camera") != LUA_TNIL) camera = luaL_checkstring(L, -1);
-      if (lua_getfield(L, 2, "width") != LUA_TNIL) width = luaL_checkinteger(L, -1);
-      if (lua_getfield(L, 2, "height") != LUA_TNIL) height = luaL_checkinteger(L, -1);
-      lua_pop(L, 3);
+    if (!call.IsNoneOrNil(2)) {
+      call.CheckTable(2);
+      camera = call.StringField(2, "camera", camera);
+      width = call.IntegerField(2, "width", width);
+      height = call.IntegerField(2, "height", height);
     }
     // pictures stay inside the run's output directory
     if (file.empty() || file[0] == '/' || file.find("..") != std::string::npos || file.size() < 5 ||
         file.substr(file.size() - 4) != ".png") {
-      return luaL_error(L,
-                        "sim.snapshot_save: '%s' is not a relative name ending in .png inside "
-                        "the run's output directory",
-                        file.c_str());
+      call.Fail("sim.snapshot_save: '" + file +
+                "' is not a relative name ending in .png inside the run's output directory");
     }
-    Scenario& s = Self(L);
+    Scenario& s = Self(call);
     const std::string why =
         s.picture_taker_
             ? s.picture_taker_(file, camera, static_cast<int>(width), static_cast<int>(height))
             : std::string("this run takes no pictures");
+    lua_State* L = call.state();
     lua_pushboolean(L, why.empty());
     if (why.empty()) return 1;
     lua_pushstring(L, why.c_str());
     return 2;
   }
 
-  static int Decide(lua_State* L, const char* status) {
-    Scenario& s = Self(L);
+  static int Decide(const LuaCall& call, const char* status) {
+    Scenario& s = Self(call);
     if (s.finished()) return 0;
     s.outcome_.status = status;
-    s.outcome_.reason = luaL_optstring(L, 1, "");
+    s.outcome_.reason = call.OptString(1, "");
     if (s.kernel_)
       s.kernel_->Log(UNIMOUSE_LOG_INFO, "scenario", std::string(status) + ": " + s.outcome_.reason);
     return 0;
   }
-  static int Pass(lua_State* L) { return Decide(L, "passed"); }
-  static int Fail(lua_State* L) { return Decide(L, "failed"); }
+  static int Pass(LuaCall& call) { return Decide(call, "passed"); }
+  static int Fail(LuaCall& call) { return Decide(call, "failed"); }
 
-  static int ScoreSet(lua_State* L) {
-    const char* name = luaL_checkstring(L, 1);
-    Self(L).outcome_.scores[name] = luaL_checknumber(L, 2);
+  static int ScoreSet(LuaCall& call) {
+    const std::string name = call.CheckString(1);
+    Self(call).outcome_.scores[name] = call.CheckNumber(2);
     return 0;
   }
 
-  static int Print(lua_State* L) {
+  // the sandbox's print: to the run's log, each value as tostring gives it
+  static int Print(LuaCall& call) {
     std::string line;
-    for (int i = 1; i <= lua_gettop(L); ++i) {
-      line += (i > 1 ? "\t" : "") + std::string(luaL_tolstring(L, i, nullptr));
-      lua_pop(L, 1);
-    }
-    Scenario& s = Self(L);
+    for (int i = 1; i <= call.count(); ++i) line += (i > 1 ? "\t" : "") + call.ToText(i);
+    const Scenario& s = Self(call);
     if (s.kernel_) {
       s.kernel_->Log(UNIMOUSE_LOG_INFO, "scenario", line);
     } else {
@@ -299,8 +286,9 @@ struct ScenarioApi {
   }
 
   // the firmware's log lines since the last call, as {text, time_s}; for the event dispatcher
-  static int TakeFirmwareLines(lua_State* L) {
-    std::vector<std::pair<double, std::string>>& lines = Self(L).firmware_lines_;
+  static int TakeFirmwareLines(LuaCall& call) {
+    std::vector<std::pair<double, std::string>>& lines = Self(call).firmware_lines_;
+    lua_State* L = call.state();
     lua_createtable(L, static_cast<int>(lines.size()), 0);
     for (size_t i = 0; i < lines.size(); ++i) {
       lua_createtable(L, 0, 2);
@@ -314,22 +302,33 @@ struct ScenarioApi {
     return 1;
   }
 
-  static int Random(lua_State* L) {
-    lua_getfield(L, LUA_REGISTRYINDEX, "unimouse.rng");
-    auto* rng = static_cast<RngStream*>(lua_touserdata(L, -1));
-    lua_pop(L, 1);
-    const double u = rng->Uniform();
-    if (lua_gettop(L) == 0) {
+  // math.random, drawing from the run's seed
+  static int Random(LuaCall& call) {
+    const double u = Self(call).rng_.Uniform();
+    lua_State* L = call.state();
+    if (call.count() == 0) {
       lua_pushnumber(L, u);
       return 1;
     }
-    lua_Integer lo = 1, hi = luaL_checkinteger(L, 1);
-    if (lua_gettop(L) >= 2) {
+    lua_Integer lo = 1, hi = call.CheckInteger(1);
+    if (call.count() >= 2) {
       lo = hi;
-      hi = luaL_checkinteger(L, 2);
+      hi = call.CheckInteger(2);
     }
-    if (lo > hi) luaL_error(L, "math.random: interval is empty");
+    if (lo > hi) call.Fail("math.random: interval is empty");
     lua_pushinteger(L, lo + static_cast<lua_Integer>(u * static_cast<double>(hi - lo + 1)));
+    return 1;
+  }
+
+  // the instruction budget's error once it is spent, else nil: the prelude's protected calls
+  // pass it on
+  static int BudgetSpent(LuaCall& call) {
+    const Scenario& s = Self(call);
+    if (s.budget_error_.empty()) {
+      lua_pushnil(call.state());
+    } else {
+      lua_pushstring(call.state(), s.budget_error_.c_str());
+    }
     return 1;
   }
 };
@@ -395,13 +394,22 @@ constexpr ApiEntry kApi[] = {
     {"fail", ScenarioApi::Fail, 1, "fail(reason?)", "ends the challenge: failed"},
 };
 
+// the host's functions, for the prelude; internal, so outside the API levels (since 0)
+constexpr ApiEntry kHost[] = {
+    {"print", ScenarioApi::Print, 0, "print(...)", "to the run's log, with the sim time"},
+    {"random", ScenarioApi::Random, 0, "random(m?, n?) -> number",
+     "math.random, from the run's seed"},
+    {"take_firmware_lines", ScenarioApi::TakeFirmwareLines, 0,
+     "take_firmware_lines() -> {{text, time_s}, ...}", "the firmware's log lines since last time"},
+    {"budget_spent", ScenarioApi::BudgetSpent, 0, "budget_spent() -> message?",
+     "the instruction budget's error once it is spent"},
+};
+
 }  // namespace
 
 std::span<const ApiEntry> ScenarioApiEntries() { return kApi; }
 
-SandboxFunctions ScenarioSandboxFunctions() {
-  return {ScenarioApi::Random, ScenarioApi::Print, ScenarioApi::TakeFirmwareLines};
-}
+std::span<const ApiEntry> ScenarioHostEntries() { return kHost; }
 
 std::string DescribeScenarioApi() {
   std::string out = "scenario API level " + std::to_string(kScenarioApiLevel) + "\n";

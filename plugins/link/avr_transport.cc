@@ -1,56 +1,75 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// The emulated board as a transport (avr:PATH.elf): the firmware image runs on an emulated ATmega
-// inside this process, and the link runs it for each step's share of cycles.
+// The emulated board (avr:PATH.elf): the firmware image runs on an emulated ATmega inside this
+// process, and the link runs it for each step's share of cycles instead of waiting for it.
+#include <cstdio>
+#include <optional>
 #include <string>
 
-#include "avr_board.h"
 #include "transport.h"
+#include "unimouse/errors.h"
+#ifdef UNIMOUSE_HAVE_SIMAVR
+#include "avr_board.h"
+#endif
 
 namespace unimouse::link {
+#ifdef UNIMOUSE_HAVE_SIMAVR
 namespace {
 
 class AvrTransport final : public Transport {
  public:
-  AvrTransport(const std::string& path, const AvrBoard::Options& options)
-      : path_(path), board_(path, options) {}
+  explicit AvrTransport(const std::string& path) : path_(path) {
+    UNIMOUSE_THROW_UNLESS(!path.empty(), "avr needs a firmware image: avr:PATH.elf");
+  }
 
-  void Read(std::vector<uint8_t>& out) override { board_.Read(out); }
+  // the part and clock are the link's parameters, so the image loads only now
+  void Configure(const TransportSettings& settings) override {
+    AvrBoard::Options options;
+    options.mcu = settings.mcu;
+    options.f_cpu_hz = static_cast<uint32_t>(settings.f_cpu_hz);
+    board_.emplace(path_, options);
+  }
+  void Read(std::vector<uint8_t>& out, size_t max_bytes) override {
+    if (board_) board_->Read(out, max_bytes);
+  }
   // the board only moves when it is run: there is never more to wait for
   bool WaitReadable(std::chrono::milliseconds) override { return false; }
   size_t Write(std::span<const uint8_t> bytes) override {
-    board_.Write(bytes);
+    if (board_) board_->Write(bytes);
     return bytes.size();
   }
-  bool Connected() const override { return board_.receiver_on(); }
+  bool Connected() const override { return board_ && board_->receiver_on(); }
   std::string Describe() const override {
-    const AvrBoardStats s = board_.stats();
+    if (!board_) return "emulated board for " + path_;
+    const AvrBoardStats s = board_->stats();
     char clock[32];
     std::snprintf(clock, sizeof(clock), "%g MHz", s.f_cpu_hz / 1e6);
     return "emulated " + s.mcu + " at " + clock + " running " + path_;
   }
+  bool clocked() const override { return true; }
   std::string RunUntil(double time_s) override {
+    if (!board_) return "";
     // the board never goes back: when the simulation starts again, its time runs on
     if (time_s < last_s_) offset_s_ += last_s_;
     last_s_ = time_s;
-    return board_.RunUntilTime(offset_s_ + time_s);
+    return board_->RunUntilTime(offset_s_ + time_s);
   }
-  bool clocked() const override { return true; }
-  std::string Summary() const override { return board_.stats().Describe(); }
+  std::string Summary() const override { return board_ ? board_->stats().Describe() : ""; }
 
  private:
   std::string path_;
-  AvrBoard board_;
+  std::optional<AvrBoard> board_;
   double last_s_ = 0, offset_s_ = 0;
 };
 
 }  // namespace
 
-std::unique_ptr<Transport> OpenAvrBoard(const std::string& path, const std::string& mcu,
-                                        double f_cpu_hz) {
-  AvrBoard::Options options;
-  options.mcu = mcu;
-  options.f_cpu_hz = static_cast<uint32_t>(f_cpu_hz);
-  return std::make_unique<AvrTransport>(path, options);
+std::unique_ptr<Transport> OpenAvr(const std::string& path) {
+  return std::make_unique<AvrTransport>(path);
 }
+#else
+std::unique_ptr<Transport> OpenAvr(const std::string&) {
+  throw InputError("avr: this build has no emulated board (it needs libsimavr-dev, libelf-dev)");
+}
+#endif
 
 }  // namespace unimouse::link

@@ -2,6 +2,7 @@
 #include "frame_codec.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 
 namespace unimouse::link {
@@ -9,14 +10,41 @@ namespace {
 
 constexpr size_t kNameMax = 32;
 
-bool FromFirmware(uint8_t id) {
-  return id == UNIMOUSE_ID_MOTOR_LEFT || id == UNIMOUSE_ID_MOTOR_RIGHT ||
-         id == UNIMOUSE_ID_MANAGER || id == UNIMOUSE_ID_LOG || id == UNIMOUSE_ID_DEBUG_WALLS ||
+// the control frames a firmware may send; data frames come from the table
+bool ControlFromFirmware(uint8_t id) {
+  return id == UNIMOUSE_ID_MANAGER || id == UNIMOUSE_ID_LOG || id == UNIMOUSE_ID_DEBUG_WALLS ||
          id == UNIMOUSE_ID_DEBUG_VISITED || id == UNIMOUSE_ID_DEBUG_PATH ||
          id == UNIMOUSE_ID_DEBUG_VALUE;
 }
 
+uint16_t ToWord(long v) { return static_cast<uint16_t>(static_cast<int16_t>(v)); }
+
+// round half away from zero, then clamp; NaN reads as 0
+long RoundClamped(double value, long min, long max) {
+  if (std::isnan(value)) return 0;
+  return static_cast<long>(
+      std::round(std::clamp(value, static_cast<double>(min), static_cast<double>(max))));
+}
+
 }  // namespace
+
+int EncodingSize(Encoding encoding) { return encoding == Encoding::kF32 ? 4 : 2; }
+
+bool IsControlId(int id) { return id >= UNIMOUSE_ID_MANAGER && id <= UNIMOUSE_ID_DEBUG_VALUE; }
+
+std::vector<DataFrame> OriginalCommandFrames() {
+  return {{UNIMOUSE_ID_MOTOR_LEFT, Encoding::kMotor}, {UNIMOUSE_ID_MOTOR_RIGHT, Encoding::kMotor}};
+}
+
+FrameDecoder::FrameDecoder(std::vector<DataFrame> data_frames)
+    : data_frames_(std::move(data_frames)) {}
+
+const DataFrame* FrameDecoder::Data(uint8_t id) const {
+  for (const DataFrame& d : data_frames_) {
+    if (d.id == id) return &d;
+  }
+  return nullptr;
+}
 
 void FrameDecoder::Feed(std::span<const uint8_t> bytes, std::vector<FirmwareFrame>& out) {
   for (const uint8_t byte : bytes) {
@@ -25,7 +53,7 @@ void FrameDecoder::Feed(std::span<const uint8_t> bytes, std::vector<FirmwareFram
       continue;
     }
     if (pending_.empty()) {
-      if (!FromFirmware(byte)) {
+      if (!ControlFromFirmware(byte) && Data(byte) == nullptr) {
         ++unknown_bytes_;
         if (std::find(unknown_ids_.begin(), unknown_ids_.end(), byte) == unknown_ids_.end()) {
           unknown_ids_.push_back(byte);
@@ -42,46 +70,54 @@ void FrameDecoder::Feed(std::span<const uint8_t> bytes, std::vector<FirmwareFram
     FirmwareFrame frame;
     frame.id = id;
     bool complete = false;
-    switch (id) {
-      case UNIMOUSE_ID_MOTOR_LEFT:
-      case UNIMOUSE_ID_MOTOR_RIGHT:
-        if (size == 2) {
-          frame.value = unimouse_clamp_motor(static_cast<int16_t>(unimouse_get_u16(payload)));
-          complete = true;
+    if (const DataFrame* d = Data(id)) {
+      if (size == static_cast<size_t>(EncodingSize(d->encoding))) {
+        frame.is_data = true;
+        frame.encoding = d->encoding;
+        if (d->encoding == Encoding::kF32) {
+          const uint32_t bits = unimouse_get_u32(payload);
+          std::memcpy(&frame.number, &bits, 4);
+        } else {
+          const auto word = static_cast<int16_t>(unimouse_get_u16(payload));
+          frame.value = d->encoding == Encoding::kMotor ? unimouse_clamp_motor(word) : word;
         }
-        break;
-      case UNIMOUSE_ID_MANAGER:
-        frame.value = payload[0];
         complete = true;
-        break;
-      case UNIMOUSE_ID_LOG:
-        // a line ends at 0x00; an overlong one is cut there and the rest of it dropped
-        if (byte == 0 || size > UNIMOUSE_LOG_MAX) {
-          frame.text.assign(reinterpret_cast<const char*>(payload), size - 1);
+      }
+    } else {
+      switch (id) {
+        case UNIMOUSE_ID_MANAGER:
+          frame.value = payload[0];
           complete = true;
-          skipping_log_ = byte != 0;
-        }
-        break;
-      case UNIMOUSE_ID_DEBUG_WALLS:
-      case UNIMOUSE_ID_DEBUG_VISITED:
-        if (size == static_cast<size_t>(unimouse_payload_size(id))) {
-          frame.data.assign(payload, payload + size);
-          complete = true;
-        }
-        break;
-      case UNIMOUSE_ID_DEBUG_PATH:
-        if (size == 1u + 2u * payload[0]) {
-          frame.data.assign(payload + 1, payload + size);
-          complete = true;
-        }
-        break;
-      case UNIMOUSE_ID_DEBUG_VALUE:
-        if (size > 4 && (byte == 0 || size > 4 + kNameMax)) {
-          std::memcpy(&frame.number, payload, 4);
-          frame.text.assign(reinterpret_cast<const char*>(payload + 4), size - 4 - (byte == 0));
-          complete = true;
-        }
-        break;
+          break;
+        case UNIMOUSE_ID_LOG:
+          // a line ends at 0x00; an overlong one is cut there and the rest of it dropped
+          if (byte == 0 || size > UNIMOUSE_LOG_MAX) {
+            frame.text.assign(reinterpret_cast<const char*>(payload), size - 1);
+            complete = true;
+            skipping_log_ = byte != 0;
+          }
+          break;
+        case UNIMOUSE_ID_DEBUG_WALLS:
+        case UNIMOUSE_ID_DEBUG_VISITED:
+          if (size == static_cast<size_t>(unimouse_payload_size(id))) {
+            frame.data.assign(payload, payload + size);
+            complete = true;
+          }
+          break;
+        case UNIMOUSE_ID_DEBUG_PATH:
+          if (size == 1u + 2u * payload[0]) {
+            frame.data.assign(payload + 1, payload + size);
+            complete = true;
+          }
+          break;
+        case UNIMOUSE_ID_DEBUG_VALUE:
+          if (size > 4 && (byte == 0 || size > 4 + kNameMax)) {
+            std::memcpy(&frame.number, payload, 4);
+            frame.text.assign(reinterpret_cast<const char*>(payload + 4), size - 4 - (byte == 0));
+            complete = true;
+          }
+          break;
+      }
     }
     if (!complete) continue;
     out.push_back(std::move(frame));
@@ -101,8 +137,31 @@ void PutTofFrame(uint8_t id, double distance_m, double full_scale_m, std::string
 }
 
 void PutEncoderFrame(uint8_t id, long counts, std::string& out) {
-  const long clamped = std::clamp<long>(counts, INT16_MIN, INT16_MAX);
-  PutSensorFrame(id, static_cast<uint16_t>(static_cast<int16_t>(clamped)), out);
+  PutSensorFrame(id, ToWord(std::clamp<long>(counts, INT16_MIN, INT16_MAX)), out);
+}
+
+void PutDataFrame(uint8_t id, Encoding encoding, double value, double tof_full_scale_m,
+                  std::string& out) {
+  switch (encoding) {
+    case Encoding::kTof:
+      PutTofFrame(id, value, tof_full_scale_m, out);
+      return;
+    case Encoding::kI16:
+      PutSensorFrame(id, ToWord(RoundClamped(value, INT16_MIN, INT16_MAX)), out);
+      return;
+    case Encoding::kMotor:
+      PutSensorFrame(id, ToWord(RoundClamped(value, -UNIMOUSE_MOTOR_MAX, UNIMOUSE_MOTOR_MAX)), out);
+      return;
+    case Encoding::kF32: {
+      const auto f = static_cast<float>(value);
+      uint32_t bits = 0;
+      std::memcpy(&bits, &f, 4);
+      uint8_t frame[5] = {id};
+      unimouse_put_u32(frame + 1, bits);
+      out.append(reinterpret_cast<const char*>(frame), 5);
+      return;
+    }
+  }
 }
 
 void PutClockFrame(uint64_t time_us, std::string& out) {

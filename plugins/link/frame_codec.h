@@ -2,7 +2,8 @@
 // The link protocol's bytes, without any I/O (docs/protocol.md, arduino-lib/src/
 // unimouse_protocol.h). The decoder takes the firmware's bytes as they come, in pieces of any
 // size: partial frames wait for the rest, unknown ids are counted and skipped one byte at a time,
-// so garbage never stops it.
+// so garbage never stops it. Which data frames there are (sensor readings out, commands in) is
+// the link's frame table; the control frames (manager, log, clock, debug) are the protocol's own.
 #ifndef UNIMOUSE_PLUGINS_LINK_FRAME_CODEC_H_
 #define UNIMOUSE_PLUGINS_LINK_FRAME_CODEC_H_
 
@@ -15,31 +16,70 @@
 
 namespace unimouse::link {
 
+/// How a data frame carries one signal's value.
+enum class Encoding {
+  kTof,    ///< uint16 counts of the ToF full scale; 0xFFFF at or beyond it
+  kI16,    ///< int16, rounded and clamped
+  kF32,    ///< IEEE 754 single precision
+  kMotor,  ///< int16 H-bridge command, clamped to +-UNIMOUSE_MOTOR_MAX
+};
+
+/// Returns the payload bytes of a frame in `encoding`.
+int EncodingSize(Encoding encoding);
+
+/// Returns whether `id` is one of the protocol's control frames (manager, log, clock, debug),
+/// which a frame table cannot take.
+bool IsControlId(int id);
+
+/// A data frame the decoder knows: its id and how its payload reads.
+struct DataFrame {
+  uint8_t id = 0;
+  Encoding encoding = Encoding::kI16;
+};
+
+/// The original's incoming data frames: motor commands on ids 5 and 6.
+std::vector<DataFrame> OriginalCommandFrames();
+
 /// One complete frame from the firmware.
 struct FirmwareFrame {
   uint8_t id = 0;
-  int value = 0;              ///< motor command (clamped), manager code, or 0
+  int value = 0;              ///< motor or int16 data frame (clamped), manager code, or 0
   std::string text;           ///< log line, or a debug value's name
-  float number = 0;           ///< debug value
+  float number = 0;           ///< float32 data frame, or debug value
   std::vector<uint8_t> data;  ///< debug walls (x, y, walls, known), visited (x, y), path (x, y...)
+  bool is_data = false;       ///< a data frame of the table, read into `value` or `number`
+  Encoding encoding = Encoding::kI16;  ///< a data frame's encoding
+  /// Returns a data frame's value as a signal.
+  double Signal() const {
+    return encoding == Encoding::kF32 ? static_cast<double>(number) : static_cast<double>(value);
+  }
 };
 
 class FrameDecoder {
  public:
+  /// Decodes the protocol's control frames and the data frames listed, whose ids must not be
+  /// control ids.
+  explicit FrameDecoder(std::vector<DataFrame> data_frames = OriginalCommandFrames());
+
   /// Consumes `bytes`, appending every frame they complete to `out`.
   void Feed(std::span<const uint8_t> bytes, std::vector<FirmwareFrame>& out);
 
   uint64_t frames() const { return frames_; }
   uint64_t unknown_bytes() const { return unknown_bytes_; }
-  /// Ids seen that the protocol does not define for this direction, each once, in order.
+  /// Ids seen that neither the protocol nor the data frames define for this direction, each
+  /// once, in order.
   const std::vector<uint8_t>& unknown_ids() const { return unknown_ids_; }
-  /// Throws away a partial frame, as after a reconnection.
+  /// Throws away a partial frame, as after a reconnection; the counters stay.
   void Reset() {
     pending_.clear();
     skipping_log_ = false;
   }
 
  private:
+  // the data frame with this id, or null
+  const DataFrame* Data(uint8_t id) const;
+
+  std::vector<DataFrame> data_frames_;
   // bytes of the frame being assembled, its id first
   std::vector<uint8_t> pending_;
   bool skipping_log_ = false;  // inside an overlong log line, until its 0x00
@@ -54,6 +94,9 @@ void PutSensorFrame(uint8_t id, uint16_t value, std::string& out);
 void PutTofFrame(uint8_t id, double distance_m, double full_scale_m, std::string& out);
 /// Appends an encoder frame; counts beyond int16 are clamped.
 void PutEncoderFrame(uint8_t id, long counts, std::string& out);
+/// Appends a data frame carrying `value` in `encoding`; `tof_full_scale_m` serves kTof.
+void PutDataFrame(uint8_t id, Encoding encoding, double value, double tof_full_scale_m,
+                  std::string& out);
 /// Appends a clock frame: sim time in microseconds, modulo 2^32.
 void PutClockFrame(uint64_t time_us, std::string& out);
 

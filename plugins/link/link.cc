@@ -24,46 +24,39 @@ std::string Sides(uint8_t bits) {
   return out.empty() ? "none" : out;
 }
 
-std::unique_ptr<Transport> Open(const LinkParams& p) {
-  if (p.transport.rfind("avr:", 0) == 0) {
-#ifdef UNIMOUSE_HAVE_SIMAVR
-    return OpenAvrBoard(p.transport.substr(4), p.mcu, p.f_cpu_hz);
-#else
-    throw InputError("avr: this build has no emulated board (it needs libsimavr-dev, libelf-dev)");
-#endif
-  }
-  return OpenTransport(p.transport);
-}
-
 }  // namespace
 
-Link::Link(Params params) : p_(std::move(params)), transport_(Open(p_)) {}
+Link::Link(Params params) : p_(std::move(params)) {
+  // a wrong table is bad input now, before anything is bound or opened
+  for (TableEntry& e : ParseSendTable(p_.send)) send_.push_back({std::move(e), {}, 1});
+  for (TableEntry& e : ParseReceiveTable(p_.receive)) {
+    data_frames_.push_back({e.id, e.encoding});
+    receive_.push_back({std::move(e), {}});
+  }
+  decoder_ = FrameDecoder(data_frames_);
+}
 
 Link::~Link() = default;
 
 void Link::Bind(BindContext& ctx) {
-  tof_[0] = ctx.ReadSignal(p_.tof_left);
-  tof_[1] = ctx.ReadSignal(p_.tof_right);
-  tof_[2] = ctx.ReadSignal(p_.tof_front);
-  encoder_[0] = ctx.ReadSignal(p_.encoder_left);
-  encoder_[1] = ctx.ReadSignal(p_.encoder_right);
-  motor_[0] = ctx.WriteSignal(p_.motor_left);
-  motor_[1] = ctx.WriteSignal(p_.motor_right);
-  lockstep_ = ctx.WriteSignal(p_.lockstep_out);
-  const double steps = p_.tof_period_s / ctx.period_s();
-  tof_every_n_steps_ = std::max(1, static_cast<int>(std::lround(steps)));
   period_s_ = ctx.period_s();
-  UNIMOUSE_THROW_UNLESS(std::fabs(steps - tof_every_n_steps_) < 1e-6 * steps,
-                        "tof_period_s must be a whole number of the link's steps");
-  ctx.SetStateSize(5);
-  // a serial port's own rate limits it; pty and TCP go as fast as they are read unless told
-  int baud = p_.baud;
-  const size_t at = p_.transport.rfind('@');
-  if (baud == 0 && p_.transport.rfind("serial:", 0) == 0 && at != std::string::npos) {
-    baud = std::stoi(p_.transport.substr(at + 1));
+  physics_steps_per_step_ =
+      std::max(1, static_cast<int>(std::lround(period_s_ / ctx.timestep_s())));
+  for (Outgoing& o : send_) {
+    o.signal = ctx.ReadSignal(o.entry.signal);
+    o.every_n_steps = StepsPerFrame(o.entry, period_s_);
   }
-  bytes_per_step_ = baud > 0 ? baud / 10.0 * ctx.period_s() : 0;
+  for (Incoming& i : receive_) i.signal = ctx.WriteSignal(i.entry.signal);
+  ctx.SetStateSize(5);
   if (!p_.beliefs_out.empty()) beliefs_path_ = ctx.output_dir() + "/" + p_.beliefs_out;
+}
+
+void Link::Start() {
+  transport_ = OpenTransport(p_.transport);
+  transport_->Configure({p_.mcu, p_.f_cpu_hz});
+  // a serial port's own rate limits it; other transports go as fast as they are read unless told
+  const int baud = p_.baud > 0 ? p_.baud : transport_->line_baud();
+  bytes_per_step_ = baud > 0 ? baud / 10.0 * period_s_ : 0;
 }
 
 void Link::Reset(const ResetContext& ctx) const {
@@ -73,28 +66,44 @@ void Link::Reset(const ResetContext& ctx) const {
   s[kLastFrame_s] = 0;
   s[kFailsafe] = 0;
   s[kUnknownReported] = 0;
-  ctx.Write(motor_[0], 0);
-  ctx.Write(motor_[1], 0);
-  ctx.Write(lockstep_, 0);
-  decoder_.Reset();
+  ZeroReceived(ctx);
+  decoder_ = FrameDecoder(data_frames_);
+  inbox_.clear();
+  read_this_step_ = 0;
+  was_connected_ = false;
+  beliefs_ = {};
+  queue_.clear();
+  budget_bytes_ = 0;
+  dropped_bytes_ = 0;
   late_steps_ = 0;
   last_step_done_s_ = 0;
-  ctx.Log("firmware link: " + transport_->Describe());
+  if (transport_ != nullptr) ctx.Log("firmware link: " + transport_->Describe());
 }
 
-void Link::Apply(const SenseContext& ctx, const FirmwareFrame& f, bool* step_done) const {
+void Link::ZeroReceived(const TickContext& ctx) const {
+  for (const Incoming& i : receive_) ctx.Write(i.signal, 0);
+}
+
+const Link::Incoming* Link::FindIncoming(uint8_t id) const {
+  for (const Incoming& i : receive_) {
+    if (i.entry.id == id) return &i;
+  }
+  return nullptr;
+}
+
+void Link::Apply(const SenseContext& ctx, const FirmwareFrame& f, Heard& heard) const {
   std::span<double> s = ctx.state();
   s[kLastFrame_s] = ctx.time_s();
   if (s[kFailsafe] != 0) {
     s[kFailsafe] = 0;
     ctx.Log("the firmware speaks again");
   }
+  if (f.is_data) {
+    if (const Incoming* in = FindIncoming(f.id)) ctx.Write(in->signal, f.Signal());
+    return;
+  }
   char text[160];
   switch (f.id) {
-    case UNIMOUSE_ID_MOTOR_LEFT:
-    case UNIMOUSE_ID_MOTOR_RIGHT:
-      ctx.Write(motor_[f.id - UNIMOUSE_ID_MOTOR_LEFT], f.value);
-      break;
     case UNIMOUSE_ID_MANAGER:
       switch (f.value) {
         case UNIMOUSE_MANAGER_SENSORS_ON:
@@ -102,19 +111,18 @@ void Link::Apply(const SenseContext& ctx, const FirmwareFrame& f, bool* step_don
           s[kSensorsOn] = f.value == UNIMOUSE_MANAGER_SENSORS_ON;
           break;
         case UNIMOUSE_MANAGER_STOP:
-          ctx.Write(motor_[0], 0);
-          ctx.Write(motor_[1], 0);
+          ZeroReceived(ctx);
           break;
         case UNIMOUSE_MANAGER_START:
           break;
         case UNIMOUSE_MANAGER_LOCKSTEP_ON:
           if (s[kLockstep] == 0) ctx.Log("lock-step on: the simulation waits for the firmware");
           s[kLockstep] = 1;
-          ctx.Write(lockstep_, 1);
+          heard.lockstep_on = true;
           ctx.SetFirmwarePaced(true);
           break;
         case UNIMOUSE_MANAGER_STEP_DONE:
-          *step_done = true;
+          heard.step_done = true;
           break;
         default:
           std::snprintf(text, sizeof(text), "unknown manager byte 0x%02x, ignored", f.value);
@@ -186,9 +194,13 @@ void Link::Apply(const SenseContext& ctx, const FirmwareFrame& f, bool* step_don
   }
 }
 
-void Link::Receive(const SenseContext& ctx, bool* step_done) const {
+void Link::Receive(const SenseContext& ctx, Heard& heard) const {
   inbox_.clear();
-  transport_->Read(inbox_);
+  // a firmware that floods cannot keep the step reading forever
+  if (read_this_step_ < kReadPerStep_bytes) {
+    transport_->Read(inbox_, kReadPerStep_bytes - read_this_step_);
+  }
+  read_this_step_ += inbox_.size();
   if (transport_->Connected() != was_connected_) {
     was_connected_ = transport_->Connected();
     ctx.Log(was_connected_ ? "firmware connected" : "firmware disconnected");
@@ -196,7 +208,7 @@ void Link::Receive(const SenseContext& ctx, bool* step_done) const {
   }
   std::vector<FirmwareFrame> frames;
   decoder_.Feed(inbox_, frames);
-  for (const FirmwareFrame& f : frames) Apply(ctx, f, step_done);
+  for (const FirmwareFrame& f : frames) Apply(ctx, f, heard);
 
   // each unknown id is reported once; all are counted
   std::span<double> s = ctx.state();
@@ -240,56 +252,93 @@ void Link::Send(const SenseContext& ctx, const std::string& frames, bool lockste
   budget_bytes_ -= static_cast<double>(n);
 }
 
-bool Link::AwaitFirmware(const SenseContext& ctx, bool* step_done, const char* waiting_for) const {
+bool Link::AwaitFirmware(const SenseContext& ctx, Heard& heard, bool Heard::*until,
+                         const char* waiting_for) const {
   const auto deadline =
       std::chrono::steady_clock::now() + std::chrono::duration<double>(p_.lockstep_timeout_s);
-  const bool for_lockstep = step_done == nullptr;
-  bool ignored = false;
-  while (for_lockstep ? ctx.state()[kLockstep] == 0 : !*step_done) {
+  char text[192];
+  while (!(heard.*until)) {
+    if (read_this_step_ >= kReadPerStep_bytes) {
+      std::snprintf(text, sizeof(text),
+                    "the firmware sent more than %zu bytes at t=%.3f s and did not %s (lock-step)",
+                    kReadPerStep_bytes, ctx.time_s(), waiting_for);
+      ctx.Fail(text);
+      return false;
+    }
     const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
         deadline - std::chrono::steady_clock::now());
     if (left.count() <= 0 || !transport_->WaitReadable(left)) {
-      char text[160];
       std::snprintf(text, sizeof(text),
                     "the firmware did not %s at t=%.3f s within %g s (lock-step)", waiting_for,
                     ctx.time_s(), p_.lockstep_timeout_s);
       ctx.Fail(text);
       return false;
     }
-    Receive(ctx, for_lockstep ? &ignored : step_done);
+    Receive(ctx, heard);
   }
   return true;
 }
 
+void Link::RunBoard(const SenseContext& ctx, Heard& heard, bool lockstep) const {
+  ctx.SetFirmwarePaced(true);
+  const std::string fault = transport_->RunUntil(ctx.time_s() + period_s_);
+  if (!fault.empty()) {
+    ctx.Fail(fault);
+    return;
+  }
+  Receive(ctx, heard);
+  if (!lockstep) return;
+  // a step not finished within its cycles is late, as on a real board; its commands count when
+  // they come
+  if (heard.step_done) {
+    last_step_done_s_ = ctx.time_s();
+    return;
+  }
+  ++late_steps_;
+  if (ctx.time_s() - last_step_done_s_ > p_.lockstep_timeout_s) {
+    char text[160];
+    std::snprintf(text, sizeof(text),
+                  "the firmware did not finish a step for %g s of its own time at t=%.3f s "
+                  "(lock-step)",
+                  p_.lockstep_timeout_s, ctx.time_s());
+    ctx.Fail(text);
+  }
+}
+
 void Link::Sense(const SenseContext& ctx) const {
+  // a link that was only checked, never started, has nothing to talk to
+  if (transport_ == nullptr) return;
   std::span<double> s = ctx.state();
-  bool step_done = false;
-  Receive(ctx, &step_done);
-  if (p_.start_with_lockstep && ctx.step() == 0 && s[kLockstep] == 0 &&
-      !AwaitFirmware(ctx, nullptr, "ask for lock-step")) {
+  read_this_step_ = 0;
+  Heard heard;
+  Receive(ctx, heard);
+  if (transport_->lockstep_from_start() && ctx.step() == 0 && s[kLockstep] == 0 &&
+      !AwaitFirmware(ctx, heard, &Heard::lockstep_on, "ask for lock-step")) {
     return;
   }
 
   // failsafe: a silent board stops its motors
+  bool commanded = false;
+  for (const Incoming& i : receive_) commanded = commanded || ctx.Read(i.signal) != 0;
   if (p_.failsafe_s > 0 && s[kFailsafe] == 0 && ctx.time_s() - s[kLastFrame_s] > p_.failsafe_s &&
-      (ctx.Read(motor_[0]) != 0 || ctx.Read(motor_[1]) != 0)) {
-    ctx.Write(motor_[0], 0);
-    ctx.Write(motor_[1], 0);
+      commanded) {
+    ZeroReceived(ctx);
     s[kFailsafe] = 1;
-    char text[96];
-    std::snprintf(text, sizeof(text), "no frame from the firmware for %g s: motors stopped",
+    char text[128];
+    std::snprintf(text, sizeof(text),
+                  "no frame from the firmware for %g s: motors stopped (every received signal "
+                  "set to 0)",
                   p_.failsafe_s);
     ctx.Warn(text);
   }
 
+  // the send table, in its order, each entry on the steps of its period
   std::string out;
   if (s[kSensorsOn] != 0) {
-    PutEncoderFrame(UNIMOUSE_ID_ENCODER_LEFT, std::lround(ctx.Read(encoder_[0])), out);
-    PutEncoderFrame(UNIMOUSE_ID_ENCODER_RIGHT, std::lround(ctx.Read(encoder_[1])), out);
-    if (ctx.step() % tof_every_n_steps_ == 0) {
-      for (int i = 0; i < 3; ++i) {
-        PutTofFrame(static_cast<uint8_t>(UNIMOUSE_ID_TOF_LEFT + i), ctx.Read(tof_[i]),
-                    p_.tof_full_scale_m, out);
+    const int64_t step = ctx.step() / physics_steps_per_step_;
+    for (const Outgoing& o : send_) {
+      if (step % o.every_n_steps == 0) {
+        PutDataFrame(o.entry.id, o.entry.encoding, ctx.Read(o.signal), p_.tof_full_scale_m, out);
       }
     }
   }
@@ -297,52 +346,18 @@ void Link::Sense(const SenseContext& ctx) const {
   if (lockstep) PutClockFrame(static_cast<uint64_t>(std::llround(ctx.time_s() * 1e6)), out);
   Send(ctx, out, lockstep);
 
-  // an emulated board keeps its own time: it runs the step's cycles, never waits
+  // an emulated board keeps its own time: it runs the step's cycles and is never waited for
   if (transport_->clocked()) {
-    ctx.SetFirmwarePaced(true);
-    const std::string fault = transport_->RunUntil(ctx.time_s() + period_s_);
-    if (!fault.empty()) {
-      ctx.Fail(fault);
-      return;
-    }
-    Receive(ctx, &step_done);
-    if (!lockstep) return;
-    if (step_done) {
-      last_step_done_s_ = ctx.time_s();
-      return;
-    }
-    ++late_steps_;
-    if (ctx.time_s() - last_step_done_s_ > p_.lockstep_timeout_s) {
-      char text[160];
-      std::snprintf(text, sizeof(text),
-                    "the firmware did not finish a step for %g s of its own time at t=%.3f s "
-                    "(lock-step)",
-                    p_.lockstep_timeout_s, ctx.time_s());
-      ctx.Fail(text);
-    }
+    RunBoard(ctx, heard, lockstep);
     return;
   }
 
   // lock-step: this step is over when the firmware says so
-  if (!lockstep) return;
-  const auto deadline =
-      std::chrono::steady_clock::now() + std::chrono::duration<double>(p_.lockstep_timeout_s);
-  while (!step_done) {
-    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
-        deadline - std::chrono::steady_clock::now());
-    if (left.count() <= 0 || !transport_->WaitReadable(left)) {
-      char text[160];
-      std::snprintf(text, sizeof(text),
-                    "the firmware did not finish its step at t=%.3f s within %g s (lock-step)",
-                    ctx.time_s(), p_.lockstep_timeout_s);
-      ctx.Fail(text);
-      return;
-    }
-    Receive(ctx, &step_done);
-  }
+  if (lockstep) AwaitFirmware(ctx, heard, &Heard::step_done, "finish its step");
 }
 
 void Link::Finish(const SenseContext& ctx) const {
+  if (transport_ == nullptr) return;
   if (!beliefs_path_.empty()) {
     std::FILE* f = std::fopen(beliefs_path_.c_str(), "w");
     if (f == nullptr) {

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// Byte transports for the link, on Boost.Asio: a pseudo-terminal whose path a board emulator or
-// terminal program opens, a real serial port, a TCP server, a firmware process on this machine.
-// All non-blocking: the simulation
-// never waits on a board except in lock-step, and then only up to a timeout.
+// Byte transports for the link: a pseudo-terminal whose path a board emulator or terminal
+// program opens, a real serial port, a TCP server, a firmware process on this machine. All
+// non-blocking: the simulation never waits on a board except in lock-step, and then only up to a
+// timeout. One table lists them (transports.cc); each lives in its own source file.
 #ifndef UNIMOUSE_PLUGINS_LINK_TRANSPORT_H_
 #define UNIMOUSE_PLUGINS_LINK_TRANSPORT_H_
 
@@ -18,19 +18,27 @@ namespace unimouse::link {
 class Transport {
  public:
   virtual ~Transport() = default;
-  /// Appends the bytes available now; never waits. Notices a lost peer and tries to get it
-  /// back (a reopened pty, a replugged port, a new TCP client).
-  virtual void Read(std::vector<uint8_t>& out) = 0;
+  /// Appends up to `max_bytes` of the bytes available now; never waits. Notices a lost peer
+  /// and tries to get it back (a reopened pty, a replugged port, a new TCP client).
+  virtual void Read(std::vector<uint8_t>& out, size_t max_bytes) = 0;
   /// Waits up to `timeout` for bytes to read; false on timeout or without a peer.
   virtual bool WaitReadable(std::chrono::milliseconds timeout) = 0;
   /// Writes what the peer takes now; returns how many bytes went.
   virtual size_t Write(std::span<const uint8_t> bytes) = 0;
-  /// Whether a peer is there to talk to.
+  /// Returns whether a peer is there to talk to.
   virtual bool Connected() const = 0;
-  /// One line for the console: what it is and where to connect.
+  /// Returns one line for the console: what it is and where to connect.
   virtual std::string Describe() const = 0;
-  /// Whether the transport carries the firmware's own clock (an emulated board): then the link
-  /// runs it for each step with RunUntil instead of waiting for it.
+  /// Returns the line's own rate in baud (10 bits a byte), or 0 when it has none.
+  virtual int line_baud() const { return 0; }
+  /// Returns whether the firmware is to set the pace from the first step, as a program the
+  /// simulator starts itself does: the first step waits until it asks for lock-step.
+  virtual bool lockstep_from_start() const { return false; }
+  /// Takes what the link's parameters say about the peer, before the first step; the emulated
+  /// board loads its image here (throws InputError).
+  virtual void Configure(const struct TransportSettings& /*settings*/) {}
+  /// Returns whether the transport carries the firmware's own clock (an emulated board): then
+  /// the link runs it for each step with RunUntil and never waits for it.
   virtual bool clocked() const { return false; }
   /// Runs a clocked peer until simulated time `time_s`: what was written goes in at its line's
   /// pace and what it sends meanwhile can be read after. Returns "", or why the firmware cannot
@@ -40,14 +48,30 @@ class Transport {
   virtual std::string Summary() const { return ""; }
 };
 
-/// Opens the emulated board: the image at `path` on an emulated `mcu` at `f_cpu_hz`, unless the
-/// image names its own (avr_transport.cc; throws InputError without simavr in the build).
-std::unique_ptr<Transport> OpenAvrBoard(const std::string& path, const std::string& mcu,
-                                        double f_cpu_hz);
+/// What the link's parameters tell a transport beyond its spec.
+struct TransportSettings {
+  std::string mcu;      ///< avr: the part, unless the image names its own
+  double f_cpu_hz = 0;  ///< avr: the clock, unless the image names its own
+};
 
-/// Opens a transport from its spec: "pty" or "pty:LINK" (a symlink to the pty for convenience),
-/// "serial:PATH@BAUD", "tcp::PORT" or "tcp:HOST:PORT", or "native:PROGRAM [ARGS]" (a firmware
-/// program talking on its stdin and stdout, stopped when the link goes). Throws InputError.
+/// One kind of transport, an entry of the link's transport table.
+struct TransportKind {
+  const char* scheme;   ///< what its spec starts with: "tcp"
+  const char* usage;    ///< how a spec is written: "tcp::PORT or tcp:HOST:PORT"
+  const char* summary;  ///< what it is, in a sentence for the docs
+  /// Opens it from what follows "scheme:" ("" for the bare scheme); throws InputError.
+  std::unique_ptr<Transport> (*open)(const std::string& rest);
+};
+
+/// Returns every transport the link knows, in the order the help lists them.
+std::span<const TransportKind> Transports();
+
+/// Returns the usages of every transport, "pty or pty:LINK, serial:PATH@BAUD, ...", for the
+/// `transport` parameter's documentation and the error for an unknown one; lives for the
+/// program.
+const char* TransportUsages();
+
+/// Opens a transport from its spec, "SCHEME" or "SCHEME:REST". Throws InputError.
 std::unique_ptr<Transport> OpenTransport(const std::string& spec);
 
 }  // namespace unimouse::link

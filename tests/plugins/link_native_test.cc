@@ -33,7 +33,7 @@ class NativeLinkTest : public ::testing::Test {
         testing::ReadBundledRobot() +
         "  - { type: unimouse.link, name: link, params: { transport: 'native:" +
         std::string(UNIMOUSE_TEST_FIRMWARE) + firmware_args +
-        "', start_with_lockstep: true, lockstep_timeout_s: " + std::to_string(timeout_s) + " } }\n";
+        "', lockstep_timeout_s: " + std::to_string(timeout_s) + " } }\n";
     KernelOptions options;
     options.seed = 5;
     options.log_sink = [this](double, int, const std::string&, const std::string& message) {
@@ -87,10 +87,11 @@ TEST_F(NativeLinkTest, AFirmwareThatStopsAnsweringIsCaughtAndItsProcessEnds) {
 }
 
 TEST_F(NativeLinkTest, TheRunCommandReportsAHungFirmwareWithExitCode3) {
-  const auto o = testing::Unimouse(
-      "run --maze none --duration 1 --out /tmp/unimouse_native_hang "
-      "--link 'native:" +
-      std::string(UNIMOUSE_TEST_FIRMWARE) + " --hang-at 100'");
+  const std::string out = testing::FreshDirectory("native_hang");
+  const auto o = testing::Unimouse("run --maze none --duration 1 --out " + out +
+                                   " --link 'native:" + std::string(UNIMOUSE_TEST_FIRMWARE) +
+                                   " --hang-at 100'");
+  std::filesystem::remove_all(out);
   EXPECT_EQ(o.exit_code, 3) << o.output;
   EXPECT_NE(o.output.find("did not finish its step at t=0.100 s"), std::string::npos) << o.output;
 }
@@ -101,18 +102,18 @@ TEST_F(NativeLinkTest, WhatTheFirmwareReportsIsKeptAndDrawn) {
     for (int i = 0; i < 10; ++i) kernel->Step();
     kernel->Finish();
   }
-  const std::filesystem::path scratch = std::filesystem::temp_directory_path() / "native_beliefs";
-  const auto o = testing::Unimouse("run --maze japan2018 --duration 0.2 --out " + scratch.string() +
+  const std::string out = testing::FreshDirectory("native_beliefs");
+  const auto o = testing::Unimouse("run --maze japan2018 --duration 0.2 --out " + out +
                                    " --link native:" + std::string(UNIMOUSE_TEST_FIRMWARE));
   ASSERT_EQ(o.exit_code, 0) << o.output;
-  const std::string beliefs = ReadTextFile((scratch / "firmware_beliefs.json").string());
+  const std::string beliefs = ReadTextFile(out + "/firmware_beliefs.json");
   EXPECT_EQ(beliefs,
             "{\"walls\": [[0, 0, 14, 15]],\n \"visited\": [[0, 0]],\n \"path\": [[0, 0], [0, 1], "
             "[0, 2]]}\n");
-  EXPECT_TRUE(std::filesystem::exists(scratch / "maze.png"));
-  EXPECT_NE(ReadTextFile((scratch / "maze.svg").string()).find("class='closed-path'"),
-            std::string::npos);
+  EXPECT_TRUE(std::filesystem::exists(out + "/maze.png"));
+  EXPECT_NE(ReadTextFile(out + "/maze.svg").find("class='closed-path'"), std::string::npos);
   EXPECT_NE(o.output.find("debug path (0, 0) (0, 1) (0, 2)"), std::string::npos) << o.output;
+  std::filesystem::remove_all(out);
 }
 
 // the viewer and the pictures gather the firmware's beliefs from the link's typed reports
@@ -138,12 +139,10 @@ TEST_F(NativeLinkTest, WhatTheFirmwareReportsReachesTheHostAsTypedReports) {
 }
 
 TEST_F(NativeLinkTest, TheRunCommandRunsLockstepFirmwareFasterThanRealTime) {
-  const auto o =
-      testing::Unimouse("run --maze none --duration 3 --out " +
-                        (std::filesystem::temp_directory_path() / "native_fast").string() +
-                        " "
-                        "--link native:" +
-                        std::string(UNIMOUSE_TEST_FIRMWARE));
+  const std::string out = testing::FreshDirectory("native_fast");
+  const auto o = testing::Unimouse("run --maze none --duration 3 --out " + out +
+                                   " --link native:" + std::string(UNIMOUSE_TEST_FIRMWARE));
+  std::filesystem::remove_all(out);
   ASSERT_EQ(o.exit_code, 0) << o.output;
   std::smatch m;
   ASSERT_TRUE(std::regex_search(o.output, m, std::regex("([0-9.]+) s wall time"))) << o.output;

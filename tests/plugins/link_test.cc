@@ -20,7 +20,9 @@
 
 #include "inline_assets.h"
 #include "plugin_rig.h"
+#include "pty_board.h"
 #include "rng.h"
+#include "run_program.h"
 #include "unimouse/errors.h"
 #include "unimouse_protocol.h"
 
@@ -30,56 +32,13 @@ namespace {
 using testing::SetSignal;
 using testing::SignalValue;
 
-// the board's side of the pty
-class Board {
- public:
-  explicit Board(const std::string& path) { Open(path); }
-  ~Board() { Close(); }
-  void Open(const std::string& path) {
-    fd_ = ::open(path.c_str(), O_RDWR | O_NOCTTY | O_NONBLOCK);
-    EXPECT_GE(fd_, 0) << path << ": " << std::strerror(errno);
-    termios t{};
-    ::tcgetattr(fd_, &t);
-    ::cfmakeraw(&t);
-    ::tcsetattr(fd_, TCSANOW, &t);
-  }
-  void Close() {
-    if (fd_ >= 0) ::close(fd_);
-    fd_ = -1;
-  }
-  int fd() const { return fd_; }
-  void Send(std::vector<uint8_t> bytes) {
-    ASSERT_EQ(::write(fd_, bytes.data(), bytes.size()), static_cast<ssize_t>(bytes.size()));
-  }
-  void Motors(int16_t left, int16_t right) {
-    uint8_t f[6] = {UNIMOUSE_ID_MOTOR_LEFT, 0, 0, UNIMOUSE_ID_MOTOR_RIGHT, 0, 0};
-    unimouse_put_u16(f + 1, static_cast<uint16_t>(left));
-    unimouse_put_u16(f + 4, static_cast<uint16_t>(right));
-    Send({f, f + 6});
-  }
-  // everything the simulator has sent so far, frame ids counted
-  std::map<int, int> Drain() {
-    std::vector<uint8_t> bytes;
-    uint8_t buffer[4096];
-    ssize_t n;
-    while ((n = ::read(fd_, buffer, sizeof(buffer))) > 0)
-      bytes.insert(bytes.end(), buffer, buffer + n);
-    std::map<int, int> ids;
-    for (size_t i = 0; i < bytes.size(); i += 1 + unimouse_payload_size(bytes[i])) ++ids[bytes[i]];
-    return ids;
-  }
-
- private:
-  int fd_ = -1;
-};
+using Board = testing::PtyBoard;
 
 class LinkTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    path_ = (std::filesystem::temp_directory_path() /
-             ("unimouse_link_" + std::to_string(::getpid()) + "_" +
-              ::testing::UnitTest::GetInstance()->current_test_info()->name()))
-                .string();
+    dir_ = testing::FreshDirectory("link");
+    path_ = dir_ + "/board";
     const std::string robot = testing::ReadBundledRobot();
     const std::string yaml =
         robot + "  - { type: unimouse.link, name: link, params: { transport: 'pty:" + path_ +
@@ -88,11 +47,16 @@ class LinkTest : public ::testing::Test {
     options.seed = 3;
     kernel_ = testing::MakeKernel(yaml, nullptr, options);
   }
+  void TearDown() override {
+    kernel_.reset();
+    std::filesystem::remove_all(dir_);
+  }
   void Step(int n) {
     for (int i = 0; i < n; ++i) kernel_->Step();
   }
   Pose2D Pose() const { return kernel_->world().RobotPose(kernel_->state().data()); }
 
+  std::string dir_;
   std::string path_;
   std::unique_ptr<Kernel> kernel_;
 };
@@ -219,7 +183,7 @@ TEST_F(LinkTest, LockstepRunsWithTheSameSeedAndBoardAreIdentical) {
       traces[static_cast<size_t>(run)].push_back(kernel_->state().Hash());
     }
     firmware.join();
-    EXPECT_EQ(SignalValue(*kernel_, "link.lockstep"), 1);
+    EXPECT_TRUE(kernel_->firmware_paced());
     const mjData& d = kernel_->state().data();
     finals.emplace_back(d.qpos, d.qpos + kernel_->mj_model().nq);
   }

@@ -32,9 +32,10 @@ class SnapshotTest : public ::testing::Test {
     }
   }
 
-  // the bundled robot at `spawn` in `maze` (an open floor when null), with a renderer
-  void Build(const Maze* maze, std::optional<Pose2D> spawn, uint64_t seed = 1) {
-    const std::string yaml = testing::ReadBundledRobot();
+  // the bundled robot, or the one in `yaml`, at `spawn` in `maze` (an open floor when null),
+  // with a renderer
+  void Build(const Maze* maze, std::optional<Pose2D> spawn, uint64_t seed = 1,
+             const std::string& yaml = testing::ReadBundledRobot()) {
     robot_ = ParseRobotSpec(yaml, "unimouse.yaml");
     KernelOptions options;
     options.seed = seed;
@@ -194,6 +195,23 @@ TEST_F(SnapshotTest, BeamsAreGreenOnAHitAndRedOnAMiss) {
   n = CountBeamPixels(Picture(640, 480, kSceneOnly, "chase"), Picture(640, 480, beams, "chase"));
   EXPECT_GT(n.red, 500);
   EXPECT_EQ(n.green, 0);
+}
+
+TEST_F(SnapshotTest, AFiveTofRobotDrawsFiveBeams) {
+  DrawOptions beams = kSceneOnly;
+  beams.beams = true;
+  // on an open floor every beam misses: 1.2 m of red each
+  auto red_pixels = [&](const std::string& yaml) {
+    Build(nullptr, std::nullopt, 1, yaml);
+    for (int i = 0; i < 40; ++i) kernel_->Step();
+    return CountBeamPixels(Picture(640, 480, kSceneOnly), Picture(640, 480, beams)).red;
+  };
+  const int three = red_pixels(testing::ReadBundledRobot());
+  const int five = red_pixels(testing::FiveTofRobot());
+  // the sensors declared their beams; the renderer knows nothing of the robot's sensors
+  EXPECT_EQ(kernel_->model().beams.size(), 5u);
+  EXPECT_GT(three, 300);
+  EXPECT_GT(five, three * 3 / 2);
 }
 
 TEST_F(SnapshotTest, TheSameSeedGivesTheSameImage) {

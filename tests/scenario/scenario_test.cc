@@ -78,6 +78,21 @@ TEST(ScenarioSandboxTest, AnEndlessLoopIsStoppedWithItsLocation) {
       << r.outcome.output;
 }
 
+TEST(ScenarioSandboxTest, CatchingTheBudgetsErrorInAnEndlessLoopStillStopsIt) {
+  const ScenarioRun r = Scenario("--scenario " + kTests + "swallow_budget.lua");
+  EXPECT_EQ(r.outcome.exit_code, 3);
+  EXPECT_NE(r.outcome.output.find(kTests + "swallow_budget.lua:7: instruction budget exhausted"),
+            std::string::npos)
+      << r.outcome.output;
+}
+
+TEST(ScenarioSandboxTest, AScenarioTableWhoseLookupsFailIsAScriptErrorNotACrash) {
+  const ScenarioRun r = Scenario("--scenario " + kTests + "failing_index.lua");
+  EXPECT_EQ(r.outcome.exit_code, 3) << r.outcome.output;
+  EXPECT_NE(r.outcome.output.find("failing_index.lua:5: there is no name\n"), std::string::npos)
+      << r.outcome.output;
+}
+
 TEST(ScenarioSandboxTest, SyntaxAndRuntimeErrorsGiveFileLineAndExitCode3) {
   ScenarioRun r = Scenario("--scenario " + kTests + "syntax_error.lua");
   EXPECT_EQ(r.outcome.exit_code, 3);

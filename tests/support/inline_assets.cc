@@ -34,6 +34,26 @@ RobotYaml BundledRobotWith(const std::string& components) {
   return out;
 }
 
+std::string FiveTofRobot() {
+  std::string text = ReadBundledRobot();
+  // the new sites go after the last of the bundled ones, the new sensors after every component
+  const size_t site = text.find("- { name: tof_right,");
+  const size_t after_site = text.find('\n', site) + 1;
+  text.insert(
+      after_site,
+      "    - { name: tof_left_side, pos_m: [0.030, 0.048, 0], euler_deg: [0, 0, 90] }\n"
+      "    - { name: tof_right_side, pos_m: [0.030, -0.048, 0], euler_deg: [0, 0, -90] }\n");
+  if (text.back() != '\n') text += '\n';
+  text +=
+      "  - type: unimouse.tof_sensor\n"
+      "    name: tof.left_side\n"
+      "    params: { site: tof_left_side, range_out: tof.left_side_m }\n"
+      "  - type: unimouse.tof_sensor\n"
+      "    name: tof.right_side\n"
+      "    params: { site: tof_right_side, range_out: tof.right_side_m }\n";
+  return text;
+}
+
 RobotSpec BareRobot() {
   RobotSpec robot = LoadRobotSpec(BundledRobotPath());
   robot.components.clear();

@@ -17,6 +17,11 @@ std::string SharedMazesDir();
 /// The bundled robot file's text.
 std::string ReadBundledRobot();
 
+/// The bundled robot with two more ToF sensors at the middle of the plate's sides, looking
+/// straight left and right (sites tof_left_side and tof_right_side, signals tof.left_side_m and
+/// tof.right_side_m): five in all. Its components list ends the text, so more can be appended.
+std::string FiveTofRobot();
+
 /// The bundled robot without its components: the bare mechanics.
 RobotSpec BareRobot();
 

@@ -57,4 +57,14 @@ void MujocoError::Actuate(const ActuateContext& ctx) const {
   mj_stackAlloc(&d, p_.where == "hook" ? free + 1 : free - 1);
 }
 
+void Gyro::Bind(BindContext& ctx) {
+  body_ = ctx.BodyId(p_.body);
+  rate_ = ctx.WriteSignal(p_.rate_out);
+}
+
+void Gyro::Sense(const SenseContext& ctx) const {
+  // cvel holds the rotation first, in world axes: its z is the yaw rate
+  ctx.Write(rate_, ctx.data().cvel[6 * body_ + 2]);
+}
+
 }  // namespace unimouse::testing

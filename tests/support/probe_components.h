@@ -152,6 +152,33 @@ class MujocoError final : public Component {
   Params p_;
 };
 
+struct GyroParams {
+  std::string body = "chassis";
+  std::string rate_out = "gyro.yaw_rate_rad_s";
+  template <class V>
+  void Visit(V& v) {
+    v("body", body, "body whose yaw rate it measures");
+    v("rate_out", rate_out, "signal it writes: yaw rate, rad/s, counter-clockwise positive");
+  }
+};
+
+/// A sensor that is not a ToF: writes the body's yaw rate every step, as a gyro would.
+class Gyro final : public Component {
+ public:
+  static constexpr const char* kTypeName = "test.gyro";
+  static constexpr const char* kSummary = "yaw rate gyro";
+  static constexpr double kDefaultPeriod_s = 0;
+  using Params = GyroParams;
+  explicit Gyro(Params p) : p_(std::move(p)) {}
+  void Bind(BindContext& ctx) override;
+  void Sense(const SenseContext& ctx) const override;
+
+ private:
+  Params p_;
+  int body_ = -1;
+  SignalId rate_;
+};
+
 }  // namespace unimouse::testing
 
 #endif  // UNIMOUSE_TESTS_PROBE_COMPONENTS_H_

@@ -1,10 +1,12 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "run_program.h"
 
+#include <stdlib.h>
 #include <sys/wait.h>
 
 #include <cstdio>
 #include <filesystem>
+#include <stdexcept>
 
 #include "text_file.h"
 
@@ -31,6 +33,15 @@ RunResult UnimouseRun(const std::string& arguments, const std::string& out_name,
     run.result = nlohmann::json::parse(ReadTextFile(out + "/result.json"));
   }
   return run;
+}
+
+std::string FreshDirectory(const std::string& stem) {
+  std::string path =
+      (std::filesystem::temp_directory_path() / ("unimouse_" + stem + "_XXXXXX")).string();
+  if (::mkdtemp(path.data()) == nullptr) {
+    throw std::runtime_error(path + ": cannot make a directory");
+  }
+  return path;
 }
 
 }  // namespace unimouse::testing

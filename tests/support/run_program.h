@@ -26,6 +26,10 @@ struct RunResult {
 RunResult UnimouseRun(const std::string& arguments, const std::string& out_name,
                       const std::string& environment = "");
 
+/// Makes a new, empty directory in the temporary directory, named after `stem` and unique to
+/// this call, and returns its path.
+std::string FreshDirectory(const std::string& stem);
+
 }  // namespace unimouse::testing
 
 #endif  // UNIMOUSE_TESTS_RUN_PROGRAM_H_

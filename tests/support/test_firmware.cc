@@ -1,12 +1,21 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // A firmware program for tests of the native link: it asks for lock-step, then answers every
 // clock frame with motor commands (drive until the front sensor sees a wall within 0.3 m) and
-// step-done. `--hang-at N` makes it stop answering at step N, as a crashed firmware would.
+// step-done.
+//
+//   --hang-at N          stop answering at step N, as a crashed firmware would
+//   --report ID:ENC,...  report every frame with one of these ids (ENC tof, i16 or f32: how it
+//                        reads) as a log line "rx ID STEP VALUE", STEP counting clock frames
+//   --motors L,R         send these commands every step instead
+//   --touch PATH         create the file PATH first, to show that it was started
+//   --flood N            send N zero bytes first, as a firmware gone mad would
 #include <unistd.h>
 
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <map>
+#include <string>
 #include <vector>
 
 #include "unimouse_protocol.h"
@@ -22,18 +31,65 @@ void Send(const std::vector<uint8_t>& bytes) {
   }
 }
 
+void Log(const std::string& text) {
+  std::vector<uint8_t> frame = {UNIMOUSE_ID_LOG};
+  frame.insert(frame.end(), text.begin(), text.end());
+  frame.push_back(0);
+  Send(frame);
+}
+
+// "3:i16,20:f32" -> id -> encoding
+std::map<int, std::string> ParseReport(const char* text) {
+  std::map<int, std::string> ids;
+  std::string list = text;
+  for (size_t at = 0; at < list.size();) {
+    const size_t end = std::min(list.find(',', at), list.size());
+    const std::string item = list.substr(at, end - at);
+    const size_t colon = item.find(':');
+    if (colon != std::string::npos) ids[std::atoi(item.c_str())] = item.substr(colon + 1);
+    at = end + 1;
+  }
+  return ids;
+}
+
+// what a reported frame carries, as text
+std::string Value(const std::string& encoding, const uint8_t* payload) {
+  char text[48];
+  if (encoding == "f32") {
+    const uint32_t bits = unimouse_get_u32(payload);
+    float f = 0;
+    std::memcpy(&f, &bits, 4);
+    std::snprintf(text, sizeof(text), "%.9g", static_cast<double>(f));
+  } else if (encoding == "tof") {
+    std::snprintf(text, sizeof(text), "%u", unimouse_get_u16(payload));
+  } else {
+    std::snprintf(text, sizeof(text), "%d", static_cast<int16_t>(unimouse_get_u16(payload)));
+  }
+  return text;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   long hang_at = -1;
+  std::map<int, std::string> report;
+  bool fixed_motors = false;
+  int left = 0, right = 0;
   for (int i = 1; i + 1 < argc; ++i) {
     if (std::strcmp(argv[i], "--hang-at") == 0) hang_at = std::atol(argv[i + 1]);
+    if (std::strcmp(argv[i], "--report") == 0) report = ParseReport(argv[i + 1]);
+    if (std::strcmp(argv[i], "--motors") == 0) {
+      fixed_motors = std::sscanf(argv[i + 1], "%d,%d", &left, &right) == 2;
+    }
+    if (std::strcmp(argv[i], "--touch") == 0) {
+      if (std::FILE* f = std::fopen(argv[i + 1], "w")) std::fclose(f);
+    }
+    if (std::strcmp(argv[i], "--flood") == 0) {
+      Send(std::vector<uint8_t>(static_cast<size_t>(std::atol(argv[i + 1])), 0));
+    }
   }
   Send({UNIMOUSE_ID_MANAGER, UNIMOUSE_MANAGER_LOCKSTEP_ON});
-  const char hello[] = "test firmware ready";
-  std::vector<uint8_t> log = {UNIMOUSE_ID_LOG};
-  log.insert(log.end(), hello, hello + sizeof(hello));  // with its 0x00
-  Send(log);
+  Log("test firmware ready");
   // what it believes: the start cell's walls (east, south, west), the cells it expects, a plan
   Send({UNIMOUSE_ID_DEBUG_WALLS, 0, 0,
         UNIMOUSE_SIDE_EAST | UNIMOUSE_SIDE_SOUTH | UNIMOUSE_SIDE_WEST, 0x0F});
@@ -54,8 +110,15 @@ int main(int argc, char** argv) {
     pending.insert(pending.end(), buffer, buffer + n);
     size_t i = 0;
     while (i < pending.size()) {
-      const int size = unimouse_payload_size(pending[i]);
+      const auto reported = report.find(pending[i]);
+      const int size = reported == report.end()    ? unimouse_payload_size(pending[i])
+                       : reported->second == "f32" ? 4
+                                                   : 2;
       if (size < 0 || i + 1 + static_cast<size_t>(size) > pending.size()) break;
+      if (reported != report.end()) {
+        Log("rx " + std::to_string(pending[i]) + " " + std::to_string(step) + " " +
+            Value(reported->second, &pending[i + 1]));
+      }
       if (pending[i] == UNIMOUSE_ID_TOF_FRONT) front = unimouse_get_u16(&pending[i + 1]);
       if (pending[i] == UNIMOUSE_ID_CLOCK) {
         if (step++ == hang_at) {
@@ -66,8 +129,8 @@ int main(int argc, char** argv) {
         uint8_t f[8] = {
             UNIMOUSE_ID_MOTOR_LEFT,    0, 0, UNIMOUSE_ID_MOTOR_RIGHT, 0, 0, UNIMOUSE_ID_MANAGER,
             UNIMOUSE_MANAGER_STEP_DONE};
-        unimouse_put_u16(f + 1, static_cast<uint16_t>(speed));
-        unimouse_put_u16(f + 4, static_cast<uint16_t>(speed));
+        unimouse_put_u16(f + 1, static_cast<uint16_t>(fixed_motors ? left : speed));
+        unimouse_put_u16(f + 4, static_cast<uint16_t>(fixed_motors ? right : speed));
         Send({f, f + 8});
       }
       i += 1 + static_cast<size_t>(size);

@@ -1,0 +1,78 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// A firmware program on this machine, started by the link and talking on its stdin and stdout;
+// stopped when the link goes. It runs in lock-step from the first step, so that its runs repeat
+// exactly.
+#include <signal.h>
+#include <sys/socket.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "stream_transport.h"
+#include "unimouse/errors.h"
+
+namespace unimouse::link {
+namespace {
+
+class NativeTransport final : public StreamTransport {
+ public:
+  explicit NativeTransport(const std::string& command) : command_(command) {
+    UNIMOUSE_THROW_UNLESS(!command.empty(), "native needs a program: native:PATH");
+    // words of the command become the arguments; no shell in between
+    std::vector<std::string> words;
+    for (size_t at = 0; at < command.size();) {
+      const size_t end = std::min(command.find(' ', at), command.size());
+      if (end > at) words.push_back(command.substr(at, end - at));
+      at = end + 1;
+    }
+    UNIMOUSE_THROW_UNLESS(!words.empty(), "native needs a program: native:PATH");
+    const std::string& program = words[0];
+    UNIMOUSE_THROW_UNLESS(::access(program.c_str(), X_OK) == 0,
+                          program + ": no such program, or it cannot be run");
+    int sockets[2];
+    UNIMOUSE_THROW_UNLESS(::socketpair(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0, sockets) == 0,
+                          "cannot make a socket pair for the firmware");
+    std::vector<char*> argv;
+    for (auto& w : words) argv.push_back(w.data());
+    argv.push_back(nullptr);
+    child_ = ::fork();
+    if (child_ == 0) {
+      ::dup2(sockets[1], 0);
+      ::dup2(sockets[1], 1);
+      ::execv(argv[0], argv.data());
+      ::_exit(127);
+    }
+    ::close(sockets[1]);
+    if (child_ < 0) ::close(sockets[0]);
+    UNIMOUSE_THROW_UNLESS(child_ > 0, "cannot start " + program);
+    Adopt(sockets[0]);
+  }
+  ~NativeTransport() override {
+    // a firmware never ends by itself: ask it to stop, then insist
+    CloseStream();
+    if (child_ <= 0) return;
+    ::kill(child_, SIGTERM);
+    for (int i = 0; i < 100; ++i) {
+      if (::waitpid(child_, nullptr, WNOHANG) == child_) return;
+      ::usleep(10000);
+    }
+    ::kill(child_, SIGKILL);
+    ::waitpid(child_, nullptr, 0);
+  }
+
+  std::string Describe() const override {
+    return "firmware process " + command_ + " (pid " + std::to_string(child_) + ")";
+  }
+  bool lockstep_from_start() const override { return true; }
+
+ private:
+  std::string command_;
+  pid_t child_ = -1;
+};
+
+}  // namespace
+
+std::unique_ptr<Transport> OpenNative(const std::string& command) {
+  return std::make_unique<NativeTransport>(command);
+}
+
+}  // namespace unimouse::link

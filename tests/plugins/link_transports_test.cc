@@ -1,0 +1,119 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The link's one list of transports: the help and the error for an unknown scheme show every
+// entry, and checking a robot file opens none of them.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "inline_assets.h"
+#include "plugin_rig.h"
+#include "run_program.h"
+#include "text_file.h"
+#include "transport.h"
+#include "unimouse/errors.h"
+
+namespace unimouse {
+namespace {
+
+TEST(LinkTransportsTest, RunHelpListsEveryTransportWithItsUsage) {
+  const testing::Outcome o = testing::Unimouse("run --help");
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  ASSERT_GE(link::Transports().size(), 4u);
+  for (const link::TransportKind& kind : link::Transports()) {
+    EXPECT_NE(o.output.find(kind.usage), std::string::npos) << kind.scheme << "\n" << o.output;
+  }
+  EXPECT_NE(o.output.find(std::string("connect firmware: ") + link::TransportUsages()),
+            std::string::npos)
+      << o.output;
+}
+
+TEST(LinkTransportsTest, AnUnknownSchemeIsRefusedWithTheListOfTransports) {
+  try {
+    link::OpenTransport("carrier-pigeon:coop");
+    FAIL() << "a pigeon was taken";
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    EXPECT_EQ(what.rfind("unknown transport 'carrier-pigeon:coop': ", 0), 0u) << what;
+    for (const link::TransportKind& kind : link::Transports()) {
+      EXPECT_NE(what.find(kind.usage), std::string::npos) << what;
+    }
+  }
+}
+
+TEST(LinkTransportsTest, EachTransportSaysWhetherItPacesFromTheFirstStepAndItsLineRate) {
+  const auto pty = link::OpenTransport("pty");
+  EXPECT_FALSE(pty->lockstep_from_start());
+  EXPECT_EQ(pty->line_baud(), 0);
+  const auto native = link::OpenTransport(std::string("native:") + UNIMOUSE_TEST_FIRMWARE);
+  EXPECT_TRUE(native->lockstep_from_start());
+  EXPECT_EQ(native->line_baud(), 0);
+}
+
+TEST(LinkTransportsTest, TheProtocolDocumentListsEveryTransportInTheTablesWords) {
+  const std::string doc = ReadTextFile(UNIMOUSE_SOURCE_DIR "/docs/protocol.md");
+  for (const link::TransportKind& kind : link::Transports()) {
+    const std::string row = std::string("| ") + kind.usage + " | " + kind.summary + " |";
+    EXPECT_NE(doc.find(row), std::string::npos) << "docs/protocol.md lacks the row\n" << row;
+  }
+}
+
+class CheckOpensNothingTest : public ::testing::Test {
+ protected:
+  void SetUp() override { dir_ = testing::FreshDirectory("check_link"); }
+  void TearDown() override { std::filesystem::remove_all(dir_); }
+
+  // a robot file in the test's directory whose link uses `transport`
+  std::string RobotFile(const std::string& transport) {
+    const std::string path = dir_ + "/robot.yaml";
+    std::ofstream(path) << testing::ReadBundledRobot()
+                        << "  - { type: unimouse.link, name: link, params: { transport: '"
+                        << transport << "', beliefs_out: beliefs.json } }\n";
+    return path;
+  }
+
+  std::string dir_;
+};
+
+TEST_F(CheckOpensNothingTest, CheckingANativeLinkStartsNoProgram) {
+  const std::string started = dir_ + "/started";
+  const std::string robot =
+      RobotFile(std::string("native:") + UNIMOUSE_TEST_FIRMWARE + " --touch " + started);
+  const testing::Outcome check = testing::Unimouse("check " + robot);
+  EXPECT_EQ(check.exit_code, 0) << check.output;
+  EXPECT_FALSE(std::filesystem::exists(started));
+  // a run of the same file does start it: the mark is a true witness
+  const testing::Outcome run =
+      testing::Unimouse("run --robot " + robot + " --maze none " +
+                        "--duration 0.01 --no-pictures --out " + dir_ + "/out");
+  EXPECT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_TRUE(std::filesystem::exists(started));
+}
+
+TEST_F(CheckOpensNothingTest, CheckingAPtyLinkMakesNoLink) {
+  const testing::Outcome check = testing::Unimouse("check " + RobotFile("pty:" + dir_ + "/board"));
+  EXPECT_EQ(check.exit_code, 0) << check.output;
+  EXPECT_FALSE(std::filesystem::exists(std::filesystem::symlink_status(dir_ + "/board")));
+  // and writes nothing beside the robot file
+  int files = 0;
+  for ([[maybe_unused]] const auto& entry : std::filesystem::directory_iterator(dir_)) ++files;
+  EXPECT_EQ(files, 1);
+}
+
+TEST_F(CheckOpensNothingTest, ALinkNeverStartedNeitherSendsNorWrites) {
+  KernelOptions options;
+  options.output_dir = dir_;
+  options.start_components = false;
+  auto kernel = testing::MakeKernel(testing::ReadBundledRobot() +
+                                        "  - { type: unimouse.link, name: link, params: { "
+                                        "transport: 'pty:" +
+                                        dir_ + "/board' } }\n",
+                                    nullptr, options);
+  for (int i = 0; i < 5; ++i) kernel->Step();
+  kernel->Finish();
+  EXPECT_FALSE(std::filesystem::exists(std::filesystem::symlink_status(dir_ + "/board")));
+  EXPECT_FALSE(std::filesystem::exists(dir_ + "/firmware_beliefs.json"));
+}
+
+}  // namespace
+}  // namespace unimouse

@@ -156,8 +156,13 @@ void Session::Assemble() {
     std::fflush(log_.get());
   };
   kernel_ = Kernel::Create(robot_, maze_.get(), *registry, kernel_options);
-  kernel_->AddReportListener(
-      [this](const std::string&, const unimouse_report& report) { beliefs_.Apply(report); });
+  kernel_->AddReportListener([this](const std::string& component, const unimouse_report& report) {
+    if (report.kind == UNIMOUSE_REPORT_MEASURE && report.name != nullptr) {
+      measurements_[component][report.name] = report.value;
+    } else {
+      beliefs_.Apply(report);
+    }
+  });
   if (scenario_) scenario_->Attach(*kernel_, o.controller);
 
   // the pictures asked for; without any, final.png whenever the machine can draw
@@ -302,6 +307,7 @@ SessionResult Session::Finish(const nlohmann::json& extra) {
     r["pictures"] = {{"written", 0}, {"unavailable", no_pictures_}};
   }
   if (firmware_maze) r["firmware_maze"] = "maze.png";
+  if (!measurements_.empty()) r["measurements"] = measurements_;
   r["exit_code"] = result.exit_code;
   if (extra.is_object()) r.update(extra);
   WriteRecord(options_.out_dir, r);

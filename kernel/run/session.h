@@ -108,6 +108,8 @@ class Session {
   std::unique_ptr<std::FILE, int (*)(std::FILE*)> log_{nullptr, &std::fclose};
   std::unique_ptr<Kernel> kernel_;
   FirmwareBeliefs beliefs_;
+  // what components measured over the run (UNIMOUSE_REPORT_MEASURE), by component and name
+  nlohmann::json measurements_ = nlohmann::json::object();
   std::unique_ptr<RunPictures> pictures_;
   std::unique_ptr<RealTimePacer> pacer_;
   bool pace_ = false;

@@ -83,6 +83,36 @@ std::string AvrBoardStats::Describe() const {
   return text;
 }
 
+std::vector<std::pair<std::string, double>> AvrBoardStats::Named() const {
+  const double s = emulated_s();
+  auto D = [](auto v) { return static_cast<double>(v); };
+  return {
+      {"avr.f_cpu_hz", D(f_cpu_hz)},
+      {"avr.emulated_s", s},
+      {"avr.cycles", D(cycles)},
+      {"avr.instructions", D(instructions)},
+      {"avr.instructions_per_s", s > 0 ? static_cast<double>(instructions) / s : 0},
+      {"avr.asleep_fraction", cycles ? static_cast<double>(sleep_cycles) / cycles : 0},
+      {"avr.host_emulated_mhz", D(emulated_mhz())},
+      {"avr.host_cpu_s", D(host_cpu_s)},
+      {"avr.sram_bytes", D(sram_bytes)},
+      {"avr.ram_high_water_bytes", D(ram_high_water_bytes)},
+      {"avr.static_bytes", D(static_bytes)},
+      {"avr.heap_bytes", D(heap_bytes)},
+      {"avr.stack_max_bytes", D(stack_max_bytes)},
+      {"avr.uart_baud", D(baud)},
+      {"avr.bytes_to_mcu", D(bytes_to_mcu)},
+      {"avr.bytes_from_mcu", D(bytes_from_mcu)},
+      {"avr.rx_overruns", D(rx_overruns)},
+      {"avr.dropped_to_mcu_bytes", D(dropped_to_mcu)},
+      {"avr.dropped_from_mcu_bytes", D(dropped_from_mcu)},
+      {"avr.before_receiver_on_bytes", D(before_receiver_on)},
+      {"avr.latency_p50_s", D(LatencyQuantile_s(0.5))},
+      {"avr.latency_p99_s", D(LatencyQuantile_s(0.99))},
+      {"avr.latency_samples", D(latency_cycles.size())},
+  };
+}
+
 AvrBoard::AvrBoard(const std::string& elf_path, const Options& options) : options_(options) {
   std::error_code ec;
   UNIMOUSE_THROW_UNLESS(std::filesystem::is_regular_file(elf_path, ec),

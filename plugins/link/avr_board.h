@@ -16,6 +16,7 @@
 #include <map>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 struct avr_t;
@@ -58,6 +59,8 @@ struct AvrBoardStats {
   double LatencyQuantile_s(double q) const;
   /// Returns one line for a log: speed, RAM, UART and latency.
   std::string Describe() const;
+  /// Returns every figure as a named number, the unit in its name ("ram_high_water_bytes").
+  std::vector<std::pair<std::string, double>> Named() const;
 };
 
 class AvrBoard {

@@ -54,6 +54,9 @@ class AvrTransport final : public Transport {
     return board_->RunUntilTime(offset_s_ + time_s);
   }
   std::string Summary() const override { return board_ ? board_->stats().Describe() : ""; }
+  std::vector<std::pair<std::string, double>> Measurements() const override {
+    return board_ ? board_->stats().Named() : std::vector<std::pair<std::string, double>>{};
+  }
 
  private:
   std::string path_;

@@ -395,6 +395,17 @@ void Link::Finish(const SenseContext& ctx) const {
                   static_cast<unsigned long long>(late_steps_));
     ctx.Log("link: " + summary + text);
   }
+  // the same, typed, for the run's record
+  auto measured = transport_->Measurements();
+  if (!measured.empty()) measured.emplace_back("lockstep_late_steps", late_steps_);
+  for (const auto& [name, value] : measured) {
+    unimouse_report r{};
+    r.size = sizeof(r);
+    r.kind = UNIMOUSE_REPORT_MEASURE;
+    r.name = name.c_str();
+    r.value = value;
+    ctx.Report(r);
+  }
 }
 
 }  // namespace unimouse::link

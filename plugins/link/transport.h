@@ -46,6 +46,8 @@ class Transport {
   virtual std::string RunUntil(double /*time_s*/) { return ""; }
   /// Returns a line of what the transport measured over the run, for the link's last line.
   virtual std::string Summary() const { return ""; }
+  /// Returns the same as named numbers, each with its unit in its name, for the run's record.
+  virtual std::vector<std::pair<std::string, double>> Measurements() const { return {}; }
 };
 
 /// What the link's parameters tell a transport beyond its spec.

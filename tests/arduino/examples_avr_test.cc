@@ -29,6 +29,8 @@ ExampleRun RunOnBoard(const std::string& image, const std::string& scenario,
     run.result.erase("wall_time_s");
     run.result.erase("real_time_factor");
     run.result.erase("real_time_pacing");
+    run.result["measurements"]["link"].erase("avr.host_cpu_s");
+    run.result["measurements"]["link"].erase("avr.host_emulated_mhz");
   }
   return run;
 }
@@ -50,6 +52,17 @@ TEST(ArduinoExamplesOnBoardTest, WallDistancePassesItsScenarioTheSameWayEveryTim
   EXPECT_NE(log.find("emulated atmega2560 at 16 MHz"), std::string::npos) << log;
   EXPECT_NE(log.find("UART 1000000 baud"), std::string::npos) << log;
   EXPECT_NE(log.find(" 0 RX overruns, 0 lost in, 0 lost out"), std::string::npos) << log;
+  // the board's figures, typed, in the record: a Mega 2560 at 16 MHz, well within its RAM
+  const nlohmann::json& board = a.result["measurements"]["link"];
+  EXPECT_EQ(board["avr.f_cpu_hz"], 16000000.0);
+  // each step its share of cycles, and not one instruction more in the end
+  EXPECT_NEAR(board["avr.cycles"].get<double>(), 16000000.0 * a.result["sim_time_s"].get<double>(),
+              4.0);
+  EXPECT_EQ(board["avr.sram_bytes"], 8192.0);
+  EXPECT_LT(board["avr.ram_high_water_bytes"].get<double>(), 1024.0);
+  EXPECT_EQ(board["avr.rx_overruns"], 0.0);
+  EXPECT_GT(board["avr.latency_p50_s"].get<double>(), 0.0);
+  EXPECT_LT(board["avr.latency_p99_s"].get<double>(), 0.001);
   const ExampleRun b = RunOnBoard(image, "wall_distance", "unimouse_avr_example_wd");
   EXPECT_EQ(a.result, b.result);
 }

@@ -106,7 +106,10 @@ enum {
   UNIMOUSE_REPORT_WALLS = 1,   /* cell x, y: walls and known, side bits N 1, E 2, S 4, W 8 */
   UNIMOUSE_REPORT_VISITED = 2, /* cell x, y */
   UNIMOUSE_REPORT_PATH = 3,    /* cells, the path it plans: ncells pairs x, y */
-  UNIMOUSE_REPORT_VALUE = 4    /* a named number */
+  UNIMOUSE_REPORT_VALUE = 4,   /* a named number */
+  /* a number the component measured over the run, for the run's record (result.json's
+   * "measurements"): name, with its unit in it, and value; sent from finish (appended in 0.3) */
+  UNIMOUSE_REPORT_MEASURE = 5
 };
 
 typedef struct unimouse_report {

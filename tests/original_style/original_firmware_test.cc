@@ -106,10 +106,10 @@ class Board {
 };
 
 // `unimouse run` in the background with a pty link, and the firmware on the pty's slave side;
-// `while_running` is called once the firmware has started
+// `while_running` is called with the run's output directory once the firmware has started
 FirmwareRun OverPty(const std::string& firmware, const std::string& arguments,
                     const std::string& link_settings,
-                    const std::function<void(Board&)>& while_running = nullptr) {
+                    const std::function<void(Board&, const fs::path&)>& while_running = nullptr) {
   const fs::path temp = fs::temp_directory_path();
   const std::string name = "original_" + TestName();
   const std::string device = (temp / (name + "_board")).string();
@@ -119,7 +119,7 @@ FirmwareRun OverPty(const std::string& firmware, const std::string& arguments,
         arguments + " --no-pictures --link pty:" + device + " " + link_settings, name);
   });
   Board board(Firmware(firmware), device, firmware_output);
-  if (while_running) while_running(board);
+  if (while_running) while_running(board, temp / name);
   FirmwareRun r{simulator.get(), temp / name, ""};
   // the simulator gone, the firmware notices and ends
   EXPECT_TRUE(board.Ended(std::chrono::seconds(3))) << "the firmware outlived the simulator";
@@ -163,6 +163,23 @@ std::vector<std::pair<double, std::string>> Log(const FirmwareRun& r) {
   return lines;
 }
 
+// waits up to `timeout` for a line containing `text` in the log.txt of a run going on in `out`
+bool AwaitLogLine(const fs::path& out, const std::string& text, std::chrono::seconds timeout) {
+  const auto until = std::chrono::steady_clock::now() + timeout;
+  while (std::chrono::steady_clock::now() < until) {
+    std::error_code ec;
+    if (fs::exists(out / "log.txt", ec)) {
+      try {
+        if (ReadTextFile((out / "log.txt").string()).find(text) != std::string::npos) return true;
+      } catch (const std::exception&) {
+        // the run is only starting: its output directory is being made afresh
+      }
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  return false;
+}
+
 // the sim time of the first log line at or after `from_s` that contains `text`; -1 if none
 double LoggedAt(const FirmwareRun& r, const std::string& text, double from_s = 0) {
   for (const auto& [time_s, message] : Log(r)) {
@@ -196,8 +213,11 @@ std::vector<std::map<std::string, double>> Trace(const FirmwareRun& r) {
 void ExpectPassed(const FirmwareRun& r) {
   EXPECT_EQ(r.run.outcome.exit_code, 0) << Story(r);
   EXPECT_EQ(Status(r), "passed") << Reason(r);
-  // it said hello over the log frame as the original library sent it
+  // it said hello over the log frame as the original library sent it, sent nothing the link did
+  // not know, and never asked for lock-step
   EXPECT_GE(LoggedAt(r, ": ready"), 0) << Story(r);
+  EXPECT_GE(LoggedAt(r, "frames from the firmware, 0 unknown bytes"), 0) << Story(r);
+  EXPECT_LT(LoggedAt(r, "lock-step on"), 0) << Story(r);
 }
 
 TEST(OriginalFirmwareTest, WallDistancePassesOverAPseudoTerminal) {
@@ -274,12 +294,14 @@ TEST(OriginalFirmwareTest, WithTheDefaultFailsafeABlockingTurnIsStoppedAndNeverE
 // the original-firmware settings turn the failsafe off; with it on, a firmware that dies
 // mid-run (the pty's other side closed) has its motors stopped within the failsafe's 0.1 s
 TEST(OriginalFirmwareTest, AFirmwareKilledMidRunHasItsMotorsStoppedWithinTheFailsafeTime) {
-  const FirmwareRun r = OverPty("speed_control", "--scenario speed_control --set time_limit_s=3",
-                                "--link-set tof_full_scale_m=1.0", [](Board& board) {
-                                  // it speeds up for a second, sending a new command every 20 ms
-                                  std::this_thread::sleep_for(std::chrono::milliseconds(1500));
-                                  board.Kill();
-                                });
+  const FirmwareRun r =
+      OverPty("speed_control", "--scenario speed_control --set time_limit_s=3",
+              "--link-set tof_full_scale_m=1.0", [](Board& board, const fs::path& out) {
+                // it speeds up for a second, a new command every 20 ms
+                EXPECT_TRUE(AwaitLogLine(out, "speed control: ready", std::chrono::seconds(10)));
+                std::this_thread::sleep_for(std::chrono::seconds(1));
+                board.Kill();
+              });
   const double gone_s = LoggedAt(r, "firmware disconnected");
   ASSERT_GT(gone_s, 0.5) << Story(r);
   // the last frame came before the pty closed, so the motors stopped at most 0.1 s after that

@@ -76,20 +76,25 @@ class Board {
                                      0644);
     std::vector<char*> argv = {const_cast<char*>(firmware.c_str()),
                                const_cast<char*>(device.c_str()), nullptr};
-    EXPECT_EQ(::posix_spawn(&pid_, firmware.c_str(), &actions, nullptr, argv.data(), environ), 0)
-        << firmware;
+    if (::posix_spawn(&pid_, firmware.c_str(), &actions, nullptr, argv.data(), environ) != 0) {
+      ADD_FAILURE() << firmware << ": cannot start it";
+      pid_ = -1;
+    }
     posix_spawn_file_actions_destroy(&actions);
   }
-  ~Board() {
-    if (pid_ > 0) Kill();
-  }
+  Board(const Board&) = delete;  // it owns the process
+  Board& operator=(const Board&) = delete;
+  ~Board() { Kill(); }
+  /// Ends the program at once, as a board losing power would.
   void Kill() {
+    if (pid_ <= 0) return;  // already ended, or never started: nothing to signal
     ::kill(pid_, SIGKILL);
     ::waitpid(pid_, nullptr, 0);
     pid_ = -1;
   }
   /// Waits up to `timeout` for the program to end by itself; returns whether it did.
   bool Ended(std::chrono::milliseconds timeout) {
+    if (pid_ <= 0) return true;
     const auto until = std::chrono::steady_clock::now() + timeout;
     while (std::chrono::steady_clock::now() < until) {
       if (::waitpid(pid_, nullptr, WNOHANG) == pid_) {
@@ -251,14 +256,16 @@ TEST(OriginalFirmwareTest, TimeTrialWithTheRightMotorSetOncePassesOverTheNativeL
 TEST(OriginalFirmwareTest, BlockingTurnsReachTheGoalOverAPseudoTerminal) {
   const FirmwareRun r = OverPty("blocking_turns", kTurnsMaze, kOriginalLinkSettings);
   ExpectPassed(r);
-  // the path it drove: five cells and two quarter turns
+  // the path it drove, five cells and two quarter turns, without touching a wall
   EXPECT_EQ(r.run.result["scenario"]["scores"].value("best_run_path_cost", 0), 7) << Reason(r);
+  EXPECT_EQ(r.run.result["scenario"]["scores"].value("wall_contacts", -1), 0) << Reason(r);
 }
 
 TEST(OriginalFirmwareTest, BlockingTurnsReachTheGoalOverTheNativeLink) {
   const FirmwareRun r = OverNativeLink("blocking_turns", kTurnsMaze, kOriginalLinkSettings);
   ExpectPassed(r);
   EXPECT_EQ(r.run.result["scenario"]["scores"].value("best_run_path_cost", 0), 7) << Reason(r);
+  EXPECT_EQ(r.run.result["scenario"]["scores"].value("wall_contacts", -1), 0) << Reason(r);
 }
 
 // the simulator encodes distances with a 1.2 m full scale; the original library decodes them

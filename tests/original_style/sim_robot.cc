@@ -19,7 +19,7 @@ namespace {
 
 const auto kStart = std::chrono::steady_clock::now();
 
-// frame ids and sizes of the original; nothing else ever comes from a simulator it talks to
+// frame ids of the original; a simulator it talks to never sends an id above the sensors
 constexpr int kSensorIds = 5;
 constexpr uint8_t kManagerId = 7;
 constexpr uint8_t kEnableSensors = 0x02;

@@ -73,6 +73,7 @@ int RunOnce(const RunOptions& options, Viewer* viewer) {
   o.plugin_path = options.plugin_path;
   o.link = options.link;
   o.link_sets = options.link_sets;
+  o.firmware_profile = options.firmware_profile;
   o.realtime = options.realtime;
   o.paced_by_caller = viewer != nullptr;
   o.scenario = options.scenario;

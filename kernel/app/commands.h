@@ -18,6 +18,7 @@ struct RunOptions {
   std::string plugin_path;
   std::string link;  ///< firmware link transport, "" for none: pty, serial:PATH@BAUD, tcp::PORT
   std::vector<std::string> link_sets;  ///< link parameters, "name=value"
+  std::string firmware_profile;        ///< "unimousesim-0.1" for the original's firmware
   bool realtime = false;               ///< pace to the wall clock; always on with a link
   std::string scenario;                ///< scenario file or bundled name; "" for none
   std::vector<std::string> sets;       ///< scenario parameters, "name=value"

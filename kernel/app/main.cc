@@ -67,6 +67,10 @@ int main(int argc, char** argv) {
   run_cmd->add_option("--link-set", run.link_sets,
                       "a link parameter, name=value, as `unimouse plugins` lists them for "
                       "unimouse.link (repeatable), e.g. --link-set failsafe_s=0");
+  run_cmd->add_option("--firmware-profile", run.firmware_profile,
+                      "what the firmware expects: unimouse (this project's library, the "
+                      "default) or unimousesim-0.1 (built against the original UnimouseSim's "
+                      "library: 1.0 m ToF scale, commands held while silent, no extensions)");
 
   // pictures: none of these changes what is run
   run_cmd->add_option("--camera", run.camera, "camera of the pictures: top, chase or free")

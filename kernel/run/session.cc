@@ -28,7 +28,8 @@ YamlNode Scalar(const std::string& text, const std::string& option) {
 // the firmware link's component, as a robot file would declare it, from the command line (the
 // transport itself says whether it runs in lock-step from the first step); --link-set values
 // are validated like a robot file's, and win over earlier ones
-ComponentSpec LinkComponent(const std::string& transport, const std::vector<std::string>& sets) {
+ComponentSpec LinkComponent(const std::string& transport, const std::string& profile,
+                            const std::vector<std::string>& sets) {
   ComponentSpec link;
   link.type = "unimouse.link";
   link.name = "link";
@@ -37,6 +38,10 @@ ComponentSpec LinkComponent(const std::string& transport, const std::vector<std:
   link.params.location = link.location;
   const std::string option = link.location.file;
   link.params.entries.emplace_back(Scalar("transport", option), Scalar(transport, option));
+  if (!profile.empty()) {
+    const std::string where = "--firmware-profile " + profile;
+    link.params.entries.emplace_back(Scalar("profile", where), Scalar(profile, where));
+  }
   for (const std::string& set : sets) {
     const size_t eq = set.find('=');
     UNIMOUSE_THROW_UNLESS(eq != std::string::npos && eq > 0,
@@ -94,8 +99,11 @@ void Session::Assemble() {
                         "--duration must be a positive number of seconds");
   robot_file_ = ResolveDataFile(o.robot, "robots/", ".yaml");
   robot_ = LoadRobotSpec(robot_file_);
-  UNIMOUSE_THROW_UNLESS(o.link_sets.empty() || !o.link.empty(), "--link-set goes with --link");
-  if (!o.link.empty()) robot_.components.push_back(LinkComponent(o.link, o.link_sets));
+  UNIMOUSE_THROW_UNLESS((o.link_sets.empty() && o.firmware_profile.empty()) || !o.link.empty(),
+                        "--link-set and --firmware-profile go with --link");
+  if (!o.link.empty()) {
+    robot_.components.push_back(LinkComponent(o.link, o.firmware_profile, o.link_sets));
+  }
 
   // a scenario builds its own world
   ScenarioWorld world;

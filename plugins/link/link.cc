@@ -14,6 +14,21 @@ constexpr int kLockstep = 1;
 constexpr int kLastFrame_s = 2;
 constexpr int kFailsafe = 3;
 constexpr int kUnknownReported = 4;
+constexpr int kRepeats = 5;  // the firmware said it resends its commands
+constexpr int kStateSize = 6;
+
+// what firmware built against the original's library expects, where the robot file and the
+// command line leave it open
+LinkParams WithProfile(LinkParams p) {
+  if (p.profile == "unimousesim-0.1") {
+    // its library decodes ToF readings at 1.0 m (the examples predate the 1.2 m release), sends
+    // a command only when it changes, and knows no extension
+    if (!param::Given(p.given, "tof_full_scale_m")) p.tof_full_scale_m = 1.0;
+    if (!param::Given(p.given, "failsafe_s")) p.failsafe_s = 0;
+    if (!param::Given(p.given, "extensions")) p.extensions = false;
+  }
+  return p;
+}
 
 std::string Sides(uint8_t bits) {
   std::string out;
@@ -26,7 +41,7 @@ std::string Sides(uint8_t bits) {
 
 }  // namespace
 
-Link::Link(Params params) : p_(std::move(params)) {
+Link::Link(Params params) : p_(WithProfile(std::move(params))) {
   // a wrong table is bad input now, before anything is bound or opened
   for (TableEntry& e : ParseSendTable(p_.send)) send_.push_back({std::move(e), {}, 1});
   for (TableEntry& e : ParseReceiveTable(p_.receive)) {
@@ -47,7 +62,7 @@ void Link::Bind(BindContext& ctx) {
     o.every_n_steps = StepsPerFrame(o.entry, period_s_);
   }
   for (Incoming& i : receive_) i.signal = ctx.WriteSignal(i.entry.signal);
-  ctx.SetStateSize(5);
+  ctx.SetStateSize(kStateSize);
   if (!p_.beliefs_out.empty()) beliefs_path_ = ctx.output_dir() + "/" + p_.beliefs_out;
 }
 
@@ -66,6 +81,7 @@ void Link::Reset(const ResetContext& ctx) const {
   s[kLastFrame_s] = 0;
   s[kFailsafe] = 0;
   s[kUnknownReported] = 0;
+  s[kRepeats] = 0;
   ZeroReceived(ctx);
   decoder_ = FrameDecoder(data_frames_);
   inbox_.clear();
@@ -103,6 +119,18 @@ void Link::Apply(const SenseContext& ctx, const FirmwareFrame& f, Heard& heard) 
     return;
   }
   char text[160];
+  const bool extension_code =
+      f.id == UNIMOUSE_ID_MANAGER &&
+      (f.value == UNIMOUSE_MANAGER_LOCKSTEP_ON || f.value == UNIMOUSE_MANAGER_STEP_DONE ||
+       f.value == UNIMOUSE_MANAGER_REPEATS_COMMANDS);
+  if (extension_code && !p_.extensions) {
+    std::snprintf(text, sizeof(text),
+                  "manager byte 0x%02x ignored: this link speaks the original's protocol only "
+                  "(extensions false)",
+                  f.value);
+    ctx.Warn(text);
+    return;
+  }
   switch (f.id) {
     case UNIMOUSE_ID_MANAGER:
       switch (f.value) {
@@ -123,6 +151,16 @@ void Link::Apply(const SenseContext& ctx, const FirmwareFrame& f, Heard& heard) 
           break;
         case UNIMOUSE_MANAGER_STEP_DONE:
           heard.step_done = true;
+          break;
+        case UNIMOUSE_MANAGER_REPEATS_COMMANDS:
+          if (s[kRepeats] == 0 && p_.failsafe_s > 0) {
+            std::snprintf(text, sizeof(text),
+                          "the firmware repeats its commands: %g s of silence will stop the "
+                          "motors",
+                          p_.failsafe_s);
+            ctx.Log(text);
+          }
+          s[kRepeats] = 1;
           break;
         default:
           std::snprintf(text, sizeof(text), "unknown manager byte 0x%02x, ignored", f.value);
@@ -203,8 +241,18 @@ void Link::Receive(const SenseContext& ctx, Heard& heard) const {
   read_this_step_ += inbox_.size();
   if (transport_->Connected() != was_connected_) {
     was_connected_ = transport_->Connected();
-    ctx.Log(was_connected_ ? "firmware connected" : "firmware disconnected");
-    if (!was_connected_) decoder_.Reset();
+    if (was_connected_) {
+      ctx.Log("firmware connected");
+    } else {
+      // a lost link always stops the motors, whatever the firmware said
+      bool commanded = false;
+      for (const Incoming& i : receive_) commanded = commanded || ctx.Read(i.signal) != 0;
+      ZeroReceived(ctx);
+      ctx.Log(commanded ? "firmware disconnected: motors stopped" : "firmware disconnected");
+      decoder_.Reset();
+      // what the next firmware says of itself is its own
+      ctx.state()[kRepeats] = 0;
+    }
   }
   std::vector<FirmwareFrame> frames;
   decoder_.Feed(inbox_, frames);
@@ -312,16 +360,17 @@ void Link::Sense(const SenseContext& ctx) const {
   read_this_step_ = 0;
   Heard heard;
   Receive(ctx, heard);
-  if (transport_->lockstep_from_start() && ctx.step() == 0 && s[kLockstep] == 0 &&
+  if (transport_->lockstep_from_start() && p_.extensions && ctx.step() == 0 && s[kLockstep] == 0 &&
       !AwaitFirmware(ctx, heard, &Heard::lockstep_on, "ask for lock-step")) {
     return;
   }
 
-  // failsafe: a silent board stops its motors
+  // failsafe: a silent board stops its motors, if it said that it repeats its commands
   bool commanded = false;
   for (const Incoming& i : receive_) commanded = commanded || ctx.Read(i.signal) != 0;
-  if (p_.failsafe_s > 0 && s[kFailsafe] == 0 && ctx.time_s() - s[kLastFrame_s] > p_.failsafe_s &&
-      commanded) {
+  const bool repeats = s[kRepeats] != 0 || s[kLockstep] != 0;
+  if (p_.failsafe_s > 0 && repeats && s[kFailsafe] == 0 &&
+      ctx.time_s() - s[kLastFrame_s] > p_.failsafe_s && commanded) {
     ZeroReceived(ctx);
     s[kFailsafe] = 1;
     char text[128];

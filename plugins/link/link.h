@@ -5,8 +5,10 @@
 // frames its send table lists, each at its period; the defaults are the original's encoder and
 // ToF frames and motor commands. Extensions the firmware can ask for: lock-step (a clock frame
 // after each step's frames, then the simulator waits for the firmware's step-done byte) and
-// debug channels. Failsafe: when no frame arrives for failsafe_s, every received signal falls
-// to 0.
+// debug channels. Failsafe: a lost link (port gone, peer closed, process ended) sets every
+// received signal (the motors) to 0; so does silence for failsafe_s, but only from firmware
+// that said it repeats its commands (manager 0x12, or lock-step): the original's firmware sent
+// commands only when they changed, and its silence holds the last ones, as the original did.
 #ifndef UNIMOUSE_PLUGINS_LINK_LINK_H_
 #define UNIMOUSE_PLUGINS_LINK_LINK_H_
 
@@ -32,6 +34,9 @@ struct LinkParams {
   int baud = 0;
   int queue_bytes = 1024;
   std::string beliefs_out = "firmware_beliefs.json";
+  std::string profile = "unimouse";
+  bool extensions = true;
+  param::GivenSet given;
   std::string mcu = "atmega2560";
   double f_cpu_hz = 16000000;
 
@@ -48,8 +53,9 @@ struct LinkParams {
     v("tof_full_scale_m", tof_full_scale_m,
       "distance a tof frame sends as 0xFFFF, and its scale (table 3.8)", param::Positive{});
     v("failsafe_s", failsafe_s,
-      "silence after which every received signal (the motors) is set to 0; 0 turns the "
-      "failsafe off, for firmware that sends commands only when they change",
+      "silence after which every received signal (the motors) is set to 0, for firmware that "
+      "said it repeats its commands (manager 0x12, or lock-step); 0 turns it off. A lost link "
+      "always stops the motors",
       param::NonNegative{});
     v("lockstep_timeout_s", lockstep_timeout_s,
       "how long lock-step waits for the firmware before giving up", param::Positive{});
@@ -62,6 +68,14 @@ struct LinkParams {
     v("beliefs_out", beliefs_out,
       "file in the run's output directory for what the firmware reported on its debug "
       "channels (walls, visited cells, path); empty for none");
+    v("profile", profile,
+      "what the firmware expects: unimouse (this project's library), or unimousesim-0.1 "
+      "(firmware built against the original's library: tof_full_scale_m 1.0, failsafe_s 0, "
+      "extensions false, unless given)",
+      param::OneOf{"unimouse|unimousesim-0.1"});
+    v("extensions", extensions,
+      "answer the extension manager codes (lock-step, 'I repeat my commands'); false: the "
+      "original's protocol only, they are ignored");
     v("mcu", mcu,
       "avr: the emulated part, unless the image names its own (simavr's AVR_MCU section)",
       param::OneOf{"atmega2560|atmega328p"});

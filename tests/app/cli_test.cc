@@ -79,7 +79,16 @@ TEST_F(CliTest, LinkParametersComeFromTheCommandLineAndAreCheckedLikeARobotFiles
   o = Unimouse("run --maze none --duration 0.05 --out " + dir_.string() +
                " --link-set failsafe_s=0 --robot unimouse");
   EXPECT_EQ(o.exit_code, 2) << o.output;
-  EXPECT_NE(o.output.find("--link-set goes with --link"), std::string::npos) << o.output;
+  EXPECT_NE(o.output.find("--link-set and --firmware-profile go with --link"), std::string::npos)
+      << o.output;
+
+  o = Unimouse("run --maze none --duration 0.05 --out " + dir_.string() +
+               " --link pty --firmware-profile unimousesim-9");
+  EXPECT_EQ(o.exit_code, 2) << o.output;
+  EXPECT_NE(o.output.find("--firmware-profile unimousesim-9: component 'link' (unimouse.link): "
+                          "profile must be one of unimouse|unimousesim-0.1"),
+            std::string::npos)
+      << o.output;
 }
 
 TEST_F(CliTest, RunOnAnOpenFloor) {

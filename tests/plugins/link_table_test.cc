@@ -227,6 +227,8 @@ TEST_F(LinkTableTest, TheFailsafeZeroesEveryReceivedSignal) {
   testing::PtyBoard board(dir_ + "/board");
   const float gain = -0.5f;
   const int16_t offset = 7, left = 300;
+  // it says it repeats its commands, so its silence stops them
+  board.Send({UNIMOUSE_ID_MANAGER, UNIMOUSE_MANAGER_REPEATS_COMMANDS});
   board.Send(Frame(20, gain));
   board.Send(Frame(21, offset));
   board.Send(Frame(UNIMOUSE_ID_MOTOR_LEFT, left));

@@ -12,6 +12,7 @@
 #include <termios.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -39,13 +40,18 @@ class LinkTest : public ::testing::Test {
   void SetUp() override {
     dir_ = testing::FreshDirectory("link");
     path_ = dir_ + "/board";
-    const std::string robot = testing::ReadBundledRobot();
+    Make("", nullptr);
+  }
+  // the bundled robot with a pty link given more parameters, on an open floor or in a maze
+  void Make(const std::string& params, const Maze* maze) {
+    kernel_.reset();
     const std::string yaml =
-        robot + "  - { type: unimouse.link, name: link, params: { transport: 'pty:" + path_ +
-        "' } }\n";
+        testing::ReadBundledRobot() +
+        "  - { type: unimouse.link, name: link, params: { transport: 'pty:" + path_ + "'" + params +
+        " } }\n";
     KernelOptions options;
     options.seed = 3;
-    kernel_ = testing::MakeKernel(yaml, nullptr, options);
+    kernel_ = testing::MakeKernel(yaml, maze, options);
   }
   void TearDown() override {
     kernel_.reset();
@@ -134,6 +140,71 @@ TEST_F(LinkTest, AVanishedBoardTripsTheFailsafeAndAReturningOneIsHeard) {
   board->Motors(400, 400);
   Step(5);
   EXPECT_EQ(SignalValue(*kernel_, "left.command"), 400);
+}
+
+TEST_F(LinkTest, SilenceFromFirmwareThatNeverSaidItRepeatsItsCommandsHoldsThem) {
+  Board board(path_);
+  board.Motors(600, 600);  // once, as the original's library did, and then nothing
+  Step(500);
+  EXPECT_EQ(SignalValue(*kernel_, "left.command"), 600);
+  EXPECT_EQ(SignalValue(*kernel_, "right.command"), 600);
+  EXPECT_GT(Pose().y_m, 0.1);  // still driving north after half a second of silence
+}
+
+TEST_F(LinkTest, SilenceFromFirmwareThatRepeatsItsCommandsStopsTheMotorsWithin100ms) {
+  Board board(path_);
+  board.Send({UNIMOUSE_ID_MANAGER, UNIMOUSE_MANAGER_REPEATS_COMMANDS});
+  board.Motors(600, 600);
+  Step(50);
+  EXPECT_EQ(SignalValue(*kernel_, "left.command"), 600);
+  Step(55);  // more than 100 ms since its last frame
+  EXPECT_EQ(SignalValue(*kernel_, "left.command"), 0);
+  EXPECT_EQ(SignalValue(*kernel_, "right.command"), 0);
+  board.Motors(300, 300);  // and it is heard again
+  Step(2);
+  EXPECT_EQ(SignalValue(*kernel_, "left.command"), 300);
+}
+
+// what the simulator sent: its frames' ids, and the last front ToF frame's counts
+struct SentFrames {
+  std::vector<uint8_t> ids;
+  uint16_t last_front = 0;
+};
+SentFrames ReadFrames(const std::vector<uint8_t>& bytes) {
+  SentFrames sent;
+  for (size_t i = 0; i < bytes.size();) {
+    const int size = unimouse_payload_size(bytes[i]);
+    if (size < 0 || i + 1 + static_cast<size_t>(size) > bytes.size()) break;
+    sent.ids.push_back(bytes[i]);
+    if (bytes[i] == UNIMOUSE_ID_TOF_FRONT) sent.last_front = unimouse_get_u16(&bytes[i + 1]);
+    i += 1 + static_cast<size_t>(size);
+  }
+  return sent;
+}
+
+TEST_F(LinkTest, TheOriginalsProfileSpeaksItsScaleHoldsCommandsAndIgnoresExtensions) {
+  const Maze maze = LoadMaze(UNIMOUSE_SOURCE_DIR "/mazes/japan2018.txt");
+  Make(", profile: unimousesim-0.1", &maze);
+  Board board(path_);
+  // what a firmware of ours would say: the original's link does not answer it
+  board.Send({UNIMOUSE_ID_MANAGER, UNIMOUSE_MANAGER_REPEATS_COMMANDS});
+  board.Send({UNIMOUSE_ID_MANAGER, UNIMOUSE_MANAGER_LOCKSTEP_ON});
+  Step(31);  // the ToF frames of steps 0 and 30; the reading of step 30 is still the signal's
+  const SentFrames sent = ReadFrames(board.Bytes());
+  const double front_m = SignalValue(*kernel_, "tof.front_m");
+  ASSERT_LT(front_m, 1.0);  // a wall in sight
+  // counts at the original library's 1.0 m full scale, not 1.2 m
+  EXPECT_EQ(sent.last_front, unimouse_tof_to_counts(front_m, 1.0));
+  EXPECT_FALSE(kernel_->firmware_paced());  // no lock-step, so no clock frame either
+  EXPECT_EQ(std::count(sent.ids.begin(), sent.ids.end(), UNIMOUSE_ID_CLOCK), 0);
+  EXPECT_EQ(std::count(sent.ids.begin(), sent.ids.end(), UNIMOUSE_ID_TOF_FRONT), 2);
+  board.Motors(600, 600);
+  Step(300);
+  EXPECT_EQ(SignalValue(*kernel_, "left.command"), 600);  // silence holds the commands
+  board.Close();                                          // but a lost link stops them
+  Step(2);
+  EXPECT_EQ(SignalValue(*kernel_, "left.command"), 0);
+  EXPECT_EQ(SignalValue(*kernel_, "right.command"), 0);
 }
 
 // a deterministic board, already in lock-step: waits for each clock frame, answers with a

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
+#include "maze.h"
 #include "run_program.h"
 #include "text_file.h"
 
@@ -80,6 +81,28 @@ TEST(ArduinoExamplesOnBoardTest, TimeTrialDrivesThreeLaps) {
   ASSERT_EQ(r.outcome.exit_code, 0) << r.outcome.output;
   EXPECT_EQ(r.result["scenario"]["status"], "passed") << r.result["scenario"]["reason"];
   EXPECT_EQ(r.result["scenario"]["scores"].count("lap_3_s"), 1u);
+}
+
+TEST(ArduinoExamplesOnBoardTest, MicromouseRecordsOnlyTrueWallsWhileExploring) {
+  IMAGE_OR_SKIP(image, "micromouse");
+  // the first minute of the contest: every wall it reports is the maze's (a receive ring too
+  // small for its 19 ms flood fill garbled frames, and walls went wrong within this time)
+  const ExampleRun r = RunOnBoard(image, "micromouse --duration 60", "unimouse_avr_example_mm");
+  ASSERT_NE(r.outcome.exit_code, 3) << r.outcome.output;
+  const nlohmann::json beliefs = nlohmann::json::parse(ReadTextFile(
+      (std::filesystem::temp_directory_path() / "unimouse_avr_example_mm" / "firmware_beliefs.json")
+          .string()));
+  const Maze maze = LoadMaze(UNIMOUSE_SOURCE_DIR "/mazes/japan2018.txt");
+  ASSERT_GT(beliefs["walls"].size(), 30u);
+  const Heading sides[] = {Heading::kNorth, Heading::kEast, Heading::kSouth, Heading::kWest};
+  for (const auto& w : beliefs["walls"]) {
+    const Cell c{w[0].get<int>(), w[1].get<int>()};
+    for (int bit = 0; bit < 4; ++bit) {
+      if ((w[3].get<int>() >> bit & 1) == 0) continue;
+      EXPECT_EQ((w[2].get<int>() >> bit & 1) != 0, maze.HasWall(c, sides[bit]))
+          << "cell (" << c.x << ", " << c.y << ") side " << bit;
+    }
+  }
 }
 
 }  // namespace

@@ -105,6 +105,14 @@ int RunOnce(const RunOptions& options, Viewer* viewer) {
   std::printf("  simulated %.3f s in %lld steps, %.2f s wall time, %.0fx real time\n",
               r["sim_time_s"].get<double>(), r["steps"].get<long long>(),
               r["wall_time_s"].get<double>(), r["real_time_factor"].get<double>());
+  if (r["firmware_paced"].get<bool>()) {
+    // in lock-step the firmware's time is part of every step: say where the time went
+    const auto& split = r["wall_time_split_s"];
+    std::printf(
+        "  wall time: physics %.2f s, components %.2f s, firmware %.2f s, scenario %.2f s\n",
+        split["physics"].get<double>(), split["components"].get<double>(),
+        split["firmware"].get<double>(), split["scenario"].get<double>());
+  }
   const auto& pose = r["robot_pose"];
   std::printf("  robot at (%.3f, %.3f) m heading %.1f deg\n", pose["x_m"].get<double>(),
               pose["y_m"].get<double>(), pose["yaw_rad"].get<double>() * 180 / std::numbers::pi);

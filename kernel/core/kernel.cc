@@ -2,6 +2,7 @@
 #include "kernel.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -17,6 +18,9 @@ namespace {
 
 // the writer of an input signal: the world outside the robot
 constexpr int kOutsideWriter = -2;
+
+using Clock = std::chrono::steady_clock;
+double Seconds(Clock::duration d) { return std::chrono::duration<double>(d).count(); }
 
 // MuJoCo would otherwise print to stdout, write MUJOCO_LOG.TXT into the working directory and,
 // on errors, exit(1); an error becomes a fault of the run, which still writes its result
@@ -305,7 +309,9 @@ void Kernel::RunHook(int index, void (*hook)(const void*, const unimouse_tick*))
     for (const auto& listener : h->kernel->report_listeners_) listener(source, *report);
   };
   t.set_firmware_paced = [](void* ctx, int paced) {
-    static_cast<HookContext*>(ctx)->kernel->firmware_paced_ = paced != 0;
+    auto* h = static_cast<HookContext*>(ctx);
+    h->kernel->firmware_paced_ = paced != 0;
+    h->kernel->pace_setter_ = paced != 0 ? h->component : -1;
   };
   hook(c.self, &t);
 }
@@ -373,6 +379,8 @@ void Kernel::Reset() {
   for (const auto& name : model_.rng_names) state_->rngs().emplace_back(seed_, name);
   state_->set_step(0);
   firmware_paced_ = false;
+  pace_setter_ = -1;
+  tick_times_ = {};
 
   messages_.clear();
   message_views_.clear();
@@ -384,31 +392,48 @@ void Kernel::Reset() {
   ThrowIfFaulted();
 }
 
+double Kernel::RunPhase(int64_t step,
+                        void (*unimouse_component_type::*hook)(const void*, const unimouse_tick*)) {
+  double pace_setter_s = 0;
+  for (size_t i = 0; i < model_.components.size(); ++i) {
+    const ComponentInstance& c = model_.components[i];
+    if (c.type->*hook == nullptr || step % c.every_n_steps != 0) continue;
+    if (static_cast<int>(i) != pace_setter_) {
+      RunHook(static_cast<int>(i), c.type->*hook);
+      continue;
+    }
+    const auto start = Clock::now();
+    RunHook(static_cast<int>(i), c.type->*hook);
+    pace_setter_s += Seconds(Clock::now() - start);
+  }
+  return pace_setter_s;
+}
+
 void Kernel::Step() {
   const mjModel& m = mj_model();
   mjData& d = state_->data();
   const int64_t step = state_->step();
 
+  // wall time by part, for the run's report; it never feeds back into the run
+  const auto start = Clock::now();
   if (boundary_hook_) boundary_hook_();
+  const auto scenario_done = Clock::now();
   model_.world->UpdateCollisionProxies(d);
   mj_step1(&m, &d);
+  const auto step1_done = Clock::now();
 
-  for (size_t i = 0; i < model_.components.size(); ++i) {
-    const ComponentInstance& c = model_.components[i];
-    if (c.type->sense != nullptr && step % c.every_n_steps == 0) {
-      RunHook(static_cast<int>(i), c.type->sense);
-    }
-  }
+  double pace_setter_s = RunPhase(step, &unimouse_component_type::sense);
   ThrowIfFaulted();
-  for (size_t i = 0; i < model_.components.size(); ++i) {
-    const ComponentInstance& c = model_.components[i];
-    if (c.type->actuate != nullptr && step % c.every_n_steps == 0) {
-      RunHook(static_cast<int>(i), c.type->actuate);
-    }
-  }
+  pace_setter_s += RunPhase(step, &unimouse_component_type::actuate);
   ThrowIfFaulted();
+  const auto hooks_done = Clock::now();
 
   mj_step2(&m, &d);
+  const auto step2_done = Clock::now();
+  tick_times_.scenario_s += Seconds(scenario_done - start);
+  tick_times_.physics_s += Seconds(step1_done - scenario_done) + Seconds(step2_done - hooks_done);
+  tick_times_.components_s += Seconds(hooks_done - step1_done) - pace_setter_s;
+  tick_times_.firmware_s += pace_setter_s;
   state_->set_step(step + 1);
   ForgetSeenMessages();
 

@@ -43,6 +43,15 @@ struct KernelOptions {
   bool start_components = true;
 };
 
+/// Wall time spent in each part of the tick since the last reset: where a run's time goes.
+struct TickTimes {
+  double scenario_s = 0;    ///< the boundary hook: scenario scripts
+  double physics_s = 0;     ///< collision proxies, mj_step1, mj_step2
+  double components_s = 0;  ///< every hook but those of the component that sets the pace
+  double firmware_s = 0;    ///< the hooks of the component that set the pace: a link and the
+                            ///< firmware it waits for in lock-step
+};
+
 /// Receives every typed report a component hands the host, with the component's name.
 using ReportSink = std::function<void(const std::string& component, const unimouse_report&)>;
 
@@ -84,6 +93,8 @@ class Kernel {
   void AddReportListener(ReportSink listener) { report_listeners_.push_back(std::move(listener)); }
   /// Whether a component said that the firmware sets the pace (lock-step) since the last reset.
   bool firmware_paced() const { return firmware_paced_; }
+  /// Returns where the wall time of the ticks since the last reset went.
+  const TickTimes& tick_times() const { return tick_times_; }
 
   /// Runs at the start of every tick, before physics; scenario scripts live here.
   void SetBoundaryHook(std::function<void()> hook) { boundary_hook_ = std::move(hook); }
@@ -117,6 +128,9 @@ class Kernel {
   void StartComponent(int index);
   // runs one hook of component `index` with a fresh tick; `hook` is one of the type's pointers
   void RunHook(int index, void (*hook)(const void*, const unimouse_tick*));
+  // runs one phase's hook of every due component; returns the wall time of the pace setter's
+  double RunPhase(int64_t step,
+                  void (*unimouse_component_type::*hook)(const void*, const unimouse_tick*));
   void Emit(int level, const std::string& component, const std::string& message);
   void ThrowIfFaulted();
   void ForgetSeenMessages();
@@ -133,6 +147,8 @@ class Kernel {
   std::vector<LogSink> listeners_;
   std::vector<ReportSink> report_listeners_;
   bool firmware_paced_ = false;
+  int pace_setter_ = -1;  // the component that said the firmware sets the pace
+  TickTimes tick_times_;
   std::string fault_;
   // the run's messages, oldest first; what each component has already been shown of them
   std::deque<StoredMessage> messages_;

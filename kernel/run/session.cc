@@ -289,6 +289,12 @@ SessionResult Session::Finish(const nlohmann::json& extra) {
   r["steps"] = kernel_->state().step();
   r["wall_time_s"] = wall_s;
   r["real_time_factor"] = wall_s > 0 ? d.time / wall_s : 0.0;
+  const TickTimes& t = kernel_->tick_times();
+  r["wall_time_split_s"] = {{"physics", t.physics_s},
+                            {"components", t.components_s},
+                            {"firmware", t.firmware_s},
+                            {"scenario", t.scenario_s}};
+  r["firmware_paced"] = kernel_->firmware_paced();
   r["robot_pose"] = {{"x_m", pose.x_m}, {"y_m", pose.y_m}, {"yaw_rad", pose.yaw_rad}};
   r["collision_proxy_overflows"] = kernel_->world().proxy_overflows();
   SessionResult result;

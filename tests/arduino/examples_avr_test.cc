@@ -29,6 +29,7 @@ ExampleRun RunOnBoard(const std::string& image, const std::string& scenario,
   if (run.result.is_object()) {
     run.result.erase("wall_time_s");
     run.result.erase("real_time_factor");
+    run.result.erase("wall_time_split_s");
     run.result.erase("real_time_pacing");
     run.result["measurements"]["link"].erase("avr.host_cpu_s");
     run.result["measurements"]["link"].erase("avr.host_emulated_mhz");

@@ -22,6 +22,7 @@ ExampleRun RunExample(const std::string& example, const std::string& scenario,
   if (run.result.is_object()) {
     run.result.erase("wall_time_s");
     run.result.erase("real_time_factor");
+    run.result.erase("wall_time_split_s");
     run.result.erase("real_time_pacing");
   }
   return run;

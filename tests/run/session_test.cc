@@ -104,6 +104,25 @@ TEST_F(SessionTest, AResultFromAnEarlierRunNeverSurvivesAFailedStart) {
   EXPECT_NE(result["error"].get<std::string>().find("no_such_robot.yaml"), std::string::npos);
 }
 
+TEST_F(SessionTest, TheRecordSaysWhereTheWallTimeWentAndWhetherTheFirmwareSetThePace) {
+  options_.maze = "none";
+  options_.duration_s = 0.2;
+  const SessionResult alone = RunToTheEnd();
+  EXPECT_FALSE(alone.record["firmware_paced"].get<bool>());
+  EXPECT_EQ(alone.record["wall_time_split_s"]["firmware"], 0.0);
+  EXPECT_GT(alone.record["wall_time_split_s"]["physics"].get<double>(), 0);
+
+  options_.link = "native:" + std::string(UNIMOUSE_TEST_FIRMWARE);
+  const SessionResult paced = RunToTheEnd();
+  ASSERT_EQ(paced.exit_code, kExitPassed) << paced.record.dump();
+  EXPECT_TRUE(paced.record["firmware_paced"].get<bool>());
+  const nlohmann::json& split = paced.record["wall_time_split_s"];
+  EXPECT_GT(split["firmware"].get<double>(), 0);
+  double parts_s = 0;
+  for (const auto& [part, seconds] : split.items()) parts_s += seconds.get<double>();
+  EXPECT_LE(parts_s, paced.record["wall_time_s"].get<double>());
+}
+
 TEST_F(SessionTest, OverAndStepAgreeWithTheDuration) {
   options_.maze = "none";
   options_.duration_s = 0.01;

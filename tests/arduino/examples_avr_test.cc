@@ -106,5 +106,21 @@ TEST(ArduinoExamplesOnBoardTest, MicromouseRecordsOnlyTrueWallsWhileExploring) {
   }
 }
 
+// the image one would flash, in the whole contest: it explores All Japan 2018 and speed-runs the
+// path of cost 108, and the same image runs the same contest twice (the longest test: about
+// 150 s a contest on this machine)
+TEST(ArduinoExamplesOnBoardTest, MicromousePassesTheContestTheSameWayTwice) {
+  IMAGE_OR_SKIP(image, "micromouse");
+  const ExampleRun a =
+      RunOnBoard(image, "micromouse --set end_on_log=done", "unimouse_avr_example_contest");
+  ASSERT_EQ(a.outcome.exit_code, 0) << a.outcome.output;
+  const nlohmann::json& scenario = a.result["scenario"];
+  EXPECT_EQ(scenario["status"], "passed") << scenario["reason"];
+  EXPECT_EQ(scenario["scores"]["best_run_path_cost"], 108) << scenario.dump();
+  const ExampleRun b =
+      RunOnBoard(image, "micromouse --set end_on_log=done", "unimouse_avr_example_contest");
+  EXPECT_EQ(a.result, b.result);
+}
+
 }  // namespace
 }  // namespace unimouse

@@ -34,6 +34,9 @@ class Transport {
   /// Returns whether the firmware is to set the pace from the first step, as a program the
   /// simulator starts itself does: the first step waits until it asks for lock-step.
   virtual bool lockstep_from_start() const { return false; }
+  /// Returns why the firmware ended for good (it crashed, called exit(), hung), or "" while it
+  /// runs or when the transport cannot tell.
+  virtual std::string Failure() const { return ""; }
 };
 
 /// One kind of transport, an entry of the link's transport table.

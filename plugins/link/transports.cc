@@ -14,6 +14,7 @@ std::unique_ptr<Transport> OpenPty(const std::string& link_path);
 std::unique_ptr<Transport> OpenSerial(const std::string& rest);
 std::unique_ptr<Transport> OpenTcp(const std::string& rest);
 std::unique_ptr<Transport> OpenNative(const std::string& command);
+std::unique_ptr<Transport> OpenInproc(const std::string& path);
 
 namespace {
 
@@ -31,6 +32,11 @@ constexpr TransportKind kTransports[] = {
      "a firmware program the simulator starts, talking on its stdin and stdout, in lock-step "
      "from the first step; stopped with the run",
      &OpenNative},
+    {"inproc", "inproc:MODULE.so",
+     "a firmware built as a module (NAME.so beside each PC-built example), loaded into the "
+     "simulator and run on its own stack in lock-step from the first step: a step costs little "
+     "more than its physics; a crash, exit() or hang of the firmware ends the run with an error",
+     &OpenInproc},
 };
 
 }  // namespace

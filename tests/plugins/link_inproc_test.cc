@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // The in-process link: a firmware module loaded into the simulator drives the robot exactly as
-// the same sketch built as a program does; a module that crashes, hangs or calls exit() ends the
-// run with exit code 3 and says so in result.json; a module cannot be loaded twice at once.
+// the same sketch built as a program does; a module that crashes, hangs, calls exit() or abort()
+// ends the run with exit code 3 and says so in result.json; a module cannot be loaded twice at
+// once.
 #include <gtest/gtest.h>
 
 #include <cstring>
@@ -87,6 +88,11 @@ TEST(InprocLinkTest, AFirmwareThatNeverReturnsFromLoopEndsTheRunWithExitCode3) {
 
 TEST(InprocLinkTest, AFirmwareThatCallsExitEndsTheRunWithExitCode3) {
   ExpectFirmwareError("exit_firmware.so", "the firmware called exit(3) at t=0.200 s");
+}
+
+TEST(InprocLinkTest, AFirmwareThatCallsAbortEndsTheRunWithExitCode3) {
+  ExpectFirmwareError("abort_firmware.so", "the firmware crashed: SIGABRT (abort()");
+  ExpectFirmwareError("abort_firmware.so", "at t=0.200 s");
 }
 
 }  // namespace

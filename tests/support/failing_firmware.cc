@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // A firmware module that drives for a while and then fails the way UNIMOUSE_FAIL says: a null
-// pointer, a loop() that never returns, or exit(3). Built once for each (tests/CMakeLists.txt).
+// pointer, a loop() that never returns, exit(3) or abort(). Built once for each
+// (tests/CMakeLists.txt).
 #include <UnimouseSim.h>
 
 #include <cstdlib>
@@ -19,7 +20,9 @@ void loop() {
   *nowhere = 1;
 #elif UNIMOUSE_FAIL == 2
   for (;;) asm volatile("");  // never yields
-#else
+#elif UNIMOUSE_FAIL == 3
   std::exit(3);
+#else
+  std::abort();
 #endif
 }

@@ -8,7 +8,7 @@ packages=(
   # toolchain
   build-essential cmake ninja-build ccache pkg-config clang-format git
   # simulator libraries (libqhull-dev: the MuJoCo CMake config names its include dir)
-  libmujoco-dev libqhull-dev libeigen3-dev liblua5.4-dev libyaml-cpp-dev libboost-dev libcli11-dev
+  libmujoco-dev libqhull-dev libeigen3-dev liblua5.4-dev libyaml-cpp-dev libboost-dev libboost-context-dev libcli11-dev
   nlohmann-json3-dev libpng-dev
   # rendering: offscreen EGL (Mesa) and the live viewer
   libegl-dev libgl-dev libopengl-dev libegl-mesa0 libgl1-mesa-dri libglfw3-dev xvfb xauth

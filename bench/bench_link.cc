@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // The link: how evenly real-time pacing releases 1 kHz steps over 60 s with the full robot
-// simulated, and what a lock-step firmware round trip adds to a step.
+// simulated, and what a lock-step firmware adds to a step: the micromouse example in the
+// simulator's process (inproc:) and as a process of its own (native:), beside the same robot
+// driven by direct commands, in one run.
 #include <benchmark/benchmark.h>
 
 #include <chrono>
@@ -62,6 +64,21 @@ void BM_StepWithLockstepFirmware(benchmark::State& bench) {
   for (auto _ : bench) kernel->Step();
 }
 BENCHMARK(BM_StepWithLockstepFirmware)->Unit(benchmark::kMicrosecond)->Iterations(20000);
+
+// per step: the full robot driven by the micromouse example in lock-step
+void StepWithMicromouse(benchmark::State& bench, const std::string& link) {
+  const PluginRegistry registry = Registry();
+  auto kernel = Kernel::Create(Robot(link), nullptr, registry, 1);
+  for (auto _ : bench) kernel->Step();
+}
+void BM_StepWithInprocMicromouse(benchmark::State& bench) {
+  StepWithMicromouse(bench, "inproc:" UNIMOUSE_FIRMWARE_DIR "/micromouse.so");
+}
+BENCHMARK(BM_StepWithInprocMicromouse)->Unit(benchmark::kMicrosecond)->Iterations(20000);
+void BM_StepWithNativeMicromouse(benchmark::State& bench) {
+  StepWithMicromouse(bench, "native:" UNIMOUSE_FIRMWARE_DIR "/micromouse");
+}
+BENCHMARK(BM_StepWithNativeMicromouse)->Unit(benchmark::kMicrosecond)->Iterations(20000);
 
 void BM_StepWithDirectCommands(benchmark::State& bench) {
   const PluginRegistry registry = Registry();

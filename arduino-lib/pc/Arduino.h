@@ -57,5 +57,9 @@ void loop();
 /// core's millis() and micros().
 #define UNIMOUSE_PC_CORE 1
 void unimousePcClock(uint32_t simMicros);
+/// Sends what is written and waits, without using the CPU, until input comes. The library calls
+/// it only in lock-step once it has sent all it owes the step, when the simulator is sure to
+/// answer; a sketch that polls Serial must not call it.
+void unimousePcAwaitInput();
 
 #endif  // UNIMOUSE_PC_ARDUINO_H_

@@ -49,6 +49,15 @@ int HardwareSerial::available() {
   return static_cast<int>(in_len);
 }
 
+void unimousePcAwaitInput() {
+  WriteOut();
+  if (in_pos < in_len) return;
+  pollfd p{0, POLLIN, 0};
+  // no timeout: the simulator always answers a step, and its end closes the input
+  while (::poll(&p, 1, -1) < 0 && errno == EINTR) {
+  }
+}
+
 int HardwareSerial::read() {
   if (available() == 0) return -1;
   return in[in_pos++];

@@ -79,8 +79,15 @@ class SimulationRobot {
       stepPending_ = false;
     }
     if (lockstep_) {
-      do sensors_.updateSensors();
-      while (!clock_.ticked());
+      for (;;) {
+        sensors_.updateSensors();
+        if (clock_.ticked()) break;
+#ifdef UNIMOUSE_PC_CORE
+        // everything this firmware owes the step has gone out: the next bytes are the
+        // simulator's, so the core may sleep until they come instead of polling
+        unimousePcAwaitInput();
+#endif
+      }
       stepPending_ = true;
     } else {
       sensors_.updateSensors();

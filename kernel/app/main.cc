@@ -189,7 +189,7 @@ int main(int argc, char** argv) {
       if (!chosen) {
         run.scenario = "micromouse";
         run.sets = {"end_on_log=done"};
-        run.link = "native:" + FirmwareDirectory() + "/micromouse";
+        run.link = "inproc:" + FirmwareDirectory() + "/micromouse.so";
       }
       return RunCommand(run);
     }

@@ -17,6 +17,13 @@ constexpr int kUnknownReported = 4;
 constexpr int kRepeats = 5;  // the firmware said it resends its commands
 constexpr int kStateSize = 6;
 
+// a time for a message, to the millisecond
+std::string Seconds(double t_s) {
+  char text[32];
+  std::snprintf(text, sizeof(text), "%.3f", t_s);
+  return text;
+}
+
 // what firmware built against the original's library expects, where the robot file and the
 // command line leave it open
 LinkParams WithProfile(LinkParams p) {
@@ -249,6 +256,10 @@ void Link::Receive(const SenseContext& ctx, Heard& heard) const {
       for (const Incoming& i : receive_) commanded = commanded || ctx.Read(i.signal) != 0;
       ZeroReceived(ctx);
       ctx.Log(commanded ? "firmware disconnected: motors stopped" : "firmware disconnected");
+      // a firmware that crashed or quit is the run's error, not a cable pulled out
+      if (const std::string failure = transport_->Failure(); !failure.empty()) {
+        ctx.Fail(failure + " at t=" + Seconds(ctx.time_s()) + " s");
+      }
       decoder_.Reset();
       // what the next firmware says of itself is its own
       ctx.state()[kRepeats] = 0;
@@ -316,6 +327,10 @@ bool Link::AwaitFirmware(const SenseContext& ctx, Heard& heard, bool Heard::*unt
     const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
         deadline - std::chrono::steady_clock::now());
     if (left.count() <= 0 || !transport_->WaitReadable(left)) {
+      if (const std::string failure = transport_->Failure(); !failure.empty()) {
+        ctx.Fail(failure + " at t=" + Seconds(ctx.time_s()) + " s");
+        return false;
+      }
       std::snprintf(text, sizeof(text),
                     "the firmware did not %s at t=%.3f s within %g s (lock-step)", waiting_for,
                     ctx.time_s(), p_.lockstep_timeout_s);

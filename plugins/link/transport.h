@@ -48,6 +48,9 @@ class Transport {
   virtual std::string Summary() const { return ""; }
   /// Returns the same as named numbers, each with its unit in its name, for the run's record.
   virtual std::vector<std::pair<std::string, double>> Measurements() const { return {}; }
+  /// Returns why the firmware ended for good (it crashed, called exit(), hung), or "" while it
+  /// runs or when the transport cannot tell.
+  virtual std::string Failure() const { return ""; }
 };
 
 /// What the link's parameters tell a transport beyond its spec.

@@ -15,6 +15,7 @@ std::unique_ptr<Transport> OpenSerial(const std::string& rest);
 std::unique_ptr<Transport> OpenTcp(const std::string& rest);
 std::unique_ptr<Transport> OpenNative(const std::string& command);
 std::unique_ptr<Transport> OpenAvr(const std::string& path);
+std::unique_ptr<Transport> OpenInproc(const std::string& path);
 
 namespace {
 
@@ -37,6 +38,11 @@ constexpr TransportKind kTransports[] = {
      "step with the simulation (its clock, its UART at its baud rate); the part and clock from "
      "the image's AVR_MCU section, else the link's mcu and f_cpu_hz",
      &OpenAvr},
+    {"inproc", "inproc:MODULE.so",
+     "a firmware built as a module (NAME.so beside each PC-built example), loaded into the "
+     "simulator and run on its own stack in lock-step from the first step: a step costs little "
+     "more than its physics; a crash, exit() or hang of the firmware ends the run with an error",
+     &OpenInproc},
 };
 
 }  // namespace

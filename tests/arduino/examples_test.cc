@@ -24,6 +24,7 @@ ExampleRun RunExample(const std::string& example, const std::string& scenario,
     run.result.erase("real_time_factor");
     run.result.erase("wall_time_split_s");
     run.result.erase("real_time_pacing");
+    run.result.erase("wall_time_split_s");
   }
   return run;
 }

@@ -16,6 +16,7 @@ unsigned long now_ms = 0;
 unsigned long millis() { return now_ms; }
 unsigned long micros() { return now_ms * 1000; }
 void unimousePcClock(uint32_t) {}
+void unimousePcAwaitInput() {}
 
 namespace unimouse {
 namespace {

@@ -61,8 +61,8 @@ int main(int argc, char** argv) {
   run_cmd->add_option("--controller", run.controller,
                       "Lua file returning function(time_s) that drives the robot through sim.*");
   run_cmd->add_flag("--realtime", run.realtime,
-                    "pace the simulation to the wall clock (always, with --link, until the "
-                    "firmware turns lock-step on)");
+                    "pace the simulation to the wall clock, even a firmware in lock-step, to "
+                    "watch it (with --link the run is paced anyway until lock-step is on)");
   run_cmd->add_option("--link", run.link, LinkHelp());
   run_cmd->add_option("--link-set", run.link_sets,
                       "a link parameter, name=value, as `unimouse plugins` lists them for "

@@ -213,7 +213,10 @@ void Session::Step() {
     fault_ = e.what();
     return;
   }
-  if (pace_ && !kernel_->firmware_paced()) pacer_->Wait(kernel_->state().step());
+  // firmware in lock-step sets the pace itself, unless the wall clock was asked for to watch it
+  if (pace_ && (options_.realtime || !kernel_->firmware_paced())) {
+    pacer_->Wait(kernel_->state().step());
+  }
 }
 
 bool Session::Over() const {

@@ -42,13 +42,13 @@ struct SessionOptions {
   const PluginRegistry* registry = nullptr;  ///< default: the plugins on the search path
   std::string link;                          ///< transport spec ("pty", "native:PROGRAM"); "" none
   std::vector<std::string> link_sets;        ///< link parameters, "name=value"
-  std::string firmware_profile;   ///< what the firmware expects ("unimousesim-0.1"); "" default
-  bool realtime = false;          ///< pace to the wall clock (always with a link)
-  bool paced_by_caller = false;   ///< a viewer paces the run itself
-  std::string scenario;           ///< scenario file or bundled name; "" for none
-  std::vector<std::string> sets;  ///< scenario parameters, "name=value"
-  std::string controller;         ///< Lua controller file; "" for none
-  PictureOptions pictures;        ///< pictures asked for
+  std::string firmware_profile;  ///< what the firmware expects ("unimousesim-0.1"); "" default
+  bool realtime = false;  ///< pace to the wall clock, even a firmware in lock-step (to watch)
+  bool paced_by_caller = false;          ///< a viewer paces the run itself
+  std::string scenario;                  ///< scenario file or bundled name; "" for none
+  std::vector<std::string> sets;         ///< scenario parameters, "name=value"
+  std::string controller;                ///< Lua controller file; "" for none
+  PictureOptions pictures;               ///< pictures asked for
   std::vector<std::string> snapshot_on;  ///< scenario events that take a picture
   /// false: final.png whenever the machine can draw, though no picture was asked for
   bool only_asked_pictures = false;

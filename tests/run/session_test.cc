@@ -123,6 +123,18 @@ TEST_F(SessionTest, TheRecordSaysWhereTheWallTimeWentAndWhetherTheFirmwareSetThe
   EXPECT_LE(parts_s, paced.record["wall_time_s"].get<double>());
 }
 
+TEST_F(SessionTest, RealTimeIsAskedForEvenWhenTheFirmwareSetsThePace) {
+  options_.maze = "none";
+  options_.duration_s = 0.3;
+  options_.link = "native:" + std::string(UNIMOUSE_TEST_FIRMWARE);
+  options_.realtime = true;
+  const SessionResult result = RunToTheEnd();
+  ASSERT_EQ(result.exit_code, kExitPassed) << result.record.dump();
+  EXPECT_TRUE(result.record["firmware_paced"].get<bool>());
+  EXPECT_GE(result.record["wall_time_s"].get<double>(), 0.3);
+  EXPECT_TRUE(result.record.contains("real_time_pacing"));
+}
+
 TEST_F(SessionTest, OverAndStepAgreeWithTheDuration) {
   options_.maze = "none";
   options_.duration_s = 0.01;

@@ -19,10 +19,6 @@ std::vector<uint8_t> out;
 uint8_t in[4096];
 size_t in_pos = 0, in_len = 0;
 
-bool clock_seen = false;
-uint64_t sim_us = 0;  // unwrapped from the frames' 32 bits
-const auto started = std::chrono::steady_clock::now();
-
 void WriteOut() {
   size_t done = 0;
   while (done < out.size()) {
@@ -69,24 +65,6 @@ size_t HardwareSerial::write(uint8_t byte) {
 }
 
 void HardwareSerial::flush() { WriteOut(); }
-
-void unimousePcClock(uint32_t us) {
-  if (!clock_seen) {
-    sim_us = us;
-    clock_seen = true;
-  } else {
-    sim_us += static_cast<uint32_t>(us - static_cast<uint32_t>(sim_us));
-  }
-}
-
-unsigned long micros() {
-  if (clock_seen) return static_cast<unsigned long>(sim_us);
-  return static_cast<unsigned long>(std::chrono::duration_cast<std::chrono::microseconds>(
-                                        std::chrono::steady_clock::now() - started)
-                                        .count());
-}
-
-unsigned long millis() { return micros() / 1000; }
 
 void delay(unsigned long ms) {
   Serial.flush();

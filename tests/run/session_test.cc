@@ -131,7 +131,8 @@ TEST_F(SessionTest, RealTimeIsAskedForEvenWhenTheFirmwareSetsThePace) {
   const SessionResult result = RunToTheEnd();
   ASSERT_EQ(result.exit_code, kExitPassed) << result.record.dump();
   EXPECT_TRUE(result.record["firmware_paced"].get<bool>());
-  EXPECT_GE(result.record["wall_time_s"].get<double>(), 0.3);
+  // 0.3 s of steps on the wall clock (unpaced, this firmware runs them in about 0.02 s)
+  EXPECT_GT(result.record["wall_time_s"].get<double>(), 0.25);
   EXPECT_TRUE(result.record.contains("real_time_pacing"));
 }
 

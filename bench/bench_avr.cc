@@ -9,8 +9,7 @@
 #include <vector>
 
 #include "avr_board.h"
-#include "bundled_components.h"
-#include "session.h"
+#include "bench_session.h"
 
 namespace {
 
@@ -49,23 +48,10 @@ void BM_AvrSessionWallDistanceScenario(benchmark::State& bench) {
     bench.SkipWithError("no AVR build of the examples (gcc-avr, arduino-core-avr)");
     return;
   }
-  PluginRegistry registry;
-  AddBundledComponents(registry);
   SessionOptions options;
-  options.registry = &registry;
   options.scenario = UNIMOUSE_SOURCE_DIR "/scenarios/wall_distance.lua";
   options.link = "avr:" + kImage;
-  options.out_dir = (std::filesystem::temp_directory_path() / "unimouse-bench-avr").string();
-  options.only_asked_pictures = true;
-  options.console = false;
-  for (auto _ : bench) {
-    std::unique_ptr<Session> session = Session::Open(options);
-    while (!session->Over()) session->Step();
-    const SessionResult result = session->Finish();
-    bench.counters["real_time_factor"] = result.record["real_time_factor"].get<double>();
-    bench.counters["sim_time_s"] = result.record["sim_time_s"].get<double>();
-  }
-  std::filesystem::remove_all(options.out_dir);
+  RunSessionBenchmark(bench, options);
 }
 BENCHMARK(BM_AvrSessionWallDistanceScenario)->Unit(benchmark::kMillisecond)->Iterations(3);
 

@@ -1,24 +1,18 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // A whole run through Session, as the command line makes it: the speed-control challenge with
 // its Lua controller (scenario, robot, pictures off), reported as a real-time factor.
-#include <benchmark/benchmark.h>
+#include "bench_session.h"
 
 #include <filesystem>
 
 #include "bundled_components.h"
-#include "session.h"
 
-namespace {
+namespace unimouse {
 
-using namespace unimouse;
-
-void BM_SessionSpeedControlScenario(benchmark::State& bench) {
+void RunSessionBenchmark(benchmark::State& bench, SessionOptions options) {
   PluginRegistry registry;
   AddBundledComponents(registry);
-  SessionOptions options;
   options.registry = &registry;
-  options.scenario = UNIMOUSE_SOURCE_DIR "/scenarios/speed_control.lua";
-  options.controller = UNIMOUSE_SOURCE_DIR "/tests/scenarios/speed_controller.lua";
   options.out_dir = (std::filesystem::temp_directory_path() / "unimouse-bench-session").string();
   options.only_asked_pictures = true;
   options.console = false;
@@ -31,6 +25,16 @@ void BM_SessionSpeedControlScenario(benchmark::State& bench) {
   }
   std::filesystem::remove_all(options.out_dir);
 }
+
+namespace {
+
+void BM_SessionSpeedControlScenario(benchmark::State& bench) {
+  SessionOptions options;
+  options.scenario = UNIMOUSE_SOURCE_DIR "/scenarios/speed_control.lua";
+  options.controller = UNIMOUSE_SOURCE_DIR "/tests/scenarios/speed_controller.lua";
+  RunSessionBenchmark(bench, options);
+}
 BENCHMARK(BM_SessionSpeedControlScenario)->Unit(benchmark::kMillisecond)->Iterations(3);
 
 }  // namespace
+}  // namespace unimouse

@@ -54,7 +54,9 @@ struct AvrBoardStats {
   /// Returns emulated seconds.
   double emulated_s() const { return f_cpu_hz ? static_cast<double>(cycles) / f_cpu_hz : 0; }
   /// Returns emulated cycles per host CPU second, in MHz.
-  double emulated_mhz() const { return host_cpu_s > 0 ? cycles / host_cpu_s / 1e6 : 0; }
+  double emulated_mhz() const {
+    return host_cpu_s > 0 ? static_cast<double>(cycles) / host_cpu_s / 1e6 : 0;
+  }
   /// Returns the latency at quantile q (0..1) in seconds, or -1 without samples.
   double LatencyQuantile_s(double q) const;
   /// Returns one line for a log: speed, RAM, UART and latency.

@@ -148,12 +148,7 @@ TEST(ComponentBindTest, NamesResolvedAtBindTimeMustExistInTheModel) {
   PluginRegistry registry;
   registry.AddStatic(ComponentType<testing::Probe>());
   const RobotSpec robot = ParseRobotSpec(
-      "name: tiny\n"
-      "chassis:\n"
-      "  name: body\n"
-      "  geoms: [{ type: sphere, radius_m: 0.02, mass_kg: 0.1 }]\n"
-      "components:\n"
-      "  - { type: test.probe, name: p, params: { tag: x } }\n",
+      testing::TinyRobotWith("  - { type: test.probe, name: p, params: { tag: x } }\n"),
       "robot.yaml");
   try {
     Kernel::Create(robot, nullptr, registry, 1);

@@ -7,6 +7,7 @@
 
 #include <string>
 
+#include "inline_assets.h"
 #include "kernel.h"
 #include "probe_components.h"
 #include "robot_spec.h"
@@ -61,14 +62,8 @@ TEST(PluginLoaderTest, AcceptsAPluginBuiltAgainstAnOlderShorterHeaderAndReadsNot
   EXPECT_EQ(widget->type->start, nullptr);  // beyond its table: a hook it does not have
   EXPECT_NE(widget->original->start, nullptr);
   // and a run uses it: a start read from beyond its table would fail the kernel's creation
-  const RobotSpec robot = ParseRobotSpec(
-      "name: tiny\n"
-      "chassis:\n"
-      "  name: body\n"
-      "  geoms: [{ type: sphere, radius_m: 0.02, mass_kg: 0.1 }]\n"
-      "components:\n"
-      "  - { type: fake.widget, name: w }\n",
-      "robot.yaml");
+  const RobotSpec robot =
+      ParseRobotSpec(testing::TinyRobotWith("  - { type: fake.widget, name: w }\n"), "robot.yaml");
   auto kernel = Kernel::Create(robot, nullptr, registry, 1);
   kernel->Step();
   EXPECT_EQ(kernel->state().step(), 1);

@@ -34,6 +34,15 @@ RobotYaml BundledRobotWith(const std::string& components) {
   return out;
 }
 
+std::string TinyRobotWith(const std::string& components) {
+  return "name: tiny\n"
+         "chassis:\n"
+         "  name: body\n"
+         "  geoms: [{ type: sphere, radius_m: 0.02, mass_kg: 0.1 }]\n"
+         "components:\n" +
+         components;
+}
+
 std::string FiveTofRobot() {
   std::string text = ReadBundledRobot();
   // the new sites go after the last of the bundled ones, the new sensors after every component

@@ -22,6 +22,10 @@ std::string ReadBundledRobot();
 /// tof.right_side_m): five in all. Its components list ends the text, so more can be appended.
 std::string FiveTofRobot();
 
+/// A one-body robot (a 0.1 kg sphere named `body`, no joints) whose components list is the given
+/// YAML list items; its first component is on line 6.
+std::string TinyRobotWith(const std::string& components);
+
 /// The bundled robot without its components: the bare mechanics.
 RobotSpec BareRobot();
 

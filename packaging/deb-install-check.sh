@@ -102,8 +102,9 @@ CXXFLAGS_STD = -std=gnu++11 -DDECIMAL_DIG=__DECIMAL_DIG__
 CPPFLAGS += -DSERIAL_RX_BUFFER_SIZE=256
 include /usr/share/arduino/Arduino.mk
 MAKEFILE
-make -C sketch | tail -n 4
-test -s sketch/build-mega-atmega2560/sketch.hex
+make -C sketch > sketch.log 2>&1 || { cat sketch.log; exit 1; }
+grep -E '^(Program|Data):' sketch.log
+ls -l sketch/build-mega-atmega2560/*.hex
 
 step "the example out-of-tree plugin, built against unimouse-dev"
 cp -r /usr/share/doc/unimouse-dev/examples/out-of-tree-plugin plugin

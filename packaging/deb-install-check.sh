@@ -9,9 +9,10 @@
 # Then it bootstraps a minimal root with mmdebstrap, installs the packages there with apt (their
 # dependencies come from the mirror) and, with no source tree and from an empty directory, runs
 # the main job, solves a maze, runs firmware on the emulated board, reads the man pages, builds
-# the Arduino library's micromouse example for the Mega 2560 with arduino-mk and the installed
-# library, and builds the example out-of-tree plugin against unimouse-dev and loads it. Last it
-# purges them, reinstalls and purges again, and fails if any file is left behind.
+# the Arduino library's micromouse example for the Mega 2560 with the installed library through
+# arduino-mk and through arduino-builder (what the IDE runs), and builds the example out-of-tree
+# plugin against unimouse-dev and loads it. Last it purges them, reinstalls and purges again, and
+# fails if any file is left behind.
 #
 # Needs root, mmdebstrap, a Debian mirror (DEBIAN_MIRROR) and, to build, the build dependencies
 # of debian/control. The log is printed and kept as WORK_DIR/deb-install-check.log.
@@ -105,6 +106,16 @@ MAKEFILE
 make -C sketch > sketch.log 2>&1 || { cat sketch.log; exit 1; }
 grep -E '^(Program|Data):' sketch.log
 ls -l sketch/build-mega-atmega2560/*.hex
+
+step "the same with arduino-builder, as Debian's Arduino IDE builds it"
+mkdir ide && cp -r /usr/share/arduino/libraries/UnimouseSim/examples/micromouse ide/
+mkdir ide/build
+arduino-builder -verbose -hardware /usr/share/arduino/hardware \
+  -tools /usr/share/arduino/hardware/tools -built-in-libraries /usr/share/arduino/libraries \
+  -fqbn arduino:avr:mega:cpu=atmega2560 -build-path "$PWD/ide/build" \
+  -prefs=compiler.cpp.extra_flags=-DDECIMAL_DIG=__DECIMAL_DIG__ ide/micromouse/micromouse.ino \
+  > ide.log 2>&1 || { cat ide.log; exit 1; }
+grep -E '^(Using library|Sketch uses)' ide.log
 
 step "the example out-of-tree plugin, built against unimouse-dev"
 cp -r /usr/share/doc/unimouse-dev/examples/out-of-tree-plugin plugin

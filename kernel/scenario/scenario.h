@@ -46,6 +46,7 @@ std::string DescribeScenarioApi();
 /// What a scenario's world phase asked for.
 struct ScenarioWorld {
   std::unique_ptr<Maze> maze;
+  std::string maze_file;  ///< the file the maze was read from
   std::vector<StaticBox> boxes;
   std::optional<Pose2D> spawn;
 };

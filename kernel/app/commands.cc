@@ -3,6 +3,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -13,6 +14,7 @@
 
 #include "install_paths.h"
 #include "kernel.h"
+#include "scenario.h"
 #include "session.h"
 #include "unimouse/errors.h"
 #include "viewer.h"
@@ -185,6 +187,31 @@ int CheckCommand(const std::string& robot_name, const std::string& plugin_path) 
 
 int PluginsCommand(const std::string& plugin_path) {
   std::cout << DescribePlugins(LoadRegistry(plugin_path));
+  return kExitPassed;
+}
+
+int ScenariosCommand(bool markdown) {
+  std::vector<std::filesystem::path> files;
+  for (const auto& entry : std::filesystem::directory_iterator(DataDirectory() + "/scenarios")) {
+    if (entry.path().extension() == ".lua") files.push_back(entry.path());
+  }
+  std::sort(files.begin(), files.end());
+  if (markdown) std::cout << "| scenario | parameter | type | default |\n|---|---|---|---|\n";
+  for (const auto& file : files) {
+    // loading runs only the file's top level: no world is built and nothing is written
+    const auto scenario = Scenario::Load(file.string(), {}, 1);
+    if (!markdown) std::cout << scenario->name() << " (" << file.string() << ")\n";
+    for (const auto& [name, value] : scenario->params()) {
+      const std::string& type = scenario->param_types().at(name);
+      const std::string shown = type == "string" ? "\"" + value + "\"" : value;
+      if (markdown) {
+        std::cout << "| `" << scenario->name() << "` | `" << name << "` | " << type << " | `"
+                  << shown << "` |\n";
+      } else {
+        std::cout << "  " << name << " = " << shown << "  (" << type << ")\n";
+      }
+    }
+  }
   return kExitPassed;
 }
 

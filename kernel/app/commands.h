@@ -46,6 +46,9 @@ int RunCommand(const RunOptions& options);
 int CheckCommand(const std::string& robot, const std::string& plugin_path);
 /// Lists every component type found and its parameters; returns the exit code.
 int PluginsCommand(const std::string& plugin_path);
+/// Lists the bundled scenarios and their parameters, as text or as the Markdown table of
+/// docs/scenarios.md; returns the exit code.
+int ScenariosCommand(bool markdown);
 
 }  // namespace unimouse
 

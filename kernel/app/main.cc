@@ -115,6 +115,12 @@ int main(int argc, char** argv) {
   CLI::App* api_cmd =
       app.add_subcommand("scenario-api", "list the sim.* functions scenarios can call");
 
+  bool scenarios_markdown = false;
+  CLI::App* scenarios_cmd = app.add_subcommand(
+      "scenarios", "list the bundled scenarios and the parameters --set can change");
+  scenarios_cmd->add_flag("--markdown", scenarios_markdown,
+                          "print the table of docs/scenarios.md instead");
+
   MazeOptions maze;
   CLI::App* maze_cmd = app.add_subcommand(
       "maze", "maze tools: show, check, solve, explore, plot, convert, generate");
@@ -203,6 +209,7 @@ int main(int argc, char** argv) {
     }
     if (check_cmd->parsed()) return CheckCommand(check_robot, plugin_path);
     if (plugins_cmd->parsed()) return PluginsCommand(plugin_path);
+    if (scenarios_cmd->parsed()) return ScenariosCommand(scenarios_markdown);
     if (api_cmd->parsed()) {
       std::fputs(DescribeScenarioApi().c_str(), stdout);
       return kExitPassed;

@@ -79,6 +79,8 @@ class Scenario {
   const ScenarioOutcome& outcome() const { return outcome_; }
   /// Parameters after overrides, as text, for the result.
   const std::map<std::string, std::string>& params() const { return param_text_; }
+  /// The Lua type of each parameter's default: number, string or boolean.
+  const std::map<std::string, std::string>& param_types() const { return declared_; }
   /// The scenario's time limit (parameter time_limit_s), or 0 for none.
   double time_limit_s() const { return time_limit_s_; }
   /// The lines a scenario shows on screen (sim.hud_set).

@@ -138,6 +138,20 @@ TEST_F(CliTest, ANegativeSeedIsRefused) {
   EXPECT_NE(o.output.find("the seed is a whole number, 0 or more"), std::string::npos) << o.output;
 }
 
+TEST_F(CliTest, TheScenarioParameterTableOfTheDocsIsWhatTheScenariosDeclare) {
+  const Outcome o = Unimouse("scenarios --markdown");
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  std::ifstream in(UNIMOUSE_SOURCE_DIR "/docs/scenarios.md");
+  const std::string doc((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string begin = "<!-- unimouse scenarios --markdown -->\n", end = "<!-- end -->";
+  const size_t from = doc.find(begin), to = doc.find(end, from);
+  ASSERT_NE(to, std::string::npos) << "docs/scenarios.md lacks the block " << begin;
+  EXPECT_EQ(doc.substr(from + begin.size(), to - from - begin.size()), o.output)
+      << "docs/scenarios.md is stale: paste the output of `unimouse scenarios --markdown`";
+  EXPECT_NE(o.output.find("| `micromouse` | `maze` | string | `\"japan2018\"` |"),
+            std::string::npos);
+}
+
 TEST_F(CliTest, RunOnAnOpenFloor) {
   const Outcome o = Unimouse("run --maze none --duration 0.1 --out " + dir_.string());
   ASSERT_EQ(o.exit_code, 0) << o.output;

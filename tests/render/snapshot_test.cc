@@ -252,7 +252,7 @@ TEST_F(SnapshotTest, DrawsTheWallsTheFirmwareBelievesIn) {
   for (size_t i = 0; i < shown.rgb.size(); i += 3) {
     if (std::equal(shown.rgb.begin() + i, shown.rgb.begin() + i + 3, plain.rgb.begin() + i))
       continue;
-    const int r = shown.rgb[i], g = shown.rgb[i + 1], b = shown.rgb[i + 2];
+    const int r = shown.rgb[i], b = shown.rgb[i + 2];
     (b > r + 60 ? blue : other)++;
   }
   EXPECT_GT(blue, 3 * 25);  // each strip is a cell long: some 50 pixels at this scale

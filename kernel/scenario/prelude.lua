@@ -21,8 +21,45 @@ end
 -- the sandbox: the safe parts of the standard library; no io, os, load, dofile or require
 for _, name in ipairs { "assert", "error", "ipairs", "pairs", "next", "select", "tostring",
                         "tonumber", "type", "rawequal", "rawget", "rawlen", "rawset",
-                        "setmetatable", "getmetatable" } do
+                        "getmetatable" } do
   env[name] = _G[name]
+end
+
+-- work done inside C, where the instruction count does not see it, stays bounded. A finalizer
+-- (__gc) runs with no count at all, so no table gets one; n empty copies are nothing, made
+-- here rather than n times in C; the elements table.move copies, table.insert and
+-- table.remove shift and table.sort orders count as instructions. Whatever C builds is
+-- allocated, and the allocations are counted too.
+local setmetatable, rep = setmetatable, string.rep
+local move, tinsert, tremove, sort = table.move, table.insert, table.remove, table.sort
+local charge = host.charge
+local function size(t) return type(t) == "table" and rawlen(t) or 0 end
+local function after(t, pos) return math.type(pos) and math.max(size(t) - pos, 0) or 0 end
+function env.setmetatable(t, metatable)
+  if type(metatable) == "table" and rawget(metatable, "__gc") ~= nil then
+    error("setmetatable: __gc (a finalizer) is not available to scenarios", 2)
+  end
+  return setmetatable(t, metatable)
+end
+function string.rep(s, n, sep)
+  if s == "" and (sep == nil or sep == "") and math.type(n) then return "" end
+  return rep(s, n, sep)
+end
+function table.move(a1, f, e, t, a2)
+  if math.type(f) and math.type(e) and e >= f then charge(e * 1.0 - f + 1) end
+  return move(a1, f, e, t, a2)
+end
+function table.insert(t, ...)
+  if select("#", ...) >= 2 then charge(after(t, ...)) end
+  return tinsert(t, ...)
+end
+function table.remove(t, ...)
+  if select("#", ...) >= 1 then charge(after(t, ...)) end
+  return tremove(t, ...)
+end
+function table.sort(t, ...)
+  charge(size(t))
+  return sort(t, ...)
 end
 env.string, env.table, env.utf8 = string, table, utf8
 env.math = copy(math)

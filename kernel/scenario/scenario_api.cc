@@ -4,6 +4,7 @@
 #include <lua5.4/lauxlib.h>
 #include <lua5.4/lua.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <iterator>
@@ -316,20 +317,32 @@ struct ScenarioApi {
       hi = call.CheckInteger(2);
     }
     if (lo > hi) call.Fail("math.random: interval is empty");
-    lua_pushinteger(L, lo + static_cast<lua_Integer>(u * static_cast<double>(hi - lo + 1)));
+    // unsigned, so that the whole range of integers fits: hi - lo + 1 would overflow
+    const lua_Unsigned span = static_cast<lua_Unsigned>(hi) - static_cast<lua_Unsigned>(lo);
+    const auto offset =
+        std::min(static_cast<lua_Unsigned>(u * (static_cast<double>(span) + 1.0)), span);
+    lua_pushinteger(L, static_cast<lua_Integer>(static_cast<lua_Unsigned>(lo) + offset));
     return 1;
   }
 
   // the instruction budget's error once it is spent, else nil: the prelude's protected calls
   // pass it on
   static int BudgetSpent(LuaCall& call) {
-    const Scenario& s = Self(call);
-    if (s.budget_error_.empty()) {
+    const std::string& spent = Self(call).Spent(call.state(), 1);
+    if (spent.empty()) {
       lua_pushnil(call.state());
     } else {
-      lua_pushstring(call.state(), s.budget_error_.c_str());
+      lua_pushstring(call.state(), spent.c_str());
     }
     return 1;
+  }
+
+  // work the prelude's wrappers leave to C (table.move's elements), counted as instructions
+  static int Charge(LuaCall& call) {
+    const double work = call.CheckNumber(1);
+    const double most = kScenarioInstructionBudget + 1.0;  // beyond it, any amount is spent
+    Self(call).Spend(call.state(), 1, static_cast<int64_t>(work > 0 ? std::min(work, most) : 0));
+    return 0;
   }
 };
 
@@ -403,6 +416,8 @@ constexpr ApiEntry kHost[] = {
      "take_firmware_lines() -> {{text, time_s}, ...}", "the firmware's log lines since last time"},
     {"budget_spent", ScenarioApi::BudgetSpent, 0, "budget_spent() -> message?",
      "the instruction budget's error once it is spent"},
+    {"charge", ScenarioApi::Charge, 0, "charge(instructions)",
+     "counts work done in C against the instruction budget"},
 };
 
 }  // namespace

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -37,6 +38,12 @@ class CliTest : public ::testing::Test {
 
   fs::path dir_;
 };
+
+// a bundled maze's text
+std::string ReadMaze(const std::string& name) {
+  std::ifstream in(fs::path(UNIMOUSE_SOURCE_DIR) / "mazes" / (name + ".txt"));
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
 
 TEST_F(CliTest, RunWritesAResultWithPoseTimeAndSpeed) {
   const Outcome o = Unimouse("run --duration 0.5 --seed 3 --out " + dir_.string());
@@ -115,6 +122,45 @@ TEST_F(CliTest, BadMazeFileExitsWithCode2) {
   const Outcome o = Unimouse("run --maze " + path + " --out " + dir_.string());
   EXPECT_EQ(o.exit_code, 2);
   EXPECT_NE(o.output.find(path + ":2:3: unexpected 'X'"), std::string::npos) << o.output;
+}
+
+TEST_F(CliTest, AnInterruptedRunStopsBetweenStepsWritesItsResultAndExitsWithCode3) {
+  for (const std::string signal : {"INT", "TERM"}) {
+    const std::string out = (dir_ / signal).string();
+    // once the run has started (its log exists), the signal; the shell prints the exit code
+    const Outcome o = Unimouse("run --maze none --duration 100000 --no-pictures --out " + out +
+                               " >/dev/null 2>&1 & " + "pid=$!; while [ ! -e " + out +
+                               "/log.txt ]; do sleep 0.05; done; sleep 0.3; kill -" + signal +
+                               " $pid; wait $pid; echo exit=$?; true");
+    EXPECT_NE(o.output.find("exit=3"), std::string::npos) << signal << ": " << o.output;
+    std::ifstream in(fs::path(out) / "result.json");
+    ASSERT_TRUE(in.good()) << signal;
+    const nlohmann::json r = nlohmann::json::parse(in);
+    EXPECT_EQ(r["status"], "interrupted");
+    EXPECT_EQ(r["exit_code"], 3);
+    EXPECT_EQ(r["error"].get<std::string>().rfind("interrupted by SIG" + signal + " at ", 0), 0u)
+        << r.dump();
+    EXPECT_LT(r["sim_time_s"].get<double>(), 100000);
+  }
+}
+
+TEST_F(CliTest, AFirmwareThatClosesItsPipeIsALinkErrorNotTheEndOfTheProcess) {
+  // /bin/true reads nothing and exits: writing to it used to end the process with SIGPIPE
+  const Outcome o = Unimouse(
+      "run --maze none --duration 0.5 --no-pictures --link native:/bin/true "
+      "--out " +
+      dir_.string());
+  EXPECT_EQ(o.exit_code, 3) << o.output;
+  std::ifstream in(dir_ / "result.json");
+  ASSERT_TRUE(in.good()) << o.output;
+  EXPECT_EQ(nlohmann::json::parse(in)["status"], "fault");
+}
+
+TEST_F(CliTest, AMazeFileNameThatIsNotUtf8IsReplacedInJson) {
+  const std::string latin1 = Write("caf\xe9.txt", ReadMaze("japan2018"));
+  const Outcome o = Unimouse("maze show --json " + latin1);
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  EXPECT_NE(o.output.find("caf\xef\xbf\xbd.txt"), std::string::npos) << o.output;
 }
 
 TEST_F(CliTest, MissingFilesAndBadOptionsExitWithCode2) {

@@ -164,11 +164,13 @@ lua_Integer LuaCall::CheckInteger(int arg) const {
   return value;
 }
 
-std::string LuaCall::CheckString(int arg) const {
+std::string LuaCall::CheckString(int arg) const { return std::string(CheckText(arg)); }
+
+std::string_view LuaCall::CheckText(int arg) const {
   if (!lua_isstring(L_, arg)) FailType(arg, "string");
   size_t size = 0;
   const char* text = lua_tolstring(L_, arg, &size);
-  return std::string(text, size);
+  return {text, size};
 }
 
 std::string LuaCall::OptString(int arg, const std::string& fallback) const {

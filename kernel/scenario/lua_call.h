@@ -8,7 +8,8 @@
 // Bodies keep to one rule: they never raise a Lua error themselves. They read their arguments
 // through LuaCall, whose readers throw, read tables raw (no metamethods run), and run Lua code
 // only under protection (LuaCall::ToText). The Lua API calls left in a body push plain values,
-// which can fail only when memory runs out.
+// which can fail only when the machine's memory runs out: a state's own limits (LuaMemory)
+// never refuse a body.
 #ifndef UNIMOUSE_SCENARIO_LUA_CALL_H_
 #define UNIMOUSE_SCENARIO_LUA_CALL_H_
 
@@ -17,6 +18,7 @@
 #include <cstddef>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 namespace unimouse {
 
@@ -142,6 +144,8 @@ class LuaCall {
   lua_Integer CheckInteger(int arg) const;
   /// Returns argument `arg` as a string; a number counts, as in Lua.
   std::string CheckString(int arg) const;
+  /// Returns argument `arg` as a string, in place: valid while the argument is on the stack.
+  std::string_view CheckText(int arg) const;
   /// Returns argument `arg` as a string, or `fallback` when it is absent or nil.
   std::string OptString(int arg, const std::string& fallback) const;
 

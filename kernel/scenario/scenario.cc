@@ -220,9 +220,16 @@ int Scenario::SpendInstructions(LuaCall& call) {
 void Scenario::Spend(lua_State* L, int level, int64_t instructions) {
   if (Spent(L, level).empty()) {
     instructions_ += instructions;
-    if (instructions_ <= kScenarioInstructionBudget) return;
+    if (kernel_ != nullptr) run_instructions_ += instructions;
+    const double allowed =
+        kScenarioInstructionBudget +
+        (kernel_ != nullptr ? kernel_->state().data().time * kScenarioInstructionsPerSecond : 0);
+    if (instructions_ <= kScenarioInstructionBudget && run_instructions_ <= allowed) return;
     budget_error_ = ScriptLine(L, level) +
-                    "instruction budget exhausted: a loop that never waits (use sim.wait)?";
+                    (instructions_ > kScenarioInstructionBudget
+                         ? "instruction budget exhausted: a loop that never waits (use sim.wait)?"
+                         : "instruction budget exhausted: more than 100 million instructions per "
+                           "simulated second on average");
   }
   // once spent, the budget raises at every hook until the host is back in control
   throw ScriptError(budget_error_, /*located=*/true);
@@ -258,11 +265,15 @@ int Scenario::RunScript(lua_State* thread, int nargs, int nresults, int handler,
 }
 
 std::string Scenario::ErrorOf(lua_State* thread, int status) const {
-  if (status != LUA_ERRMEM) return ErrorText(thread, -1);
-  if (!budget_error_.empty()) return budget_error_;
-  if (memory_.volume_spent()) return AllocationsSpent();
+  const std::string message = ErrorText(thread, -1);
+  // a memory error has no place, only Lua's words (the prelude's wrappers pass them on as text):
+  // say which limit it met, keeping any traceback
+  if (status != LUA_ERRMEM && Headline(message) != "not enough memory") return message;
+  const std::string rest = message.substr(Headline(message).size());
+  if (!budget_error_.empty()) return budget_error_ + rest;
+  if (memory_.volume_spent()) return AllocationsSpent() + rest;
   return "not enough memory: a scenario holds at most " +
-         std::to_string(kScenarioMemoryBytes >> 20) + " MiB";
+         std::to_string(kScenarioMemoryBytes >> 20) + " MiB" + rest;
 }
 
 void Scenario::SnapshotOn(const std::string& kind, const std::string& camera, int width,

@@ -50,6 +50,9 @@ inline constexpr size_t kScenarioMemoryBytes = size_t{256} << 20;
 inline constexpr size_t kScenarioAllocationBytes = size_t{2} << 30;
 /// Instructions a scenario may run between two calls from the host (two yields).
 inline constexpr int kScenarioInstructionBudget = 20'000'000;
+/// Instructions a scenario may run per simulated second once the run has started, on average
+/// (beyond one budget): no script spends a whole budget at every tick.
+inline constexpr double kScenarioInstructionsPerSecond = 100e6;
 
 /// The most wall time one call into a scenario may take (work in C the budget cannot see).
 inline constexpr double kScenarioCallWallTimeS = 10;
@@ -207,9 +210,10 @@ class Scenario {
   std::map<std::string, std::string> param_text_;
   double time_limit_s_ = 0;
   std::vector<std::string> hud_;
-  RngStream rng_;             // math.random
-  int64_t instructions_ = 0;  // since the host last called into Lua
-  std::string budget_error_;  // once the budget is spent: what every later hook raises
+  RngStream rng_;                 // math.random
+  int64_t instructions_ = 0;      // since the host last called into Lua
+  int64_t run_instructions_ = 0;  // since the run started
+  std::string budget_error_;      // once the budget is spent: what every later hook raises
   std::unique_ptr<std::vector<Cell>> maze_goals_;  // of the maze the world loaded
   Cell maze_start_;
   std::string traceback_;

@@ -54,9 +54,9 @@ void Watchdog::Watch() {
   }
   char seconds[32];
   std::snprintf(seconds, sizeof(seconds), "%g", limit_.count());
-  const std::string reason = std::string("the scenario's ") + what_ + " ran longer than " +
-                             seconds +
-                             " s of wall time in one call (a string pattern that backtracks?)";
+  const std::string reason =
+      std::string("the scenario's ") + what_ + " ran longer than " + seconds +
+      " s of wall time in one call (work inside Lua's library that no count sees)";
   if (expiry_) {
     expiry_(reason);
   } else {

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// A wall-clock watchdog for work no count can see: C code a script started (a string pattern
-// that backtracks for hours, a library function looping in C) never returns to the instruction
-// hook, and nothing can stop it but the end of the process. The watchdog is armed around each
+// A wall-clock watchdog for work no count can see: an instruction that runs long in C (comparing
+// two long strings, one library call over a large table) returns to the instruction hook only
+// after it, and a loop of them can run for hours under the budget; C code cannot be stopped
+// but by the end of the process. The watchdog is armed around each
 // call into Lua; when one runs longer than its limit, it calls its expiry function (which
 // writes what it can, e.g. a result saying why) from its own thread and ends the process with
 // exit code 3.

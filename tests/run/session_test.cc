@@ -197,6 +197,27 @@ TEST_F(SessionTest, AControllerFaultEndsAsAFaultWithItsReasonNeverAsRunning) {
       << reason;
 }
 
+TEST_F(SessionTest, SpendingMostOfTheBudgetAtEveryTickMeetsTheRunsAverage) {
+  // 15 million instructions a tick, each call under its 20 million; the run allows 20 million
+  // plus 100 million per simulated second: the second tick (at 1 ms) goes beyond it
+  options_.scenario = LuaFile("busy.lua",
+                              "return sim.scenario { name = 'busy', run = function()\n"
+                              "  while true do\n"
+                              "    for i = 1, 15e6 do end\n"
+                              "    sim.next_tick()\n"
+                              "  end\n"
+                              "end }\n");
+  options_.maze = "none";
+  const SessionResult result = RunToTheEnd();
+  EXPECT_EQ(result.exit_code, kExitRuntimeFault);
+  EXPECT_EQ(result.record["steps"], 1);
+  const std::string error = result.record["error"];
+  EXPECT_NE(error.find("busy.lua:3: instruction budget exhausted: more than 100 million "
+                       "instructions per simulated second on average (in run)"),
+            std::string::npos)
+      << error;
+}
+
 TEST_F(SessionTest, TextThatIsNotUtf8IsReplacedInTheResultNotFatal) {
   // a Latin-1 reason, HUD line and scenario name: each byte 0xe9 becomes U+FFFD
   options_.scenario = LuaFile("latin1.lua",

@@ -274,6 +274,23 @@ TEST(ScenarioBudgetTest, EmptyCopiesAreMadeAtOnceAndTheLibraryStillWorks) {
   EXPECT_EQ(WorldError(path), "");
 }
 
+TEST(ScenarioPreludeTest, ErrorsOfTheCountedLibraryFunctionsNameTheScenariosLine) {
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"string.rep({}, 2)", "bad argument #1 to 'string.rep' (string expected, got table)"},
+      {"('x'):rep(2, {})", "bad argument #3 to 'string.rep' (string expected, got table)"},
+      {"table.insert(nil, 1, 2)", "bad argument #1 to 'table.insert' (table expected, got nil)"},
+      {"table.insert({}, 5, 2)", "bad argument #2 to 'table.insert' (position out of bounds)"},
+      {"table.remove({}, 'a')", "bad argument #2 to 'table.remove' (number expected, got string)"},
+      {"table.move({}, 1, 'x', 2)",
+       "bad argument #3 to 'table.move' (number expected, got string)"},
+      {"setmetatable(1, {})", "bad argument #1 to 'setmetatable' (table expected, got number)"},
+  };
+  for (size_t i = 0; i < cases.size(); ++i) {
+    const std::string path = WorldScenario("  " + cases[i].first, std::to_string(i));
+    EXPECT_EQ(WorldError(path), Shown(path) + ":2: " + cases[i].second + " (in world)");
+  }
+}
+
 TEST(ScenarioBudgetTest, AFinalizerWhichNoBudgetCouldStopIsRefused) {
   const std::string path =
       WorldScenario("  setmetatable({}, { __gc = function() while true do end end })");
@@ -282,9 +299,85 @@ TEST(ScenarioBudgetTest, AFinalizerWhichNoBudgetCouldStopIsRefused) {
                                   "scenarios (in world)");
 }
 
-TEST(ScenarioWatchdogTest, APatternThatBacktracksForHoursEndsTheProcessWithExitCode3) {
+TEST(ScenarioBudgetTest, APatternThatBacktracksCountsItsStepsAgainstTheBudget) {
+  // without the count, the matcher runs in C for hours and the hook never runs
+  const std::string path = WorldScenario(
+      "  local s = string.rep('a', 1e5)\n"
+      "  for _ in s:gmatch('.-.-.-.-.-b') do end");
+  EXPECT_EQ(WorldError(path), path + ":3: " + kBudgetSpent + " (in world)");
+  const std::string find = WorldScenario("  ('a'):rep(1e5):find('.-.-.-.-.-b')", "_find");
+  EXPECT_EQ(WorldError(find), find + ":2: " + kBudgetSpent + " (in world)");
+}
+
+TEST(ScenarioPreludeTest, PatternFunctionsBehaveAsLuasOwn) {
+  // expected values worked out from the Lua 5.4 manual
+  const std::string path = WorldScenario(R"lua(
+  local function same(a, b) assert(a == b, tostring(a) .. ' ~= ' .. tostring(b)) end
+  local function list(...) return table.concat({ ... }, ',') end
+  same(list(('hello world'):find('o w')), '5,7')
+  same(list(('hello'):find('(h)(e)')), '1,2,h,e')
+  same(list(('a.b'):find('.', 1, true)), '2,2')
+  same(list(('a.b'):find('b', -1)), '3,3')
+  same(('abc'):find('x'), nil)
+  same(('abc'):find('a', 10), nil)
+  same(list(('key = value'):match('(%w+)%s*=%s*(%w+)')), 'key,value')
+  same(list(('hello'):match('()ll()')), '3,5')
+  same(('  x  '):match('^%s*(.-)%s*$'), 'x')
+  same(list(('hello world'):gsub('o', '0')), 'hell0 w0rld,2')
+  same(list(('abc'):gsub('', '-')), '-a-b-c-,4')
+  same(list(('abc'):gsub('x*', '-')), '-a-b-c-,4')
+  same(list(('hello world'):gsub('(%w+)', '<%1>')), '<hello> <world>,2')
+  same(list(('abc'):gsub('%w', '%0%0')), 'aabbcc,3')
+  same(list(('abc'):gsub('%w', '%%')), '%%%,3')
+  same(list(('$name is $age'):gsub('%$(%w+)', { name = 'x', age = 3 })), 'x is 3,2')
+  same(list(('abc'):gsub('b', function() return false end)), 'abc,1')
+  same(list(('abc'):gsub('(b)()', function(b, at) return b:upper() .. at end)), 'aB3c,1')
+  same(list(('aaa'):gsub('a', 'b', 2)), 'bba,2')
+  same(list(('hello hello'):gsub('^h', 'H')), 'Hello hello,1')
+  local words = {}
+  for w in ('one two  three'):gmatch('%a+') do words[#words + 1] = w end
+  same(table.concat(words, ','), 'one,two,three')
+  local pairs_found = {}
+  for k, v in ('a=1, b=2'):gmatch('(%w+)=(%w+)') do pairs_found[#pairs_found + 1] = k .. v end
+  same(table.concat(pairs_found, ','), 'a1,b2')
+  local empties = 0
+  for e in ('abc'):gmatch('x*') do empties = empties + 1 end
+  same(empties, 4)
+  local from_two = {}
+  for c in ('abc'):gmatch('.', 2) do from_two[#from_two + 1] = c end
+  same(table.concat(from_two), 'bc'))lua");
+  EXPECT_EQ(WorldError(path), "");
+}
+
+TEST(ScenarioPreludeTest, PatternErrorsNameTheScenariosLine) {
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"('a'):find('[a')", "malformed pattern (missing ']')"},
+      {"('a'):match('%')", "malformed pattern (ends with '%')"},
+      {"string.find(nil, 'a')", "bad argument #1 to 'string.find' (string expected, got nil)"},
+      {"('a'):gsub('a', '%2')", "invalid capture index %2 in replacement string"},
+      {"('a'):gsub('a', '%x')", "invalid use of '%' in replacement string"},
+      {"('a'):gsub('a', {}, 'x')",
+       "bad argument #4 to 'string.gsub' (number expected, got string)"},
+      {"('a'):gsub('a')",
+       "bad argument #3 to 'string.gsub' (string/function/table expected, got "
+       "no value)"},
+      {"('a'):gsub('a', function() return {} end)", "invalid replacement value (a table)"},
+      {"string.gmatch({}, 'a')", "bad argument #1 to 'string.gmatch' (string expected, got table)"},
+      {"for _ in ('a'):gmatch('(') do end", "unfinished capture"},
+  };
+  for (size_t i = 0; i < cases.size(); ++i) {
+    const std::string path = WorldScenario("  " + cases[i].first, std::to_string(i));
+    EXPECT_EQ(WorldError(path), Shown(path) + ":2: " + cases[i].second + " (in world)");
+  }
+}
+
+TEST(ScenarioWatchdogTest, ACallStuckInCEndsTheProcessWithExitCode3) {
+  // comparing two long equal strings is one instruction of 60 million bytes: the count sees
+  // almost nothing, the wall clock everything
   GTEST_FLAG_SET(death_test_style, "threadsafe");
-  const std::string path = WorldScenario("  string.find(string.rep('a', 1e5), '.-.-.-.-.-b')");
+  const std::string path = WorldScenario(
+      "  local a, b = string.rep('x', 6e7), string.rep('x', 6e7)\n"
+      "  while true do local same = a == b end");
   EXPECT_EXIT(
       {
         const auto s = Scenario::Load(path, {}, 1);

@@ -5,8 +5,8 @@
 set -euo pipefail
 
 packages=(
-  # toolchain
-  build-essential cmake ninja-build ccache pkg-config clang-format git
+  # toolchain (help2man: the man pages, written from --help)
+  build-essential cmake ninja-build ccache pkg-config clang-format git help2man
   # simulator libraries (libqhull-dev: the MuJoCo CMake config names its include dir)
   libmujoco-dev libqhull-dev libeigen3-dev liblua5.4-dev libyaml-cpp-dev libboost-dev libboost-context-dev libcli11-dev
   nlohmann-json3-dev libpng-dev

@@ -37,6 +37,7 @@ return sim.scenario {
     local cells  -- of the current run, the start cell first
     local contest_from, run_from, may_start = nil, nil, false
     local touching, contacts = false, 0
+    local hud_tenth, hud_run  -- what the HUD shows
     local ended_mid_run, firmware_done = false, false
     sim.on("firmware_log", function(line)
       if p.end_on_log ~= "" and line.text == p.end_on_log then firmware_done = true end
@@ -86,9 +87,15 @@ return sim.scenario {
         break
       end
 
-      sim.hud_set(1, string.format("time %6.1f s of %g s", contest_from and now - contest_from or 0, p.contest_s))
-      sim.hud_set(2, string.format("run %d  best %s", #runs + (run_from and 1 or 0),
-                                   best_s and string.format("%.3f s", best_s) or "-"))
+      -- the HUD shows tenths of a second: its text is made only when what it shows changes
+      local elapsed = contest_from and now - contest_from or 0
+      local tenth, run_shown = math.floor(elapsed * 10 + 0.5), #runs + (run_from and 1 or 0)
+      if tenth ~= hud_tenth or run_shown ~= hud_run then
+        hud_tenth, hud_run = tenth, run_shown
+        sim.hud_set(1, string.format("time %6.1f s of %g s", elapsed, p.contest_s))
+        sim.hud_set(2, string.format("run %d  best %s", run_shown,
+                                     best_s and string.format("%.3f s", best_s) or "-"))
+      end
       sim.next_tick()
     end
 

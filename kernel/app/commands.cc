@@ -68,6 +68,7 @@ int RunOnce(const RunOptions& options, Viewer* viewer) {
   o.maze = options.maze;
   o.duration_s = options.duration_s;
   o.duration_given = options.duration_given;
+  o.maze_given = options.maze_given;
   o.seed = options.seed;
   o.out_dir = options.out_dir;
   o.plugin_path = options.plugin_path;

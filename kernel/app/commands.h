@@ -24,6 +24,7 @@ struct RunOptions {
   std::vector<std::string> sets;       ///< scenario parameters, "name=value"
   std::string controller;              ///< Lua controller file for the scenario; "" for none
   bool duration_given = false;
+  bool maze_given = false;
   // pictures (docs/pictures.md)
   std::string camera = "top";             ///< top, chase or free
   std::string snapshot_size = "640x480";  ///< WIDTHxHEIGHT

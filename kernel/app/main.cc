@@ -56,7 +56,14 @@ int main(int argc, char** argv) {
   run_cmd->add_option("--maze", run.maze, "maze file, a bundled maze's name, or none")
       ->capture_default_str();
   run_cmd->add_option("--duration", run.duration_s, "simulated seconds")->capture_default_str();
-  run_cmd->add_option("--seed", run.seed, "seed of every random stream")->capture_default_str();
+  run_cmd->add_option("--seed", run.seed, "seed of every random stream")
+      ->capture_default_str()
+      // an unsigned parse would take -1 as 18446744073709551615
+      ->check([](const std::string& text) {
+        return text.find_first_not_of("0123456789") == std::string::npos
+                   ? std::string()
+                   : "the seed is a whole number, 0 or more";
+      });
   run_cmd->add_option("--out", run.out_dir, "directory for result.json and other outputs")
       ->capture_default_str();
   run_cmd->add_option("--scenario", run.scenario,
@@ -183,6 +190,7 @@ int main(int argc, char** argv) {
   run.plugin_path = plugin_path;
   try {
     run.duration_given = run_cmd->get_option("--duration")->count() > 0;
+    run.maze_given = run_cmd->get_option("--maze")->count() > 0;
     if (run_cmd->parsed()) {
       // the main job: nothing chosen, so the contest with the bundled micromouse firmware
       bool chosen = false;

@@ -2,6 +2,8 @@
 // `unimouse maze ...`: the maze module on its own, without physics.
 #include "maze_commands.h"
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
@@ -100,7 +102,8 @@ class Progress {
   explicit Progress(size_t total) : total_(total) {}
   void Step(const std::string& file) {
     ++done_;
-    if (total_ < 2) return;
+    // a line redrawn in place is for a person watching, not for a file or a pipe
+    if (total_ < 2 || !::isatty(2)) return;
     std::fprintf(stderr, "\r[%zu/%zu] %-60.60s", done_, total_, file.c_str());
     if (done_ == total_) std::fprintf(stderr, "\n");
   }

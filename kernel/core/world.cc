@@ -127,11 +127,12 @@ void WriteBody(Mjcf& x, const BodySpec& b, bool is_chassis) {
   x << "</body>\n";
 }
 
-// distance on the floor plane from a point to a (yawed) box
-double FloorDistance(const StaticBox& b, double px, double py) {
+// distance on the floor plane from a point to a box yawed by the angle of `cos_sin`
+double FloorDistance(const StaticBox& b, const std::array<double, 2>& cos_sin, double px,
+                     double py) {
   const double dx = px - b.center_m[0];
   const double dy = py - b.center_m[1];
-  const double c = std::cos(b.yaw_rad), s = std::sin(b.yaw_rad);
+  const double c = cos_sin[0], s = cos_sin[1];
   const double lx = std::max(std::fabs(c * dx + s * dy) - b.half_m[0], 0.0);
   const double ly = std::max(std::fabs(-s * dx + c * dy) - b.half_m[1], 0.0);
   return std::hypot(lx, ly);
@@ -286,6 +287,11 @@ std::unique_ptr<World> World::Build(const RobotSpec& robot, const Maze* maze,
     floor_half_m = std::max(floor_half_m, reach);
   }
 
+  // the proxies look for shapes near the robot at every step: their axes are worked out once
+  for (const StaticBox& b : w->collision_shapes_) {
+    w->shape_cos_sin_.push_back({std::cos(b.yaw_rad), std::sin(b.yaw_rad)});
+  }
+
   // physics: floor, proxies, robot
   Mjcf x;
   x << "<mujoco model='" << robot.name << "'>\n"
@@ -386,13 +392,15 @@ void World::UpdateCollisionProxies(const mjData& d) {
 
   candidates_.clear();
   for (int i = 0; i < static_cast<int>(collision_shapes_.size()); ++i) {
-    if (FloorDistance(collision_shapes_[i], p[0], p[1]) < reach) candidates_.push_back(i);
+    if (FloorDistance(collision_shapes_[i], shape_cos_sin_[i], p[0], p[1]) < reach) {
+      candidates_.push_back(i);
+    }
   }
   if (static_cast<int>(candidates_.size()) > proxy_count_) {
     // keep the nearest; ties by index keep it deterministic
     std::sort(candidates_.begin(), candidates_.end(), [&](int a, int b) {
-      const double da = FloorDistance(collision_shapes_[a], p[0], p[1]);
-      const double db = FloorDistance(collision_shapes_[b], p[0], p[1]);
+      const double da = FloorDistance(collision_shapes_[a], shape_cos_sin_[a], p[0], p[1]);
+      const double db = FloorDistance(collision_shapes_[b], shape_cos_sin_[b], p[0], p[1]);
       return da != db ? da < db : a < b;
     });
     candidates_.resize(static_cast<size_t>(proxy_count_));

@@ -116,6 +116,7 @@ class World {
   std::unique_ptr<mjModel, ModelDeleter> model_;
   std::vector<StaticBox> scenery_;
   std::vector<StaticBox> collision_shapes_;
+  std::vector<std::array<double, 2>> shape_cos_sin_;  // of each collision shape's yaw
   std::unique_ptr<mjModel, ModelDeleter> scenery_model_;
   std::unique_ptr<mjData, DataDeleter> scenery_data_;
   Pose2D spawn_;

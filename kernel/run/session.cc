@@ -56,6 +56,13 @@ ComponentSpec LinkComponent(const std::string& transport, const std::string& pro
   return link;
 }
 
+// seconds with the three decimals of a stopwatch
+std::string Seconds3(double seconds) {
+  char text[32];
+  std::snprintf(text, sizeof(text), "%.3f", seconds);
+  return text;
+}
+
 // the record goes to a temporary file first, so a reader never sees half of it
 void WriteRecord(const std::string& out_dir, const nlohmann::json& record) {
   fs::create_directories(out_dir);
@@ -143,11 +150,24 @@ void Session::Assemble() {
     }
     scenario_file_ = ResolveDataFile(o.scenario, "scenarios/", ".lua");
     // a script stuck in C for good: the process ends, and its result says why
-    scenario_ = Scenario::Load(scenario_file_, overrides, o.seed, [this](const std::string& why) {
+    const auto on_hang = [this](const std::string& why) {
       WriteErrorRecord(options_, why, kExitRuntimeFault, "");
-    });
+    };
+    scenario_ = Scenario::Load(scenario_file_, overrides, o.seed, on_hang);
+    if (o.maze_given) {
+      // a scenario's maze is its parameter `maze`: --maze sets it, as --set maze= would
+      UNIMOUSE_THROW_UNLESS(scenario_->params().contains("maze"),
+                            "--maze " + o.maze + ": scenario '" + scenario_->name() +
+                                "' builds its own world and has no maze parameter");
+      UNIMOUSE_THROW_UNLESS(!overrides.contains("maze") || overrides["maze"] == o.maze,
+                            "--maze " + o.maze + " and --set maze=" + overrides["maze"] +
+                                " name different mazes: give one");
+      overrides["maze"] = o.maze;
+      scenario_ = Scenario::Load(scenario_file_, overrides, o.seed, on_hang);
+    }
     world = scenario_->BuildWorld();
     maze_ = std::move(world.maze);
+    maze_file_ = world.maze_file;
     // a second beyond the limit lets the scenario give its own reason
     if (!o.duration_given && scenario_->time_limit_s() > 0) {
       duration_s_ = scenario_->time_limit_s() + 1;
@@ -200,6 +220,17 @@ void Session::Assemble() {
     }
   });
   if (scenario_) scenario_->Attach(*kernel_, o.controller);
+  // said at once, so that a run meant to test something does not pass quietly doing nothing
+  if (!scenario_ && o.link.empty()) {
+    kernel_->Log(UNIMOUSE_LOG_WARNING, "run",
+                 "nothing drives the robot (no --scenario, --controller or --link): it stands "
+                 "still; `unimouse run` with no options runs the contest with the bundled "
+                 "firmware");
+  } else if (!o.controller.empty() && !o.link.empty()) {
+    kernel_->Log(UNIMOUSE_LOG_WARNING, "run",
+                 "both --controller and --link drive the robot: the firmware's commands "
+                 "overwrite the controller's whenever they arrive");
+  }
 
   // the pictures asked for; without any, final.png whenever the machine can draw
   if (o.pictures.Any() || o.only_asked_pictures) {
@@ -308,7 +339,8 @@ SessionResult Session::Finish(const nlohmann::json& extra) {
   }
   pictures_->Finish();
   kernel_->Finish();
-  const bool firmware_maze = maze_ && !options_.link.empty();
+  // drawn only from what a firmware reported: no connection, no picture of its beliefs
+  const bool firmware_maze = maze_ && !options_.link.empty() && !beliefs_.empty();
   if (firmware_maze) DrawFirmwareMaze();
   const double wall_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
@@ -346,7 +378,7 @@ SessionResult Session::Finish(const nlohmann::json& extra) {
       outcome.reason = !fault_.empty() ? fault_
                        : !interrupted_.empty()
                            ? interrupted_
-                           : "not decided when the run ended at " + std::to_string(d.time) + " s";
+                           : "not decided when the run ended at " + Seconds3(d.time) + " s";
     }
     r["scenario"] = {{"name", scenario_->name()},     {"file", scenario_file_},
                      {"params", scenario_->params()}, {"status", outcome.status},

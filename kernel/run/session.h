@@ -41,8 +41,9 @@ int InterruptSignal();
 struct SessionOptions {
   std::string robot = "unimouse";  ///< robot file or bundled robot name
   std::string maze =
-      "japan2018";              ///< maze file, bundled name, or "none"; a scenario builds its own
-  double duration_s = 10;       ///< simulated seconds
+      "japan2018";          ///< maze file, bundled name, or "none"; a scenario builds its own
+  bool maze_given = false;  ///< the maze was named: a scenario runs in it (its `maze` parameter)
+  double duration_s = 10;   ///< simulated seconds
   bool duration_given = false;  ///< false: a scenario's time limit (+1 s) decides
   uint64_t seed = 1;
   std::string out_dir = "out";

@@ -78,6 +78,7 @@ class ScriptFault : public RuntimeFault {
 /// What a scenario's world phase asked for.
 struct ScenarioWorld {
   std::unique_ptr<Maze> maze;
+  std::string maze_file;  ///< the file the maze was read from
   std::vector<StaticBox> boxes;
   std::optional<Pose2D> spawn;
 };

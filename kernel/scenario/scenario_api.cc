@@ -215,7 +215,8 @@ struct ScenarioApi {
     const std::string name = call.CheckString(1);
     // a maze that cannot be read throws InputError, which the boundary raises as the message
     Scenario& s = Self(call);
-    s.world_.maze = std::make_unique<Maze>(LoadMaze(ResolveDataFile(name, "mazes/", ".txt")));
+    s.world_.maze_file = ResolveDataFile(name, "mazes/", ".txt");
+    s.world_.maze = std::make_unique<Maze>(LoadMaze(s.world_.maze_file));
     s.maze_goals_ = std::make_unique<std::vector<Cell>>(s.world_.maze->goals());
     s.maze_start_ = s.world_.maze->start();
     return 0;

@@ -2,6 +2,7 @@
 // A firmware program on this machine, started by the link and talking on its stdin and stdout;
 // stopped when the link goes. It runs in lock-step from the first step, so that its runs repeat
 // exactly.
+#include <sched.h>
 #include <signal.h>
 #include <sys/socket.h>
 #include <sys/wait.h>
@@ -34,8 +35,16 @@ class NativeTransport final : public StreamTransport {
     std::vector<char*> argv;
     for (auto& w : words) argv.push_back(w.data());
     argv.push_back(nullptr);
+    // in lock-step the simulator and the firmware never run at the same time: on one core each
+    // hands over to the other with a plain context switch, while across two cores every step
+    // pays two cross-core wake-ups (3x slower on a virtual machine, docs/performance.md)
+    const bool share_cpu = ::sched_getaffinity(0, sizeof(own_cpus_), &own_cpus_) == 0;
+    cpu_set_t one_cpu;
+    CPU_ZERO(&one_cpu);
+    if (share_cpu) CPU_SET(::sched_getcpu(), &one_cpu);
     child_ = ::fork();
     if (child_ == 0) {
+      if (share_cpu) ::sched_setaffinity(0, sizeof(one_cpu), &one_cpu);
       ::dup2(sockets[1], 0);
       ::dup2(sockets[1], 1);
       ::execv(argv[0], argv.data());
@@ -44,11 +53,13 @@ class NativeTransport final : public StreamTransport {
     ::close(sockets[1]);
     if (child_ < 0) ::close(sockets[0]);
     UNIMOUSE_THROW_UNLESS(child_ > 0, "cannot start " + program);
+    pinned_ = share_cpu && ::sched_setaffinity(0, sizeof(one_cpu), &one_cpu) == 0;
     Adopt(sockets[0]);
   }
   ~NativeTransport() override {
     // a firmware never ends by itself: ask it to stop, then insist
     CloseStream();
+    if (pinned_) ::sched_setaffinity(0, sizeof(own_cpus_), &own_cpus_);
     if (child_ <= 0) return;
     ::kill(child_, SIGTERM);
     for (int i = 0; i < 100; ++i) {
@@ -67,6 +78,8 @@ class NativeTransport final : public StreamTransport {
  private:
   std::string command_;
   pid_t child_ = -1;
+  cpu_set_t own_cpus_;   // the simulator thread's cores before the firmware shared one
+  bool pinned_ = false;  // whether the simulator thread runs on the firmware's core
 };
 
 }  // namespace

@@ -99,6 +99,53 @@ TEST_F(CliTest, LinkParametersComeFromTheCommandLineAndAreCheckedLikeARobotFiles
       << o.output;
 }
 
+TEST_F(CliTest, TheContestRunsInTheMazeThatMazeNames) {
+  const Outcome o =
+      Unimouse("run --scenario micromouse --maze japan2019 --duration 0.2 --out " + dir_.string());
+  ASSERT_EQ(o.exit_code, 1) << o.output;  // undecided after 0.2 s
+  std::ifstream in(dir_ / "result.json");
+  const nlohmann::json result = nlohmann::json::parse(in);
+  EXPECT_EQ(result["scenario"]["params"]["maze"], "japan2019");
+  EXPECT_TRUE(result["maze"].get<std::string>().ends_with("mazes/japan2019.txt")) << result["maze"];
+  EXPECT_EQ(result["scenario"]["reason"], "not decided when the run ended at 0.200 s");
+}
+
+TEST_F(CliTest, MazeIsRefusedForAScenarioThatBuildsItsOwnWorld) {
+  const Outcome o =
+      Unimouse("run --scenario speed_control --maze japan2019 --out " + dir_.string());
+  EXPECT_EQ(o.exit_code, 2) << o.output;
+  EXPECT_NE(o.output.find("--maze japan2019: scenario 'speed_control' builds its own world and "
+                          "has no maze parameter"),
+            std::string::npos)
+      << o.output;
+}
+
+TEST_F(CliTest, MazeAndSetMazeNamingDifferentMazesAreRefused) {
+  const Outcome o = Unimouse("run --scenario micromouse --maze japan2019 --set maze=japan2018");
+  EXPECT_EQ(o.exit_code, 2) << o.output;
+  EXPECT_NE(o.output.find("name different mazes"), std::string::npos) << o.output;
+}
+
+TEST_F(CliTest, ARunInWhichNothingDrivesTheRobotSaysSo) {
+  const Outcome o = Unimouse("run --maze none --duration 0.05 --out " + dir_.string());
+  EXPECT_EQ(o.exit_code, 0) << o.output;
+  EXPECT_NE(o.output.find("warning: nothing drives the robot"), std::string::npos) << o.output;
+}
+
+TEST_F(CliTest, NoPictureOfTheFirmwaresMazeWhenNoFirmwareReportedOne) {
+  const Outcome o = Unimouse("run --duration 0.05 --link pty --out " + dir_.string());
+  EXPECT_EQ(o.exit_code, 0) << o.output;
+  EXPECT_EQ(o.output.find("maze as the firmware saw it"), std::string::npos) << o.output;
+  EXPECT_FALSE(fs::exists(dir_ / "maze.png"));
+  EXPECT_TRUE(fs::exists(dir_ / "result.json"));
+}
+
+TEST_F(CliTest, ANegativeSeedIsRefused) {
+  const Outcome o = Unimouse("run --seed -1 --out " + dir_.string());
+  EXPECT_EQ(o.exit_code, 2) << o.output;
+  EXPECT_NE(o.output.find("the seed is a whole number, 0 or more"), std::string::npos) << o.output;
+}
+
 TEST_F(CliTest, RunOnAnOpenFloor) {
   const Outcome o = Unimouse("run --maze none --duration 0.1 --out " + dir_.string());
   ASSERT_EQ(o.exit_code, 0) << o.output;

@@ -2,6 +2,7 @@
 // The link's one list of transports: the help and the error for an unknown scheme show every
 // entry, and checking a robot file opens none of them.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -48,6 +49,29 @@ TEST(LinkTransportsTest, EachTransportSaysWhetherItPacesFromTheFirstStepAndItsLi
   const auto native = link::OpenTransport(std::string("native:") + UNIMOUSE_TEST_FIRMWARE);
   EXPECT_TRUE(native->lockstep_from_start());
   EXPECT_EQ(native->line_baud(), 0);
+}
+
+// the cores a thread may run on, as the kernel lists them ("0-1", "3")
+std::string AllowedCores(const std::string& status_text) {
+  const size_t at = status_text.find("Cpus_allowed_list:");
+  return at == std::string::npos ? "" : status_text.substr(at, status_text.find('\n', at) - at);
+}
+
+TEST(LinkTransportsTest, ANativeFirmwareSharesTheSimulatorsCoreWhileTheLinkIsOpen) {
+  const std::string dir = testing::FreshDirectory("native_core");
+  const std::string seen = dir + "/firmware_status";
+  WriteTextFile(dir + "/firmware.sh", "cat /proc/self/status > " + seen + ".part && mv " + seen +
+                                          ".part " + seen + "\nexec cat\n");
+  const std::string before = AllowedCores(ReadTextFile("/proc/thread-self/status"));
+  {
+    const auto native = link::OpenTransport("native:/bin/sh " + dir + "/firmware.sh");
+    for (int i = 0; i < 500 && !std::filesystem::exists(seen); ++i) ::usleep(10000);
+    const std::string shared = AllowedCores(ReadTextFile("/proc/thread-self/status"));
+    // one core, no list or range, and the firmware's is the same one
+    EXPECT_EQ(shared.find_first_of(",-"), std::string::npos) << shared;
+    EXPECT_EQ(AllowedCores(ReadTextFile(seen)), shared);
+  }
+  EXPECT_EQ(AllowedCores(ReadTextFile("/proc/thread-self/status")), before);
 }
 
 TEST(LinkTransportsTest, TheProtocolDocumentListsEveryTransportInTheTablesWords) {

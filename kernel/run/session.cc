@@ -330,7 +330,7 @@ SessionResult Session::Finish(const nlohmann::json& extra) {
   const int signal = InterruptSignal();
   if (signal != 0 && fault_.empty()) {
     interrupted_ = std::string("interrupted by ") + (signal == SIGINT ? "SIGINT" : "SIGTERM") +
-                   " at " + std::to_string(kernel_->state().data().time) + " s";
+                   " at " + Seconds3(kernel_->state().data().time) + " s";
   }
   try {
     if (scenario_ && fault_.empty() && interrupted_.empty()) scenario_->Finish();

@@ -224,12 +224,16 @@ void Scenario::Spend(lua_State* L, int level, int64_t instructions) {
     const double allowed =
         kScenarioInstructionBudget +
         (kernel_ != nullptr ? kernel_->state().data().time * kScenarioInstructionsPerSecond : 0);
-    if (instructions_ <= kScenarioInstructionBudget && run_instructions_ <= allowed) return;
-    budget_error_ = ScriptLine(L, level) +
-                    (instructions_ > kScenarioInstructionBudget
-                         ? "instruction budget exhausted: a loop that never waits (use sim.wait)?"
-                         : "instruction budget exhausted: more than 100 million instructions per "
-                           "simulated second on average");
+    if (instructions_ <= kScenarioInstructionBudget &&
+        static_cast<double>(run_instructions_) <= allowed) {
+      return;
+    }
+    budget_error_ =
+        ScriptLine(L, level) + "instruction budget exhausted: " +
+        (instructions_ > kScenarioInstructionBudget
+             ? std::string("a loop that never waits (use sim.wait)?")
+             : "more than " + std::to_string(std::lround(kScenarioInstructionsPerSecond / 1e6)) +
+                   " million instructions per simulated second on average");
   }
   // once spent, the budget raises at every hook until the host is back in control
   throw ScriptError(budget_error_, /*located=*/true);

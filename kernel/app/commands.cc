@@ -141,6 +141,7 @@ int RunOnce(const RunOptions& options, Viewer* viewer) {
 }  // namespace
 
 int RunCommand(const RunOptions& options) {
+  InstallInterruptHandlers();
   if (!options.view) return RunOnce(options, nullptr);
   const std::string what = options.scenario.empty() ? "run" : "scenario " + options.scenario;
   Viewer viewer("unimouse: " + what, options.out_dir, options.view_frames);

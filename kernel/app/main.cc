@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // unimouse: a micromouse and mobile-robot simulator.
 #include <CLI/CLI.hpp>
+#include <csignal>
 #include <cstdio>
 #include <exception>
 
@@ -37,6 +38,9 @@ std::string LinkHelp() {
 
 int main(int argc, char** argv) {
   using namespace unimouse;
+  // a firmware or a reader that closes its end of a pipe is an error to report, not the end of
+  // the process
+  std::signal(SIGPIPE, SIG_IGN);
   CLI::App app{"unimouse " UNIMOUSE_VERSION ": a micromouse and mobile-robot simulator"};
   app.require_subcommand(1);
   app.set_version_flag("--version", UNIMOUSE_VERSION);

@@ -28,6 +28,11 @@ using nlohmann::json;
 
 const char* kHeadingNames[] = {"east", "north", "west", "south"};
 
+// a file name or maze text that is not UTF-8 is shown with replacement characters, not refused
+void PrintJson(const json& value) {
+  std::cout << value.dump(2, ' ', false, json::error_handler_t::replace) << "\n";
+}
+
 // every maze file the arguments name: files as given, directories searched for *.txt
 std::vector<std::string> MazeFiles(const std::vector<std::string>& arguments) {
   std::vector<std::string> files;
@@ -156,7 +161,7 @@ int MazeShow(const MazeOptions& o) {
                 kHeadingNames[static_cast<int>(maze.start_heading())], maze.goals().size(),
                 FormatMazeText(maze).c_str());
   }
-  if (o.json) std::cout << all.dump(2) << "\n";
+  if (o.json) PrintJson(all);
   return kExitPassed;
 }
 
@@ -213,7 +218,7 @@ int MazeCheck(const MazeOptions& o) {
     for (const auto& row : summary.rows) {
       all.push_back({{"file", row[0]}, {"status", row[3]}, {"reason", row[4]}});
     }
-    std::cout << all.dump(2) << "\n";
+    PrintJson(all);
   } else if (files.size() > 1) {
     std::printf("%zu mazes checked, %d with errors\n", files.size(), bad);
   }
@@ -262,7 +267,7 @@ int MazeSolve(const MazeOptions& o) {
           ActionText(traditional, maze.start_heading()).c_str());
     }
   }
-  if (o.json) std::cout << all.dump(2) << "\n";
+  if (o.json) PrintJson(all);
   if (!o.json && files.size() > 1) {
     std::printf("%-50s %9s %12s\n", "maze", "modified", "traditional");
     for (const auto& row : summary.rows) {
@@ -344,7 +349,7 @@ int MazeExplore(const MazeOptions& o) {
       std::printf("  stopped after %zu trips without proving the best path\n", e.trips.size());
     }
   }
-  if (o.json) std::cout << all.dump(2) << "\n";
+  if (o.json) PrintJson(all);
   if (!o.json && files.size() > 1) {
     int optimal = 0;
     for (const auto& row : summary.rows) optimal += row[2] == "yes";

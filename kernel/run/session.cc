@@ -1,7 +1,10 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "session.h"
 
+#include <unistd.h>
+
 #include <cmath>
+#include <csignal>
 #include <filesystem>
 
 #include "install_paths.h"
@@ -70,7 +73,38 @@ void WriteRecord(const std::string& out_dir, const nlohmann::json& record) {
   fs::rename(temporary, path);
 }
 
+// the record of a run that could not start or go on: why, and the traceback of a script error
+void WriteErrorRecord(const SessionOptions& options, const std::string& error, int exit_code,
+                      const std::string& traceback) {
+  nlohmann::json record = {
+      {"status", "error"}, {"error", error}, {"exit_code", exit_code}, {"seed", options.seed}};
+  if (!traceback.empty()) record["traceback"] = traceback;
+  try {
+    WriteRecord(options.out_dir, record);
+  } catch (const std::exception&) {
+    // an output directory that cannot be written: the error itself is the one to report
+  }
+}
+
+volatile std::sig_atomic_t interrupt_signal = 0;
+
+void OnInterrupt(int signal) {
+  // a second signal: the run did not reach a step boundary in time
+  if (interrupt_signal != 0) ::_exit(kExitRuntimeFault);
+  interrupt_signal = signal;
+}
+
 }  // namespace
+
+void InstallInterruptHandlers() {
+  struct sigaction action = {};
+  action.sa_handler = OnInterrupt;
+  sigemptyset(&action.sa_mask);
+  sigaction(SIGINT, &action, nullptr);
+  sigaction(SIGTERM, &action, nullptr);
+}
+
+int InterruptSignal() { return interrupt_signal; }
 
 std::unique_ptr<Session> Session::Open(const SessionOptions& options) {
   std::unique_ptr<Session> session(new Session(options));
@@ -81,18 +115,9 @@ std::unique_ptr<Session> Session::Open(const SessionOptions& options) {
   } catch (const std::exception& e) {
     // a run that could not start says so where its result would be
     const bool bad_input = dynamic_cast<const InputError*>(&e) != nullptr;
-    nlohmann::json record = {{"status", "error"},
-                             {"error", e.what()},
-                             {"exit_code", bad_input ? kExitBadInput : kExitRuntimeFault},
-                             {"seed", options.seed}};
-    if (session->scenario_ && !session->scenario_->traceback().empty()) {
-      record["traceback"] = session->scenario_->traceback();
-    }
-    try {
-      WriteRecord(options.out_dir, record);
-    } catch (const std::exception&) {
-      // an output directory that cannot be written: the error above is the one to report
-    }
+    const auto* script = dynamic_cast<const ScriptFault*>(&e);
+    WriteErrorRecord(options, e.what(), bad_input ? kExitBadInput : kExitRuntimeFault,
+                     script != nullptr ? script->traceback() : "");
     throw;
   }
   return session;
@@ -124,7 +149,11 @@ void Session::Assemble() {
       overrides[set.substr(0, eq)] = set.substr(eq + 1);
     }
     scenario_file_ = ResolveDataFile(o.scenario, "scenarios/", ".lua");
-    scenario_ = Scenario::Load(scenario_file_, overrides, o.seed);
+    // a script stuck in C for good: the process ends, and its result says why
+    const auto on_hang = [this](const std::string& why) {
+      WriteErrorRecord(options_, why, kExitRuntimeFault, "");
+    };
+    scenario_ = Scenario::Load(scenario_file_, overrides, o.seed, on_hang);
     if (o.maze_given) {
       // a scenario's maze is its parameter `maze`: --maze sets it, as --set maze= would
       UNIMOUSE_THROW_UNLESS(scenario_->params().contains("maze"),
@@ -134,7 +163,7 @@ void Session::Assemble() {
                             "--maze " + o.maze + " and --set maze=" + overrides["maze"] +
                                 " name different mazes: give one");
       overrides["maze"] = o.maze;
-      scenario_ = Scenario::Load(scenario_file_, overrides, o.seed);
+      scenario_ = Scenario::Load(scenario_file_, overrides, o.seed, on_hang);
     }
     world = scenario_->BuildWorld();
     maze_ = std::move(world.maze);
@@ -250,7 +279,7 @@ void Session::Step() {
 }
 
 bool Session::Over() const {
-  return !fault_.empty() || kernel_->state().step() >= steps_ ||
+  return !fault_.empty() || InterruptSignal() != 0 || kernel_->state().step() >= steps_ ||
          (scenario_ && scenario_->finished());
 }
 
@@ -260,6 +289,7 @@ std::vector<std::string> Session::hud() const {
 
 std::string Session::verdict() const {
   if (!fault_.empty()) return "error: " + fault_;
+  if (InterruptSignal() != 0) return "interrupted";
   if (!scenario_) return "";
   const ScenarioOutcome& o = scenario_->outcome();
   return o.status + (o.reason.empty() ? "" : ": " + o.reason);
@@ -296,8 +326,14 @@ void Session::DrawFirmwareMaze() {
 SessionResult Session::Finish(const nlohmann::json& extra) {
   UNIMOUSE_DEMAND(!finished_);
   finished_ = true;
+  // a signal stops the run between two steps: what the result says, and exit code 3
+  const int signal = InterruptSignal();
+  if (signal != 0 && fault_.empty()) {
+    interrupted_ = std::string("interrupted by ") + (signal == SIGINT ? "SIGINT" : "SIGTERM") +
+                   " at " + Seconds3(kernel_->state().data().time) + " s";
+  }
   try {
-    if (scenario_ && fault_.empty()) scenario_->Finish();
+    if (scenario_ && fault_.empty() && interrupted_.empty()) scenario_->Finish();
   } catch (const RuntimeFault& e) {
     fault_ = e.what();
   }
@@ -317,8 +353,9 @@ SessionResult Session::Finish(const nlohmann::json& extra) {
   r["maze"] = maze_file_.empty() ? nlohmann::json(nullptr) : nlohmann::json(maze_file_);
   r["seed"] = options_.seed;
   r["duration_s"] = duration_s_;
-  r["status"] = fault_.empty() ? "completed" : "fault";
+  r["status"] = !fault_.empty() ? "fault" : !interrupted_.empty() ? "interrupted" : "completed";
   if (!fault_.empty()) r["error"] = fault_;
+  if (!interrupted_.empty()) r["error"] = interrupted_;
   r["sim_time_s"] = d.time;
   r["steps"] = kernel_->state().step();
   r["wall_time_s"] = wall_s;
@@ -332,20 +369,23 @@ SessionResult Session::Finish(const nlohmann::json& extra) {
   r["robot_pose"] = {{"x_m", pose.x_m}, {"y_m", pose.y_m}, {"yaw_rad", pose.yaw_rad}};
   r["collision_proxy_overflows"] = kernel_->world().proxy_overflows();
   SessionResult result;
-  result.exit_code = fault_.empty() ? kExitPassed : kExitRuntimeFault;
+  const bool ended = fault_.empty() && interrupted_.empty();
+  result.exit_code = ended ? kExitPassed : kExitRuntimeFault;
   if (scenario_) {
     ScenarioOutcome outcome = scenario_->outcome();
     if (outcome.status == "running") {
-      outcome.status = fault_.empty() ? "failed" : "error";
-      outcome.reason =
-          fault_.empty() ? "not decided when the run ended at " + Seconds3(d.time) + " s" : fault_;
+      outcome.status = !fault_.empty() ? "error" : !interrupted_.empty() ? "interrupted" : "failed";
+      outcome.reason = !fault_.empty() ? fault_
+                       : !interrupted_.empty()
+                           ? interrupted_
+                           : "not decided when the run ended at " + Seconds3(d.time) + " s";
     }
     r["scenario"] = {{"name", scenario_->name()},     {"file", scenario_file_},
                      {"params", scenario_->params()}, {"status", outcome.status},
                      {"reason", outcome.reason},      {"scores", outcome.scores},
                      {"hud", scenario_->hud()}};
     if (!scenario_->traceback().empty()) r["scenario"]["traceback"] = scenario_->traceback();
-    if (fault_.empty()) result.exit_code = outcome.status == "passed" ? kExitPassed : kExitFailed;
+    if (ended) result.exit_code = outcome.status == "passed" ? kExitPassed : kExitFailed;
   }
   if (pace_) r["real_time_pacing"] = pacer_->Report();
   if (pictures_->written() > 0) {

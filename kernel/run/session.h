@@ -29,6 +29,14 @@
 
 namespace unimouse {
 
+/// Makes SIGINT and SIGTERM end every run at its next step boundary: Over() is then true and
+/// the result says "interrupted" (exit code 3). A second signal, for a run that cannot reach a
+/// step boundary, ends the process at once with exit code 3.
+void InstallInterruptHandlers();
+
+/// The signal that asked runs to stop, or 0.
+int InterruptSignal();
+
 /// Everything a run is made of; what `unimouse run` takes, parsed.
 struct SessionOptions {
   std::string robot = "unimouse";  ///< robot file or bundled robot name
@@ -75,7 +83,7 @@ class Session {
   /// Advances one tick, with its pictures, paced to the wall clock where asked. A fault (a
   /// component, the scenario, the firmware or MuJoCo) ends the run: Over() is then true.
   void Step();
-  /// Whether the run is over: out of time, decided by the scenario, or faulted.
+  /// Whether the run is over: out of time, decided by the scenario, faulted, or interrupted.
   bool Over() const;
   /// Ends the run once: the scenario's finish, the last pictures, every component's finish, the
   /// maze as the firmware saw it; writes result.json (with `extra` merged in) atomically.
@@ -116,6 +124,7 @@ class Session {
   std::unique_ptr<RealTimePacer> pacer_;
   bool pace_ = false;
   std::string fault_;
+  std::string interrupted_;  // by which signal, when
   std::string no_pictures_;  // why not even final.png could be drawn
   bool finished_ = false;
   std::chrono::steady_clock::time_point start_;

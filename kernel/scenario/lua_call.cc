@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 
 namespace unimouse {
@@ -41,6 +42,35 @@ int CallBody(lua_State* L) {
 
 }  // namespace
 
+void* LuaMemory::Allocate(void* ud, void* block, size_t old_size, size_t new_size) {
+  auto& m = *static_cast<LuaMemory*>(ud);
+  // with no block, old_size is the kind of object, not a size
+  const size_t held = block != nullptr ? old_size : 0;
+  if (new_size == 0) {
+    std::free(block);
+    m.in_use_bytes_ -= held;
+    return nullptr;
+  }
+  const size_t growth = new_size > held ? new_size - held : 0;
+  if (m.script_running_ && growth > 0) {
+    if (m.volume_spent_ || m.volume_used_bytes_ + growth > m.volume_bytes_) {
+      m.volume_spent_ = true;
+      return nullptr;
+    }
+    if (m.in_use_bytes_ + growth > m.limit_bytes_) return nullptr;
+  }
+  void* grown = std::realloc(block, new_size);
+  if (grown == nullptr) return nullptr;
+  m.in_use_bytes_ = m.in_use_bytes_ - held + new_size;
+  m.volume_used_bytes_ += growth;
+  return grown;
+}
+
+LuaMemory* LuaMemory::Of(lua_State* L) {
+  void* ud = nullptr;
+  return lua_getallocf(L, &ud) == &LuaMemory::Allocate ? static_cast<LuaMemory*>(ud) : nullptr;
+}
+
 void PushLuaFunction(lua_State* L, LuaBody body, const char* name, const char* prefix) {
   std::memcpy(lua_newuserdatauv(L, sizeof(body), 0), &body, sizeof(body));
   lua_pushfstring(L, "%s%s", prefix, name);
@@ -50,9 +80,14 @@ void PushLuaFunction(lua_State* L, LuaBody body, const char* name, const char* p
 int RunBody(lua_State* L, LuaBody body, const char* name) {
   char message[kMessageSize];
   bool located = false;
+  // the host's work is never refused memory: a refusal inside a body would longjmp out of it
+  LuaMemory* memory = LuaMemory::Of(L);
+  const bool script_was_running = memory != nullptr && memory->SetScriptRunning(false);
   try {
     LuaCall call(L, name);
-    return body(call);
+    const int results = body(call);
+    if (memory != nullptr) memory->SetScriptRunning(script_was_running);
+    return results;
   } catch (const ScriptError& e) {
     located = e.located();
     KeepMessage(e.what(), message);
@@ -69,6 +104,7 @@ int RunBody(lua_State* L, LuaBody body, const char* name) {
   } else {
     lua_pushstring(L, message);
   }
+  if (memory != nullptr) memory->SetScriptRunning(script_was_running);
   return lua_error(L);
 }
 
@@ -128,11 +164,13 @@ lua_Integer LuaCall::CheckInteger(int arg) const {
   return value;
 }
 
-std::string LuaCall::CheckString(int arg) const {
+std::string LuaCall::CheckString(int arg) const { return std::string(CheckText(arg)); }
+
+std::string_view LuaCall::CheckText(int arg) const {
   if (!lua_isstring(L_, arg)) FailType(arg, "string");
   size_t size = 0;
   const char* text = lua_tolstring(L_, arg, &size);
-  return std::string(text, size);
+  return {text, size};
 }
 
 std::string LuaCall::OptString(int arg, const std::string& fallback) const {
@@ -206,7 +244,12 @@ std::string LuaCall::ToText(int index) const {
 }
 
 void LuaCall::ProtectedCall(int nargs, int nresults) const {
-  if (lua_pcall(L_, nargs, nresults, 0) == LUA_OK) return;
+  // the function called may be the script's own, under its limits
+  LuaMemory* memory = LuaMemory::Of(L_);
+  const bool script_was_running = memory != nullptr && memory->SetScriptRunning(true);
+  const int status = lua_pcall(L_, nargs, nresults, 0);
+  if (memory != nullptr) memory->SetScriptRunning(script_was_running);
+  if (status == LUA_OK) return;
   std::string message = ErrorText(L_, -1);
   lua_pop(L_, 1);
   throw ScriptError(message, /*located=*/true);

@@ -8,14 +8,17 @@
 // Bodies keep to one rule: they never raise a Lua error themselves. They read their arguments
 // through LuaCall, whose readers throw, read tables raw (no metamethods run), and run Lua code
 // only under protection (LuaCall::ToText). The Lua API calls left in a body push plain values,
-// which can fail only when memory runs out.
+// which can fail only when the machine's memory runs out: a state's own limits (LuaMemory)
+// never refuse a body.
 #ifndef UNIMOUSE_SCENARIO_LUA_CALL_H_
 #define UNIMOUSE_SCENARIO_LUA_CALL_H_
 
 #include <lua5.4/lua.h>
 
+#include <cstddef>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 namespace unimouse {
 
@@ -35,6 +38,50 @@ class ScriptError : public std::runtime_error {
 
  private:
   bool located_;
+};
+
+/// The memory of one Lua state, made with lua_newstate(LuaMemory::Allocate, &memory): what it
+/// holds at most (`limit_bytes`), and how much a script may allocate in all between two resets
+/// (`volume_bytes`: building strings is work the instruction count does not see). Limits hold
+/// only while a script runs: the host's own allocations (RunBody's bodies, the host between
+/// calls) are never refused, so a refusal is always a Lua memory error raised in script code,
+/// never a longjmp out of C++.
+class LuaMemory {
+ public:
+  LuaMemory(size_t limit_bytes, size_t volume_bytes)
+      : limit_bytes_(limit_bytes), volume_bytes_(volume_bytes) {}
+  LuaMemory(const LuaMemory&) = delete;
+  LuaMemory& operator=(const LuaMemory&) = delete;
+
+  /// The lua_Alloc: `ud` is the LuaMemory.
+  static void* Allocate(void* ud, void* block, size_t old_size, size_t new_size);
+  /// The state's LuaMemory, or null when it allocates some other way.
+  static LuaMemory* Of(lua_State* L);
+
+  /// Sets whether script code runs now (limits hold), returning the previous setting.
+  bool SetScriptRunning(bool running) {
+    const bool was = script_running_;
+    script_running_ = running;
+    return was;
+  }
+  /// Starts a new allocation volume, as the host calls into Lua again.
+  void ResetVolume() {
+    volume_used_bytes_ = 0;
+    volume_spent_ = false;
+  }
+  /// Whether the volume ran out since the last reset (and allocations are refused since).
+  bool volume_spent() const { return volume_spent_; }
+  size_t limit_bytes() const { return limit_bytes_; }
+  size_t volume_bytes() const { return volume_bytes_; }
+  size_t in_use_bytes() const { return in_use_bytes_; }
+
+ private:
+  const size_t limit_bytes_;
+  const size_t volume_bytes_;
+  size_t in_use_bytes_ = 0;
+  size_t volume_used_bytes_ = 0;
+  bool volume_spent_ = false;
+  bool script_running_ = false;
 };
 
 class LuaCall;
@@ -97,6 +144,8 @@ class LuaCall {
   lua_Integer CheckInteger(int arg) const;
   /// Returns argument `arg` as a string; a number counts, as in Lua.
   std::string CheckString(int arg) const;
+  /// Returns argument `arg` as a string, in place: valid while the argument is on the stack.
+  std::string_view CheckText(int arg) const;
   /// Returns argument `arg` as a string, or `fallback` when it is absent or nil.
   std::string OptString(int arg, const std::string& fallback) const;
 

@@ -21,8 +21,144 @@ end
 -- the sandbox: the safe parts of the standard library; no io, os, load, dofile or require
 for _, name in ipairs { "assert", "error", "ipairs", "pairs", "next", "select", "tostring",
                         "tonumber", "type", "rawequal", "rawget", "rawlen", "rawset",
-                        "setmetatable", "getmetatable" } do
+                        "getmetatable" } do
   env[name] = _G[name]
+end
+
+-- work done inside C, where the instruction count does not see it, stays bounded. A finalizer
+-- (__gc) runs with no count at all, so no table gets one; n empty copies are nothing, made
+-- here rather than n times in C; the elements table.move copies, table.insert and
+-- table.remove shift and table.sort orders count as instructions. Whatever C builds is
+-- allocated, and the allocations are counted too.
+local setmetatable, rep = setmetatable, string.rep
+local move, tinsert, tremove, sort = table.move, table.insert, table.remove, table.sort
+local charge = host.charge
+local function size(t) return type(t) == "table" and rawlen(t) or 0 end
+local function after(t, pos) return math.type(pos) and math.max(size(t) - pos, 0) or 0 end
+-- the results of pcall(library function, ...) for the wrapper `name`, tail-called in its
+-- place: an error the library raised itself has no place (pcall called it), so it gets the
+-- script's line and the name the script called; a memory error and the script's own errors
+-- pass on as they are
+local function relay(name, ok, ...)
+  if ok then return ... end
+  local message = ...
+  if type(message) == "string" and message ~= "not enough memory" and
+     not message:find("^[^\n]-:%d+: ") then
+    error((message:gsub("to '%?'", "to '" .. name .. "'", 1)), 2)
+  end
+  error(message, 0)
+end
+function env.setmetatable(t, metatable)
+  if type(metatable) == "table" and rawget(metatable, "__gc") ~= nil then
+    error("setmetatable: __gc (a finalizer) is not available to scenarios", 2)
+  end
+  return relay("setmetatable", pcall(setmetatable, t, metatable))
+end
+function string.rep(s, n, sep)
+  if s == "" and (sep == nil or sep == "") and math.type(n) then return "" end
+  return relay("string.rep", pcall(rep, s, n, sep))
+end
+function table.move(a1, f, e, t, a2)
+  if math.type(f) and math.type(e) and e >= f then charge(e * 1.0 - f + 1) end
+  return relay("table.move", pcall(move, a1, f, e, t, a2))
+end
+function table.insert(t, ...)
+  if select("#", ...) >= 2 then charge(after(t, ...)) end
+  return relay("table.insert", pcall(tinsert, t, ...))
+end
+function table.remove(t, ...)
+  if select("#", ...) >= 1 then charge(after(t, ...)) end
+  return relay("table.remove", pcall(tremove, t, ...))
+end
+function table.sort(t, ...)
+  charge(size(t))
+  return relay("table.sort", pcall(sort, t, ...))
+end
+
+-- patterns: string.find and string.match are the host's, with every step of the matcher
+-- counted; string.gmatch and string.gsub are built here on the host's search
+local search, pack, unpack, gsub = host.pattern_search, table.pack, table.unpack, string.gsub
+local function text(value, arg, name)
+  local kind = type(value)
+  if kind == "string" then return value end
+  if kind == "number" then return tostring(value) end
+  error(format("bad argument #%d to '%s' (string expected, got %s)", arg, name,
+               value == nil and "no value" or kind), 3)
+end
+local function start(init, length)  -- as Lua reads a start position, 1-based
+  if init > 0 then return init end
+  if init == 0 or init < -length then return 1 end
+  return length + init + 1
+end
+string.find, string.match = host["string.find"], host["string.match"]
+function string.gmatch(s, pattern, init)
+  s, pattern = text(s, 1, "string.gmatch"), text(pattern, 2, "string.gmatch")
+  if init ~= nil and math.type(init) ~= "integer" then
+    error("bad argument #3 to 'string.gmatch' (number has no integer representation)", 2)
+  end
+  local from, skip = math.min(start(init or 1, #s), #s + 1), 0
+  return function()
+    local found = pack(search(s, pattern, from, false, skip))
+    if found[1] == nil then return nil end
+    from, skip = found[2] + 1, found[2] + 1
+    if found.n > 2 then return unpack(found, 3, found.n) end
+    return s:sub(found[1], found[2])
+  end
+end
+function string.gsub(s, pattern, replacement, most)
+  s, pattern = text(s, 1, "string.gsub"), text(pattern, 2, "string.gsub")
+  local kind = type(replacement)
+  if kind == "number" then replacement, kind = tostring(replacement), "string" end
+  if kind ~= "string" and kind ~= "table" and kind ~= "function" then
+    error(format("bad argument #3 to 'string.gsub' (string/function/table expected, got %s)",
+                 replacement == nil and "no value" or kind), 2)
+  end
+  if most ~= nil and math.type(most) ~= "integer" then
+    error("bad argument #4 to 'string.gsub' (number expected, got " .. type(most) .. ")", 2)
+  end
+  most = most or math.maxinteger
+  local anchored = pattern:sub(1, 1) == "^"
+  if anchored then pattern = pattern:sub(2) end
+  local parts, count, from, skip = {}, 0, 1, 0
+  while count < most do
+    local found = pack(search(s, pattern, from, anchored, skip))
+    if found[1] == nil then break end
+    local whole = s:sub(found[1], found[2])
+    local first = found.n > 2 and found[3] or whole
+    local value
+    if kind == "string" then
+      value = gsub(replacement, "%%(.?)", function(c)
+        if c == "%" then return "%" end
+        local index = tonumber(c)
+        if c == "" or index == nil or math.type(index) ~= "integer" then
+          error("invalid use of '%' in replacement string", 4)
+        end
+        if index == 0 or (index == 1 and found.n == 2) then return whole end
+        if index + 2 > found.n then
+          error(format("invalid capture index %%%d in replacement string", index), 4)
+        end
+        return tostring(found[index + 2])
+      end)
+    elseif kind == "table" then
+      value = replacement[first]
+    elseif found.n > 2 then
+      value = replacement(unpack(found, 3, found.n))
+    else
+      value = replacement(whole)
+    end
+    if value == nil or value == false then
+      value = whole
+    elseif type(value) ~= "string" and type(value) ~= "number" then
+      error("invalid replacement value (a " .. type(value) .. ")", 2)
+    end
+    parts[#parts + 1] = s:sub(from, found[1] - 1)
+    parts[#parts + 1] = value
+    count = count + 1
+    from, skip = found[2] + 1, found[2] + 1
+    if anchored then break end
+  end
+  parts[#parts + 1] = s:sub(from)
+  return table.concat(parts), count
 end
 env.string, env.table, env.utf8 = string, table, utf8
 env.math = copy(math)

@@ -18,7 +18,6 @@ namespace unimouse {
 
 namespace {
 
-constexpr int kBudget = 20'000'000;  // instructions between two yields
 constexpr int kHookEvery = 1000;
 
 // first line of a Lua error, which starts with file:line
@@ -28,6 +27,13 @@ std::string Headline(const std::string& message) { return message.substr(0, mess
 int RefField(lua_State* L, int table, const char* key) {
   lua_getfield(L, table, key);
   return luaL_ref(L, LUA_REGISTRYINDEX);
+}
+
+// what a script that ran out of allocations is told
+std::string AllocationsSpent() {
+  return "allocation budget exhausted: more than " +
+         std::to_string(kScenarioAllocationBytes >> 20) +
+         " MiB allocated between two waits (strings built in a loop?)";
 }
 
 }  // namespace
@@ -45,13 +51,14 @@ Scenario::~Scenario() {
 
 std::unique_ptr<Scenario> Scenario::Load(const std::string& path,
                                          const std::map<std::string, std::string>& overrides,
-                                         uint64_t seed) {
+                                         uint64_t seed, Watchdog::Expiry on_hang) {
   static_assert(kNoRef == LUA_NOREF);
   std::unique_ptr<Scenario> s(new Scenario());
   s->file_ = path;
+  if (on_hang) s->SetWatchdog(kScenarioCallWallTimeS, std::move(on_hang));
   s->rng_ = RngStream(seed, "scenario");
   s->chunk_ = {ReadTextFile(path), "@" + path};
-  lua_State* L = s->L_ = luaL_newstate();
+  lua_State* L = s->L_ = lua_newstate(LuaMemory::Allocate, &s->memory_);
   UNIMOUSE_DEMAND(L != nullptr);
   // the API and the hook find their scenario here, from every thread of the state
   *static_cast<Scenario**>(lua_getextraspace(L)) = s.get();
@@ -205,16 +212,38 @@ int Scenario::Traceback(LuaCall& call) {
 }
 
 int Scenario::SpendInstructions(LuaCall& call) {
-  Scenario& s = Of(call.state());
-  if (s.budget_error_.empty()) {
-    s.instructions_ += kHookEvery;
-    if (s.instructions_ <= kBudget) return 0;
-    // where the script is: in a hook, level 0 is the running function
-    s.budget_error_ = ScriptLine(call.state(), 0) +
-                      "instruction budget exhausted: a loop that never waits (use sim.wait)?";
+  // where the script is: in a hook, level 0 is the running function
+  Of(call.state()).Spend(call.state(), 0, kHookEvery);
+  return 0;
+}
+
+void Scenario::Spend(lua_State* L, int level, int64_t instructions) {
+  if (Spent(L, level).empty()) {
+    instructions_ += instructions;
+    if (kernel_ != nullptr) run_instructions_ += instructions;
+    const double allowed =
+        kScenarioInstructionBudget +
+        (kernel_ != nullptr ? kernel_->state().data().time * kScenarioInstructionsPerSecond : 0);
+    if (instructions_ <= kScenarioInstructionBudget &&
+        static_cast<double>(run_instructions_) <= allowed) {
+      return;
+    }
+    budget_error_ =
+        ScriptLine(L, level) + "instruction budget exhausted: " +
+        (instructions_ > kScenarioInstructionBudget
+             ? std::string("a loop that never waits (use sim.wait)?")
+             : "more than " + std::to_string(std::lround(kScenarioInstructionsPerSecond / 1e6)) +
+                   " million instructions per simulated second on average");
   }
   // once spent, the budget raises at every hook until the host is back in control
-  throw ScriptError(s.budget_error_, /*located=*/true);
+  throw ScriptError(budget_error_, /*located=*/true);
+}
+
+const std::string& Scenario::Spent(lua_State* L, int level) {
+  if (budget_error_.empty() && memory_.volume_spent()) {
+    budget_error_ = ScriptLine(L, level) + AllocationsSpent();
+  }
+  return budget_error_;
 }
 
 void Scenario::CountInstructions(lua_State* L, lua_Debug*) {
@@ -224,6 +253,31 @@ void Scenario::CountInstructions(lua_State* L, lua_Debug*) {
 void Scenario::ResetBudget() {
   instructions_ = 0;
   budget_error_.clear();
+  memory_.ResetVolume();
+}
+
+int Scenario::RunScript(lua_State* thread, int nargs, int nresults, int handler, const char* what,
+                        int* nres) {
+  ResetBudget();
+  watchdog_.Arm(*what != '\0' ? what : "loading");
+  memory_.SetScriptRunning(true);
+  const int status = nres != nullptr ? lua_resume(thread, L_, nargs, nres)
+                                     : lua_pcall(thread, nargs, nresults, handler);
+  memory_.SetScriptRunning(false);
+  watchdog_.Disarm();
+  return status;
+}
+
+std::string Scenario::ErrorOf(lua_State* thread, int status) const {
+  const std::string message = ErrorText(thread, -1);
+  // a memory error has no place, only Lua's words (the prelude's wrappers pass them on as text):
+  // say which limit it met, keeping any traceback
+  if (status != LUA_ERRMEM && Headline(message) != "not enough memory") return message;
+  const std::string rest = message.substr(Headline(message).size());
+  if (!budget_error_.empty()) return budget_error_ + rest;
+  if (memory_.volume_spent()) return AllocationsSpent() + rest;
+  return "not enough memory: a scenario holds at most " +
+         std::to_string(kScenarioMemoryBytes >> 20) + " MiB" + rest;
 }
 
 void Scenario::SnapshotOn(const std::string& kind, const std::string& camera, int width,
@@ -248,8 +302,7 @@ end)
   lua_setfield(L, -2, "width");
   lua_pushinteger(L, height);
   lua_setfield(L, -2, "height");
-  ResetBudget();
-  if (lua_pcall(L, 2, 0, 0) != LUA_OK) {
+  if (RunScript(L, 2, 0, 0, "--snapshot-on") != LUA_OK) {
     lua_pop(L, 1);
     throw InputError("--snapshot-on " + kind +
                      ": not an event; the events are cell_entered, wall_contact, gate_crossed and "
@@ -262,11 +315,10 @@ void Scenario::Call(int nargs, int nresults, const char* what) {
   const int handler = lua_gettop(L_) - nargs;
   lua_pushcfunction(L_, HostStep<Traceback>);
   lua_insert(L_, handler);
-  ResetBudget();
-  const int status = lua_pcall(L_, nargs, nresults, handler);
+  const int status = RunScript(L_, nargs, nresults, handler, what);
   lua_remove(L_, handler);
   if (status != LUA_OK) {
-    const std::string message = ErrorText(L_, -1);
+    const std::string message = ErrorOf(L_, status);
     lua_settop(L_, 0);
     Throw(message, what);
   }
@@ -282,8 +334,8 @@ void Scenario::CallStep(int nargs, int nresults, const char* what) {
 void Scenario::Throw(const std::string& traceback, const char* what) {
   traceback_ = traceback;
   if (kernel_ != nullptr) kernel_->Log(UNIMOUSE_LOG_INFO, "scenario", traceback);
-  throw RuntimeFault(Headline(traceback) +
-                     (*what != '\0' ? " (in " + std::string(what) + ")" : ""));
+  throw ScriptFault(Headline(traceback) + (*what != '\0' ? " (in " + std::string(what) + ")" : ""),
+                    traceback);
 }
 
 ScenarioWorld Scenario::BuildWorld() {
@@ -334,10 +386,9 @@ void Scenario::Tick() {
     }
     if (lua_status(coroutine_) == LUA_YIELD || nargs == 1) {
       int nres = 0;
-      ResetBudget();
-      const int status = lua_resume(coroutine_, L_, nargs, &nres);
+      const int status = RunScript(coroutine_, nargs, 0, 0, "run", &nres);
       if (status != LUA_OK && status != LUA_YIELD) {
-        const std::string message = ErrorText(coroutine_, -1);
+        const std::string message = ErrorOf(coroutine_, status);
         luaL_traceback(L_, coroutine_, message.c_str(), 0);
         const std::string traceback = lua_tostring(L_, -1);
         lua_settop(L_, 0);

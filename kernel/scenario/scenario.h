@@ -11,12 +11,16 @@
 //
 // Sandboxed: no io, os, load, dofile or require; math.random is the run's seeded stream; print
 // goes to the run's log; an instruction budget, one per scenario, stops a script that never
-// yields, naming its file:line, and no pcall can catch it. A script error stops the run with
-// exit code 3, its Lua traceback kept. Every C++ function Lua calls crosses the Lua boundary of
-// lua_call.h, and loading uses the Lua API only inside protected calls.
+// yields, naming its file:line, and no pcall can catch it. Memory is bounded twice, through the
+// state's allocator: what a script holds at once, and how much it may allocate between two
+// yields (building strings is work the instruction count does not see). A script error stops the
+// run with exit code 3, its Lua traceback kept. Every C++ function Lua calls crosses the Lua
+// boundary of lua_call.h, and loading uses the Lua API only inside protected calls.
 #ifndef UNIMOUSE_SCENARIO_SCENARIO_H_
 #define UNIMOUSE_SCENARIO_SCENARIO_H_
 
+#include <cstddef>
+#include <cstdint>
 #include <functional>
 #include <map>
 #include <memory>
@@ -26,8 +30,11 @@
 #include <vector>
 
 #include "kernel.h"
+#include "lua_call.h"
 #include "maze.h"
 #include "rng.h"
+#include "unimouse/errors.h"
+#include "watchdog.h"
 #include "world.h"
 
 struct lua_State;
@@ -37,11 +44,36 @@ namespace unimouse {
 
 class LuaCall;
 
+/// The most memory a scenario's Lua state holds at once.
+inline constexpr size_t kScenarioMemoryBytes = size_t{256} << 20;
+/// The most a scenario may allocate in all between two calls from the host (two yields).
+inline constexpr size_t kScenarioAllocationBytes = size_t{2} << 30;
+/// Instructions a scenario may run between two calls from the host (two yields).
+inline constexpr int kScenarioInstructionBudget = 20'000'000;
+/// Instructions a scenario may run per simulated second once the run has started, on average
+/// (beyond one budget): no script spends a whole budget at every tick.
+inline constexpr double kScenarioInstructionsPerSecond = 100e6;
+
+/// The most wall time one call into a scenario may take (work in C the budget cannot see).
+inline constexpr double kScenarioCallWallTimeS = 10;
+
 /// The scenario API's level: new functions carry the level they came with.
 inline constexpr int kScenarioApiLevel = 2;
 
 /// Returns every `sim.*` function with its signature, meaning and level, a line each.
 std::string DescribeScenarioApi();
+
+/// A script error: a RuntimeFault (exit 3) whose message is the error's first line, carrying
+/// the whole Lua traceback.
+class ScriptFault : public RuntimeFault {
+ public:
+  ScriptFault(const std::string& message, std::string traceback)
+      : RuntimeFault(message), traceback_(std::move(traceback)) {}
+  const std::string& traceback() const { return traceback_; }
+
+ private:
+  std::string traceback_;
+};
 
 /// What a scenario's world phase asked for.
 struct ScenarioWorld {
@@ -62,10 +94,10 @@ class Scenario {
  public:
   /// Loads a scenario file with parameter overrides ("name" -> "value" from --set). Throws
   /// InputError for a missing file or a bad override (exit 2), RuntimeFault for a script error
-  /// (exit 3).
+  /// (exit 3). `on_hang`, if given, is the watchdog's expiry (see SetWatchdog), from loading on.
   static std::unique_ptr<Scenario> Load(const std::string& path,
                                         const std::map<std::string, std::string>& overrides,
-                                        uint64_t seed);
+                                        uint64_t seed, Watchdog::Expiry on_hang = {});
   ~Scenario();
 
   const std::string& name() const { return name_; }
@@ -92,6 +124,12 @@ class Scenario {
   using PictureTaker = std::function<std::string(const std::string& file, const std::string& camera,
                                                  int width, int height)>;
   void SetPictureTaker(PictureTaker taker) { picture_taker_ = std::move(taker); }
+  /// What to do when one call into the scenario runs longer than `limit_s` of wall time, on
+  /// the watchdog's thread, before the process ends with exit code 3 (watchdog.h). By default
+  /// the limit is kScenarioCallWallTimeS and the reason goes to stderr.
+  void SetWatchdog(double limit_s, Watchdog::Expiry expiry) {
+    watchdog_.Configure(limit_s, std::move(expiry));
+  }
   /// Saves a picture from `camera`, events/<kind>_<n>.png, each time the event `kind` happens
   /// (sim.on's kinds). Throws InputError for an unknown kind.
   void SnapshotOn(const std::string& kind, const std::string& camera, int width, int height);
@@ -121,7 +159,22 @@ class Scenario {
   template <int (*kStep)(LuaCall&)>
   void CallStep(int nargs, int nresults, const char* what);
   void ResetBudget();
-  // keeps and logs a Lua error's traceback, then throws its first line (file:line) as the fault
+  // runs the function under the `nargs` values on top of `thread` (lua_pcall with `handler`, or
+  // lua_resume for the run coroutine), under the script's limits
+  // `what` names the stage for the watchdog
+  int RunScript(lua_State* thread, int nargs, int nresults, int handler, const char* what,
+                int* nres = nullptr);
+  // the error of a failed RunScript on top of `thread`: a memory error carries no message of
+  // its own, so it is named by the limit it met
+  std::string ErrorOf(lua_State* thread, int status) const;
+  // counts `instructions` more, throwing the budget's error (placed at the script's line from
+  // stack `level` up) once it is spent
+  void Spend(lua_State* L, int level, int64_t instructions);
+  // the budget's error once instructions or allocations are spent, else ""; a first call after
+  // the allocations ran out places it at the script's line from stack `level` up
+  const std::string& Spent(lua_State* L, int level);
+  // keeps and logs a Lua error's traceback, then throws it as a ScriptFault whose message is its
+  // first line (file:line)
   [[noreturn]] void Throw(const std::string& traceback, const char* what);
 
   // the host's steps and hooks, bodies run through the Lua boundary (lua_call.h)
@@ -133,6 +186,8 @@ class Scenario {
   static int SpendInstructions(LuaCall& call);
   static void CountInstructions(lua_State* L, lua_Debug* ar);
 
+  LuaMemory memory_{kScenarioMemoryBytes, kScenarioAllocationBytes};
+  Watchdog watchdog_{kScenarioCallWallTimeS};
   lua_State* L_ = nullptr;
   std::string file_;
   std::string name_;
@@ -158,9 +213,10 @@ class Scenario {
   std::map<std::string, std::string> param_text_;
   double time_limit_s_ = 0;
   std::vector<std::string> hud_;
-  RngStream rng_;             // math.random
-  int instructions_ = 0;      // since the host last called into Lua
-  std::string budget_error_;  // once the budget is spent: what every later hook raises
+  RngStream rng_;                 // math.random
+  int64_t instructions_ = 0;      // since the host last called into Lua
+  int64_t run_instructions_ = 0;  // since the run started
+  std::string budget_error_;      // once the budget is spent: what every later hook raises
   std::unique_ptr<std::vector<Cell>> maze_goals_;  // of the maze the world loaded
   Cell maze_start_;
   std::string traceback_;

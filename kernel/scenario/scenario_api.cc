@@ -4,12 +4,17 @@
 #include <lua5.4/lauxlib.h>
 #include <lua5.4/lua.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <functional>
 #include <iterator>
 #include <numbers>
+#include <optional>
+#include <string_view>
 
 #include "install_paths.h"
+#include "lua_patterns.h"
 #include "rng.h"
 #include "scenario.h"
 #include "unimouse/errors.h"
@@ -317,20 +322,125 @@ struct ScenarioApi {
       hi = call.CheckInteger(2);
     }
     if (lo > hi) call.Fail("math.random: interval is empty");
-    lua_pushinteger(L, lo + static_cast<lua_Integer>(u * static_cast<double>(hi - lo + 1)));
+    // unsigned, so that the whole range of integers fits: hi - lo + 1 would overflow
+    const lua_Unsigned span = static_cast<lua_Unsigned>(hi) - static_cast<lua_Unsigned>(lo);
+    const auto offset =
+        std::min(static_cast<lua_Unsigned>(u * (static_cast<double>(span) + 1.0)), span);
+    lua_pushinteger(L, static_cast<lua_Integer>(static_cast<lua_Unsigned>(lo) + offset));
     return 1;
+  }
+
+  // string.find, string.match and the search under the prelude's string.gmatch and
+  // string.gsub: Lua's patterns, each step counted against the instruction budget
+  static std::function<void(int64_t)> Charger(const LuaCall& call) {
+    lua_State* L = call.state();
+    return [L](int64_t steps) { Scenario::Of(L).Spend(L, 1, steps); };
+  }
+  // a start position as Lua reads one (negative from the end, 0 as 1), 0-based; may be past
+  // the end
+  static size_t StartAt(const LuaCall& call, int arg, size_t length) {
+    const lua_Integer init = call.IsNoneOrNil(arg) ? 1 : call.CheckInteger(arg);
+    if (init > 0) return static_cast<size_t>(init) - 1;
+    if (init == 0 || init < -static_cast<lua_Integer>(length)) return 0;
+    return length - static_cast<size_t>(-init);
+  }
+  // pushes the captures, or the whole match when there are none and `whole` says so
+  static int PushCaptures(const LuaCall& call, std::string_view subject, const PatternMatch& m,
+                          bool whole) {
+    lua_State* L = call.state();
+    size_t bytes = whole && m.captures.empty() ? m.end - m.start : 0;
+    for (const PatternCapture& c : m.captures) bytes += c.length;
+    // the captures are the script's memory: a clean memory error rather than a limit passed
+    const LuaMemory* memory = LuaMemory::Of(L);
+    if (memory != nullptr && memory->in_use_bytes() + bytes > memory->limit_bytes()) {
+      throw ScriptError("not enough memory", /*located=*/true);
+    }
+    if (whole && m.captures.empty()) {
+      lua_pushlstring(L, subject.data() + m.start, m.end - m.start);
+      return 1;
+    }
+    for (const PatternCapture& c : m.captures) {
+      if (c.position) {
+        lua_pushinteger(L, static_cast<lua_Integer>(c.start) + 1);
+      } else {
+        lua_pushlstring(L, subject.data() + c.start, c.length);
+      }
+    }
+    return static_cast<int>(m.captures.size());
+  }
+  static int FindOrMatch(const LuaCall& call, bool find) {
+    const std::string_view subject = call.CheckText(1), pattern = call.CheckText(2);
+    const size_t from = StartAt(call, 3, subject.size());
+    lua_State* L = call.state();
+    if (from > subject.size()) {
+      lua_pushnil(L);
+      return 1;
+    }
+    if (find && (lua_toboolean(L, 4) || PatternMatcher::IsPlain(pattern))) {
+      const auto at = PatternMatcher::FindPlain(subject, pattern, from, Charger(call));
+      if (!at) {
+        lua_pushnil(L);
+        return 1;
+      }
+      lua_pushinteger(L, static_cast<lua_Integer>(*at) + 1);
+      lua_pushinteger(L, static_cast<lua_Integer>(*at + pattern.size()));
+      return 2;
+    }
+    const bool anchored = !pattern.empty() && pattern[0] == '^';
+    PatternMatcher matcher(subject, pattern.substr(anchored ? 1 : 0), Charger(call));
+    const std::optional<PatternMatch> m = matcher.Find(from, anchored);
+    if (!m) {
+      lua_pushnil(L);
+      return 1;
+    }
+    if (!find) return PushCaptures(call, subject, *m, /*whole=*/true);
+    lua_pushinteger(L, static_cast<lua_Integer>(m->start) + 1);
+    lua_pushinteger(L, static_cast<lua_Integer>(m->end));
+    return 2 + PushCaptures(call, subject, *m, /*whole=*/false);
+  }
+  static int StringFind(LuaCall& call) { return FindOrMatch(call, true); }
+  static int StringMatch(LuaCall& call) { return FindOrMatch(call, false); }
+  // search(s, pattern, from, anchored, skip_empty_at) -> start, end, captures... or nil:
+  // positions 1-based, `from` already within 1..#s+1, no '^' in the pattern (anchored says it)
+  static int PatternSearch(LuaCall& call) {
+    const std::string_view subject = call.CheckText(1), pattern = call.CheckText(2);
+    const lua_Integer from = call.CheckInteger(3), skip = call.CheckInteger(5);
+    lua_State* L = call.state();
+    if (from < 1 || static_cast<size_t>(from) > subject.size() + 1) {
+      lua_pushnil(L);
+      return 1;
+    }
+    PatternMatcher matcher(subject, pattern, Charger(call));
+    const std::optional<PatternMatch> m =
+        matcher.Find(static_cast<size_t>(from) - 1, lua_toboolean(L, 4) != 0,
+                     skip > 0 ? static_cast<size_t>(skip) - 1 : std::string_view::npos);
+    if (!m) {
+      lua_pushnil(L);
+      return 1;
+    }
+    lua_pushinteger(L, static_cast<lua_Integer>(m->start) + 1);
+    lua_pushinteger(L, static_cast<lua_Integer>(m->end));
+    return 2 + PushCaptures(call, subject, *m, /*whole=*/false);
   }
 
   // the instruction budget's error once it is spent, else nil: the prelude's protected calls
   // pass it on
   static int BudgetSpent(LuaCall& call) {
-    const Scenario& s = Self(call);
-    if (s.budget_error_.empty()) {
+    const std::string& spent = Self(call).Spent(call.state(), 1);
+    if (spent.empty()) {
       lua_pushnil(call.state());
     } else {
-      lua_pushstring(call.state(), s.budget_error_.c_str());
+      lua_pushstring(call.state(), spent.c_str());
     }
     return 1;
+  }
+
+  // work the prelude's wrappers leave to C (table.move's elements), counted as instructions
+  static int Charge(LuaCall& call) {
+    const double work = call.CheckNumber(1);
+    const double most = kScenarioInstructionBudget + 1.0;  // beyond it, any amount is spent
+    Self(call).Spend(call.state(), 1, static_cast<int64_t>(work > 0 ? std::min(work, most) : 0));
+    return 0;
   }
 };
 
@@ -404,6 +514,15 @@ constexpr ApiEntry kHost[] = {
      "take_firmware_lines() -> {{text, time_s}, ...}", "the firmware's log lines since last time"},
     {"budget_spent", ScenarioApi::BudgetSpent, 0, "budget_spent() -> message?",
      "the instruction budget's error once it is spent"},
+    {"charge", ScenarioApi::Charge, 0, "charge(instructions)",
+     "counts work done in C against the instruction budget"},
+    {"string.find", ScenarioApi::StringFind, 0, "string.find(s, pattern, init?, plain?)",
+     "string.find with its work counted"},
+    {"string.match", ScenarioApi::StringMatch, 0, "string.match(s, pattern, init?)",
+     "string.match with its work counted"},
+    {"pattern_search", ScenarioApi::PatternSearch, 0,
+     "pattern_search(s, pattern, from, anchored, skip_empty_at) -> start, end, captures...",
+     "the next match, its work counted, for string.gmatch and string.gsub"},
 };
 
 }  // namespace

@@ -26,8 +26,9 @@ struct ApiEntry {
 std::span<const ApiEntry> ScenarioApiEntries();
 
 /// The host's functions the prelude builds the sandbox with: print (to the run's log), random
-/// (math.random, from the run's seed), take_firmware_lines (for the events) and budget_spent
-/// (the instruction budget's error once it is spent, else nil).
+/// (math.random, from the run's seed), take_firmware_lines (for the events), budget_spent
+/// (the instruction budget's error once it is spent, else nil) and charge (work done in C,
+/// counted against the budget).
 std::span<const ApiEntry> ScenarioHostEntries();
 
 }  // namespace unimouse

@@ -3,9 +3,11 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -37,6 +39,12 @@ class CliTest : public ::testing::Test {
 
   fs::path dir_;
 };
+
+// a bundled maze's text
+std::string ReadMaze(const std::string& name) {
+  std::ifstream in(fs::path(UNIMOUSE_SOURCE_DIR) / "mazes" / (name + ".txt"));
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
 
 TEST_F(CliTest, RunWritesAResultWithPoseTimeAndSpeed) {
   const Outcome o = Unimouse("run --duration 0.5 --seed 3 --out " + dir_.string());
@@ -176,6 +184,69 @@ TEST_F(CliTest, BadMazeFileExitsWithCode2) {
   const Outcome o = Unimouse("run --maze " + path + " --out " + dir_.string());
   EXPECT_EQ(o.exit_code, 2);
   EXPECT_NE(o.output.find(path + ":2:3: unexpected 'X'"), std::string::npos) << o.output;
+}
+
+TEST_F(CliTest, AnInterruptedRunStopsBetweenStepsWritesItsResultAndExitsWithCode3) {
+  for (const std::string signal : {"INT", "TERM"}) {
+    const std::string out = (dir_ / signal).string();
+    // once the run has started (its log exists), the signal; the shell prints the exit code
+    const Outcome o = Unimouse("run --maze none --duration 100000 --no-pictures --out " + out +
+                               " >/dev/null 2>&1 & " + "pid=$!; while [ ! -e " + out +
+                               "/log.txt ]; do sleep 0.05; done; sleep 0.3; kill -" + signal +
+                               " $pid; wait $pid; echo exit=$?; true");
+    EXPECT_NE(o.output.find("exit=3"), std::string::npos) << signal << ": " << o.output;
+    std::ifstream in(fs::path(out) / "result.json");
+    ASSERT_TRUE(in.good()) << signal;
+    const nlohmann::json r = nlohmann::json::parse(in);
+    EXPECT_EQ(r["status"], "interrupted");
+    EXPECT_EQ(r["exit_code"], 3);
+    EXPECT_EQ(r["error"].get<std::string>().rfind("interrupted by SIG" + signal + " at ", 0), 0u)
+        << r.dump();
+    EXPECT_LT(r["sim_time_s"].get<double>(), 100000);
+  }
+}
+
+TEST_F(CliTest, AScenarioStuckInsideOneCCallEndsWithExitCode3AndAResultSayingWhy) {
+  // comparing two long equal strings again and again: one instruction each, 60 MB of work
+  const std::string scenario =
+      Write("stuck.lua",
+            "return sim.scenario { name = 'stuck', run = function() end, world = function()\n"
+            "  local a, b = string.rep('x', 6e7), string.rep('x', 6e7)\n"
+            "  while true do local same = a == b end\n"
+            "end }\n");
+  const auto start = std::chrono::steady_clock::now();
+  const Outcome o = Unimouse("run --scenario " + scenario + " --out " + dir_.string());
+  EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(20));
+  EXPECT_EQ(o.exit_code, 3) << o.output;
+  std::ifstream in(dir_ / "result.json");
+  ASSERT_TRUE(in.good()) << o.output;
+  const nlohmann::json r = nlohmann::json::parse(in);
+  EXPECT_EQ(r["status"], "error");
+  EXPECT_EQ(r["error"],
+            "the scenario's world ran longer than 10 s of wall time in one call (work inside "
+            "Lua's library that no count sees)");
+}
+
+TEST_F(CliTest, AReaderThatClosesItsPipeIsNotTheEndOfTheProcess) {
+  // the summary is printed once the reader is gone: that used to end the process with SIGPIPE
+  // (exit 141 through the pipeline); now the run ends as it would, with its result
+  const std::string command = "bash -c 'set -o pipefail; " UNIMOUSE_BINARY
+                              " run --maze none --duration 0.2 --no-pictures --out " +
+                              dir_.string() + " 2>/dev/null | true; echo exit=$?'";
+  FILE* pipe = popen(command.c_str(), "r");
+  ASSERT_NE(pipe, nullptr);
+  char said[64] = {};
+  const size_t n = fread(said, 1, sizeof(said) - 1, pipe);
+  pclose(pipe);
+  EXPECT_EQ(std::string(said, n), "exit=0\n");
+  EXPECT_TRUE(fs::exists(dir_ / "result.json"));
+}
+
+TEST_F(CliTest, AMazeFileNameThatIsNotUtf8IsReplacedInJson) {
+  const std::string latin1 = Write("caf\xe9.txt", ReadMaze("japan2018"));
+  const Outcome o = Unimouse("maze show --json " + latin1);
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  EXPECT_NE(o.output.find("caf\xef\xbf\xbd.txt"), std::string::npos) << o.output;
 }
 
 TEST_F(CliTest, MissingFilesAndBadOptionsExitWithCode2) {

@@ -6,6 +6,8 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <string>
+#include <vector>
 
 #include "plugin_rig.h"
 #include "probe_components.h"
@@ -134,6 +136,113 @@ TEST_F(SessionTest, RealTimeIsAskedForEvenWhenTheFirmwareSetsThePace) {
   // 0.3 s of steps on the wall clock (unpaced, this firmware runs them in about 0.02 s)
   EXPECT_GT(result.record["wall_time_s"].get<double>(), 0.25);
   EXPECT_TRUE(result.record.contains("real_time_pacing"));
+}
+
+// a Lua file of the test's own in the scratch directory
+std::string LuaFile(const std::string& name, const std::string& text) {
+  const std::string path = (fs::temp_directory_path() / name).string();
+  WriteTextFile(path, text);
+  return path;
+}
+
+constexpr const char* kDrivenScenario =
+    "return sim.scenario { name = 'driven', run = function() sim.wait(5) end }\n";
+
+TEST_F(SessionTest, EveryFailureBeforeTheFirstStepLeavesAnErrorResultWithItsTraceback) {
+  struct Case {
+    std::string scenario, controller, error;
+  };
+  const std::string syntax = LuaFile("syntax.lua", "return sim.scenario { name = 'x' \n");
+  const std::string world = LuaFile("world.lua",
+                                    "return sim.scenario { name = 'x', run = function() end,\n"
+                                    "  world = function() error('no floor') end }\n");
+  const std::string table = LuaFile("table.lua", "return sim.scenario { name = 'x' }\n");
+  const std::string driven = LuaFile("driven.lua", kDrivenScenario);
+  const std::string controller = LuaFile("controller.lua", "local x = \nreturn 1\n");
+  const std::vector<Case> cases = {
+      {syntax, "", "syntax.lua:2: '}' expected (to close '{' at line 1) near <eof>"},
+      {world, "", "world.lua:2: no floor (in world)"},
+      {table, "", "sim.scenario needs a run function"},
+      {driven, controller, "controller.lua:2: unexpected symbol near 'return'"},
+  };
+  for (const Case& c : cases) {
+    options_.scenario = c.scenario;
+    options_.controller = c.controller;
+    fs::create_directories(options_.out_dir);
+    WriteTextFile(options_.out_dir + "/result.json", R"({"status": "completed"})");
+    EXPECT_THROW(Session::Open(options_), RuntimeFault) << c.scenario;
+    const nlohmann::json result = ResultFile();
+    EXPECT_EQ(result["status"], "error");
+    EXPECT_EQ(result["exit_code"], kExitRuntimeFault);
+    const std::string error = result["error"];
+    EXPECT_NE(error.find(c.error), std::string::npos) << error;
+    EXPECT_NE(result.value("traceback", "").find("stack traceback:"), std::string::npos)
+        << result.dump();
+  }
+}
+
+TEST_F(SessionTest, AControllerFaultEndsAsAFaultWithItsReasonNeverAsRunning) {
+  options_.scenario = LuaFile("driven.lua", kDrivenScenario);
+  options_.controller = LuaFile("faulty.lua",
+                                "return function(time_s)\n"
+                                "  if time_s > 0.05 then error('wheel fell off') end\n"
+                                "end\n");
+  const SessionResult result = RunToTheEnd();
+  EXPECT_EQ(result.exit_code, kExitRuntimeFault);
+  const nlohmann::json file = ResultFile();
+  EXPECT_EQ(file["status"], "fault");
+  EXPECT_EQ(file["scenario"]["status"], "error");
+  const std::string reason = file["scenario"]["reason"];
+  EXPECT_NE(reason.find("faulty.lua:2: wheel fell off (in the controller)"), std::string::npos)
+      << reason;
+}
+
+TEST_F(SessionTest, SpendingMostOfTheBudgetAtEveryTickMeetsTheRunsAverage) {
+  // 15 million instructions a tick, each call under its 20 million; the run allows 20 million
+  // plus 100 million per simulated second: the second tick (at 1 ms) goes beyond it
+  options_.scenario = LuaFile("busy.lua",
+                              "return sim.scenario { name = 'busy', run = function()\n"
+                              "  while true do\n"
+                              "    for i = 1, 15e6 do end\n"
+                              "    sim.next_tick()\n"
+                              "  end\n"
+                              "end }\n");
+  options_.maze = "none";
+  const SessionResult result = RunToTheEnd();
+  EXPECT_EQ(result.exit_code, kExitRuntimeFault);
+  EXPECT_EQ(result.record["steps"], 1);
+  const std::string error = result.record["error"];
+  EXPECT_NE(error.find("busy.lua:3: instruction budget exhausted: more than 100 million "
+                       "instructions per simulated second on average (in run)"),
+            std::string::npos)
+      << error;
+}
+
+TEST_F(SessionTest, TextThatIsNotUtf8IsReplacedInTheResultNotFatal) {
+  // a Latin-1 reason, HUD line and scenario name: each byte 0xe9 becomes U+FFFD
+  options_.scenario = LuaFile("latin1.lua",
+                              "return sim.scenario { name = 'caf\xe9', run = function()\n"
+                              "  sim.hud_set(1, 'd\xe9j\xe0')\n"
+                              "  sim.fail('trop lent \xe9')\n"
+                              "end }\n");
+  const SessionResult result = RunToTheEnd();
+  EXPECT_EQ(result.exit_code, kExitFailed);
+  const nlohmann::json file = ResultFile();
+  EXPECT_EQ(file["scenario"]["name"], "caf\xef\xbf\xbd");
+  EXPECT_EQ(file["scenario"]["reason"], "trop lent \xef\xbf\xbd");
+  EXPECT_EQ(file["scenario"]["hud"][0], "d\xef\xbf\xbdj\xef\xbf\xbd");
+}
+
+TEST_F(SessionTest, AScriptErrorThatIsNotUtf8StillLeavesAResult) {
+  options_.scenario = LuaFile("latin1_error.lua",
+                              "error('\xe9"
+                              "chec')\n");
+  EXPECT_THROW(Session::Open(options_), RuntimeFault);
+  const std::string error = ResultFile()["error"];
+  EXPECT_NE(error.find("\xef\xbf\xbd"
+                       "chec"),
+            std::string::npos)
+      << error;
 }
 
 TEST_F(SessionTest, OverAndStepAgreeWithTheDuration) {

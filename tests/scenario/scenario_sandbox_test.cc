@@ -1,10 +1,14 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Scenarios in this process, without a run: loading turns whatever a file returns into a clean
 // one-line error, never a crash; each scenario has its own instruction budget, which no pcall
-// can swallow; errors in the prelude's helpers name the scenario's line.
+// can swallow, its memory limit and its allocation budget; work in C is counted or bounded, and
+// a call stuck in C for good ends the process with exit code 3; errors in the prelude's helpers
+// name the scenario's line. Under the sanitizer build (CMakePresets.json) these tests also show
+// that no error skips a C++ destructor or unwinds through Lua.
 #include <gtest/gtest.h>
 #include <lua5.4/lua.h>
 
+#include <cstdio>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -57,6 +61,18 @@ std::string WorldError(const std::string& path) {
 
 constexpr const char* kBudgetSpent =
     "instruction budget exhausted: a loop that never waits (use sim.wait)?";
+constexpr const char* kMemoryFull = "not enough memory: a scenario holds at most 256 MiB";
+constexpr const char* kAllocationsSpent =
+    "allocation budget exhausted: more than 2048 MiB allocated between two waits (strings built "
+    "in a loop?)";
+
+// a scenario whose world runs `body`, a line each, from line 2 of the file
+std::string WorldScenario(const std::string& body, const std::string& suffix = "") {
+  return WriteScenario(
+      "return sim.scenario { name = 'limits', run = function() end, world = function()\n" + body +
+          "\nend }\n",
+      suffix);
+}
 
 TEST(ScenarioLoadTest, ATableWithoutANameIsAScriptErrorNamingTheFile) {
   const std::string path = WriteScenario("return { run = function() end }\n");
@@ -182,6 +198,216 @@ TEST(ScenarioBudgetTest, EachCallIntoLuaHasAFreshBudget) {
       "return sim.scenario { name = 'fresh', run = function() end, world = function()\n"
       "  for i = 1, 15e6 do end\n"
       "end }\n");
+  EXPECT_EQ(WorldError(path), "");
+}
+
+TEST(ScenarioLoadTest, AMazeThatCannotBeReadIsAScriptErrorNotAnExceptionThroughLua) {
+  const std::string path = WorldScenario("  sim.maze_load('no_such_maze_anywhere')");
+  const std::string error = WorldError(path);
+  EXPECT_EQ(error.rfind(Shown(path) + ":2: ", 0), 0u) << error;
+  EXPECT_NE(error.find("no_such_maze_anywhere"), std::string::npos) << error;
+}
+
+TEST(ScenarioMemoryTest, AStringBeyondTheMemoryLimitIsAScriptError) {
+  const std::string path = WorldScenario("  local s = string.rep('x', 1e9)");
+  EXPECT_EQ(WorldError(path), std::string(kMemoryFull) + " (in world)");
+}
+
+TEST(ScenarioMemoryTest, ATableThatGrowsWithoutEndMeetsTheLimit) {
+  const std::string path = WorldScenario(
+      "  local kept = {}\n"
+      "  for i = 1, 1e6 do kept[i] = string.rep('x', 1e6) .. i end");
+  EXPECT_EQ(WorldError(path), std::string(kMemoryFull) + " (in world)");
+}
+
+TEST(ScenarioMemoryTest, TheHostsOwnCallsAreNeverRefusedMemory) {
+  // memory filled to the limit by the script; sim.maze_get_start still makes its table, and
+  // pcall hands the script its own memory error as a value
+  const std::string path = WorldScenario(
+      "  local kept, ok = {}, true\n"
+      "  local function grow() kept[#kept + 1] = string.rep('x', 1e5) .. #kept end\n"
+      "  while ok do ok = pcall(grow) end\n"
+      "  local start = sim.maze_get_start()\n"
+      "  assert(start.x == 0 and start.y == 0)\n"
+      "  local ok2, why = pcall(string.rep, 'y', 1e8)\n"
+      "  assert(not ok2 and why == 'not enough memory', why)");
+  EXPECT_EQ(WorldError(path), "");
+}
+
+TEST(ScenarioMemoryTest, BuildingStringsInALoopSpendsTheAllocationBudget) {
+  const std::string path = WorldScenario(
+      "  local s = string.rep('x', 1e8)\n"
+      "  while true do local t = s .. 'y' end");
+  EXPECT_EQ(WorldError(path), std::string(kAllocationsSpent) + " (in world)");
+}
+
+TEST(ScenarioMemoryTest, APcallCannotSwallowTheSpentAllocationBudget) {
+  const std::string path = WorldScenario(
+      "  local s = string.rep('x', 1e8)\n"
+      "  while true do pcall(function() local t = s .. 'y' end) end");
+  EXPECT_EQ(WorldError(path), path + ":3: " + kAllocationsSpent + " (in world)");
+}
+
+TEST(ScenarioBudgetTest, ElementsMovedInsideTheLibraryCountAgainstTheBudget) {
+  // without the count, one call moves 10^12 nils in C and the hook never runs
+  const std::string path = WorldScenario("  table.move({}, 1, 1e12, 2)");
+  EXPECT_EQ(WorldError(path), path + ":2: " + kBudgetSpent + " (in world)");
+}
+
+TEST(ScenarioBudgetTest, ShiftingAndSortingTablesCountAgainstTheBudget) {
+  const std::string path = WorldScenario(
+      "  local t = {}\n"
+      "  for i = 1, 1e5 do t[i] = i end\n"
+      "  while true do table.insert(t, 1, 0); table.remove(t, 1); table.sort(t) end");
+  EXPECT_EQ(WorldError(path), path + ":4: " + kBudgetSpent + " (in world)");
+}
+
+TEST(ScenarioBudgetTest, EmptyCopiesAreMadeAtOnceAndTheLibraryStillWorks) {
+  // string.rep('', n) used to loop n times in C
+  const std::string path = WorldScenario(
+      "  assert(string.rep('', 1e15) == '' and (''):rep(math.maxinteger, '') == '')\n"
+      "  assert(string.rep('ab', 3, ',') == 'ab,ab,ab')\n"
+      "  local t = { 3, 1, 2 }\n"
+      "  table.sort(t); table.insert(t, 1, 0); table.insert(t, 9); table.remove(t, 2)\n"
+      "  assert(table.concat(t, ' ') == '0 2 3 9', table.concat(t, ' '))\n"
+      "  assert(table.concat(table.move({ 1, 2, 3 }, 1, 3, 2), ' ') == '1 1 2 3')");
+  EXPECT_EQ(WorldError(path), "");
+}
+
+TEST(ScenarioPreludeTest, ErrorsOfTheCountedLibraryFunctionsNameTheScenariosLine) {
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"string.rep({}, 2)", "bad argument #1 to 'string.rep' (string expected, got table)"},
+      {"('x'):rep(2, {})", "bad argument #3 to 'string.rep' (string expected, got table)"},
+      {"table.insert(nil, 1, 2)", "bad argument #1 to 'table.insert' (table expected, got nil)"},
+      {"table.insert({}, 5, 2)", "bad argument #2 to 'table.insert' (position out of bounds)"},
+      {"table.remove({}, 'a')", "bad argument #2 to 'table.remove' (number expected, got string)"},
+      {"table.move({}, 1, 'x', 2)",
+       "bad argument #3 to 'table.move' (number expected, got string)"},
+      {"setmetatable(1, {})", "bad argument #1 to 'setmetatable' (table expected, got number)"},
+  };
+  for (size_t i = 0; i < cases.size(); ++i) {
+    const std::string path = WorldScenario("  " + cases[i].first, std::to_string(i));
+    EXPECT_EQ(WorldError(path), Shown(path) + ":2: " + cases[i].second + " (in world)");
+  }
+}
+
+TEST(ScenarioBudgetTest, AFinalizerWhichNoBudgetCouldStopIsRefused) {
+  const std::string path =
+      WorldScenario("  setmetatable({}, { __gc = function() while true do end end })");
+  EXPECT_EQ(WorldError(path), Shown(path) +
+                                  ":2: setmetatable: __gc (a finalizer) is not available to "
+                                  "scenarios (in world)");
+}
+
+TEST(ScenarioBudgetTest, APatternThatBacktracksCountsItsStepsAgainstTheBudget) {
+  // without the count, the matcher runs in C for hours and the hook never runs
+  const std::string path = WorldScenario(
+      "  local s = string.rep('a', 1e5)\n"
+      "  for _ in s:gmatch('.-.-.-.-.-b') do end");
+  EXPECT_EQ(WorldError(path), path + ":3: " + kBudgetSpent + " (in world)");
+  const std::string find = WorldScenario("  ('a'):rep(1e5):find('.-.-.-.-.-b')", "_find");
+  EXPECT_EQ(WorldError(find), find + ":2: " + kBudgetSpent + " (in world)");
+}
+
+TEST(ScenarioPreludeTest, PatternFunctionsBehaveAsLuasOwn) {
+  // expected values worked out from the Lua 5.4 manual
+  const std::string path = WorldScenario(R"lua(
+  local function same(a, b) assert(a == b, tostring(a) .. ' ~= ' .. tostring(b)) end
+  local function list(...) return table.concat({ ... }, ',') end
+  same(list(('hello world'):find('o w')), '5,7')
+  same(list(('hello'):find('(h)(e)')), '1,2,h,e')
+  same(list(('a.b'):find('.', 1, true)), '2,2')
+  same(list(('a.b'):find('b', -1)), '3,3')
+  same(('abc'):find('x'), nil)
+  same(('abc'):find('a', 10), nil)
+  same(list(('key = value'):match('(%w+)%s*=%s*(%w+)')), 'key,value')
+  same(list(('hello'):match('()ll()')), '3,5')
+  same(('  x  '):match('^%s*(.-)%s*$'), 'x')
+  same(list(('hello world'):gsub('o', '0')), 'hell0 w0rld,2')
+  same(list(('abc'):gsub('', '-')), '-a-b-c-,4')
+  same(list(('abc'):gsub('x*', '-')), '-a-b-c-,4')
+  same(list(('hello world'):gsub('(%w+)', '<%1>')), '<hello> <world>,2')
+  same(list(('abc'):gsub('%w', '%0%0')), 'aabbcc,3')
+  same(list(('abc'):gsub('%w', '%%')), '%%%,3')
+  same(list(('$name is $age'):gsub('%$(%w+)', { name = 'x', age = 3 })), 'x is 3,2')
+  same(list(('abc'):gsub('b', function() return false end)), 'abc,1')
+  same(list(('abc'):gsub('(b)()', function(b, at) return b:upper() .. at end)), 'aB3c,1')
+  same(list(('aaa'):gsub('a', 'b', 2)), 'bba,2')
+  same(list(('hello hello'):gsub('^h', 'H')), 'Hello hello,1')
+  local words = {}
+  for w in ('one two  three'):gmatch('%a+') do words[#words + 1] = w end
+  same(table.concat(words, ','), 'one,two,three')
+  local pairs_found = {}
+  for k, v in ('a=1, b=2'):gmatch('(%w+)=(%w+)') do pairs_found[#pairs_found + 1] = k .. v end
+  same(table.concat(pairs_found, ','), 'a1,b2')
+  local empties = 0
+  for e in ('abc'):gmatch('x*') do empties = empties + 1 end
+  same(empties, 4)
+  local from_two = {}
+  for c in ('abc'):gmatch('.', 2) do from_two[#from_two + 1] = c end
+  same(table.concat(from_two), 'bc'))lua");
+  EXPECT_EQ(WorldError(path), "");
+}
+
+TEST(ScenarioPreludeTest, PatternErrorsNameTheScenariosLine) {
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"('a'):find('[a')", "malformed pattern (missing ']')"},
+      {"('a'):match('%')", "malformed pattern (ends with '%')"},
+      {"string.find(nil, 'a')", "bad argument #1 to 'string.find' (string expected, got nil)"},
+      {"('a'):gsub('a', '%2')", "invalid capture index %2 in replacement string"},
+      {"('a'):gsub('a', '%x')", "invalid use of '%' in replacement string"},
+      {"('a'):gsub('a', {}, 'x')",
+       "bad argument #4 to 'string.gsub' (number expected, got string)"},
+      {"('a'):gsub('a')",
+       "bad argument #3 to 'string.gsub' (string/function/table expected, got "
+       "no value)"},
+      {"('a'):gsub('a', function() return {} end)", "invalid replacement value (a table)"},
+      {"string.gmatch({}, 'a')", "bad argument #1 to 'string.gmatch' (string expected, got table)"},
+      {"for _ in ('a'):gmatch('(') do end", "unfinished capture"},
+  };
+  for (size_t i = 0; i < cases.size(); ++i) {
+    const std::string path = WorldScenario("  " + cases[i].first, std::to_string(i));
+    EXPECT_EQ(WorldError(path), Shown(path) + ":2: " + cases[i].second + " (in world)");
+  }
+}
+
+TEST(ScenarioWatchdogTest, ACallStuckInCEndsTheProcessWithExitCode3) {
+  // comparing two long equal strings is one instruction of 60 million bytes: the count sees
+  // almost nothing, the wall clock everything
+  GTEST_FLAG_SET(death_test_style, "threadsafe");
+  const std::string path = WorldScenario(
+      "  local a, b = string.rep('x', 6e7), string.rep('x', 6e7)\n"
+      "  while true do local same = a == b end");
+  EXPECT_EXIT(
+      {
+        const auto s = Scenario::Load(path, {}, 1);
+        s->SetWatchdog(0.5, [](const std::string& why) {
+          std::fprintf(stderr, "expired: %s\n", why.c_str());
+        });
+        s->BuildWorld();
+      },
+      ::testing::ExitedWithCode(kExitRuntimeFault),
+      "expired: the scenario's world ran longer than 0.5 s of wall time in one call");
+}
+
+TEST(ScenarioRandomTest, TheWholeRangeOfIntegersIsDrawnWithoutOverflow) {
+  // the largest interval is 2^64 integers wide; draws must spread over it
+  const std::string path = WorldScenario(
+      "  local low, high, negative = 0, 0, 0\n"
+      "  for i = 1, 64 do\n"
+      "    local x = math.random(math.mininteger, math.maxinteger)\n"
+      "    assert(math.type(x) == 'integer')\n"
+      "    if x < 0 then negative = negative + 1 end\n"
+      "    local y = math.random(math.maxinteger - 1, math.maxinteger)\n"
+      "    assert(y == math.maxinteger - 1 or y == math.maxinteger, y)\n"
+      "    if y == math.maxinteger then high = high + 1 else low = low + 1 end\n"
+      "  end\n"
+      "  assert(negative > 8 and negative < 56, negative)\n"
+      "  assert(low > 8 and high > 8, low .. ' ' .. high)\n"
+      "  local seen = {}\n"
+      "  for i = 1, 200 do local z = math.random(-3, 3); seen[z] = true end\n"
+      "  for z = -3, 3 do assert(seen[z], z) end\n"
+      "  assert(seen[-4] == nil and seen[4] == nil)");
   EXPECT_EQ(WorldError(path), "");
 }
 

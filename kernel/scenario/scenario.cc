@@ -342,7 +342,12 @@ ScenarioWorld Scenario::BuildWorld() {
   if (world_ref_ != LUA_REFNIL) {
     lua_rawgeti(L_, LUA_REGISTRYINDEX, world_ref_);
     lua_rawgeti(L_, LUA_REGISTRYINDEX, params_ref_);
-    Call(1, 0, "world");
+    try {
+      Call(1, 0, "world");
+    } catch (const ScriptFault&) {
+      if (!bad_input_.empty()) throw InputError(bad_input_);
+      throw;
+    }
   }
   return std::move(world_);
 }

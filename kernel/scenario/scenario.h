@@ -101,7 +101,8 @@ class Scenario {
   ~Scenario();
 
   const std::string& name() const { return name_; }
-  /// Runs the world phase.
+  /// Runs the world phase. Throws ScriptFault for a script error, InputError when a maze named
+  /// by a parameter from the command line cannot be read.
   ScenarioWorld BuildWorld();
   /// Starts the run phase on a kernel: the coroutine runs at each tick boundary from now on.
   /// `controller`, if given, is a Lua file returning function(sim_time_s) called every tick
@@ -210,6 +211,7 @@ class Scenario {
   ScenarioOutcome outcome_;
   std::map<std::string, std::string> declared_;   // parameter name -> its Lua type
   std::map<std::string, std::string> overrides_;  // --set, checked against declared_
+  std::string bad_input_;  // why a value from the command line could not be used, if it could not
   std::map<std::string, std::string> param_text_;
   double time_limit_s_ = 0;
   std::vector<std::string> hud_;

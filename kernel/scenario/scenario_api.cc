@@ -215,8 +215,19 @@ struct ScenarioApi {
     const std::string name = call.CheckString(1);
     // a maze that cannot be read throws InputError, which the boundary raises as the message
     Scenario& s = Self(call);
-    s.world_.maze_file = ResolveDataFile(name, "mazes/", ".txt");
-    s.world_.maze = std::make_unique<Maze>(LoadMaze(s.world_.maze_file));
+    try {
+      s.world_.maze_file = ResolveDataFile(name, "mazes/", ".txt");
+      s.world_.maze = std::make_unique<Maze>(LoadMaze(s.world_.maze_file));
+    } catch (const InputError& e) {
+      // named on the command line (--set, --maze): the user's input, not the script, is wrong
+      for (const auto& [param, value] : s.overrides_) {
+        if (value == name) {
+          s.bad_input_ =
+              "parameter " + param + " = " + value + " (from the command line): " + e.what();
+        }
+      }
+      throw;
+    }
     s.maze_goals_ = std::make_unique<std::vector<Cell>>(s.world_.maze->goals());
     s.maze_start_ = s.world_.maze->start();
     return 0;

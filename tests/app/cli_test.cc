@@ -110,6 +110,18 @@ TEST_F(CliTest, TheContestRunsInTheMazeThatMazeNames) {
   EXPECT_EQ(result["scenario"]["reason"], "not decided when the run ended at 0.200 s");
 }
 
+TEST_F(CliTest, AMissingMazeNamedOnTheCommandLineIsBadInputWithAResult) {
+  for (const std::string option : {"--set maze=no_such_maze", "--maze no_such_maze"}) {
+    const Outcome o = Unimouse("run --scenario micromouse " + option + " --out " + dir_.string());
+    EXPECT_EQ(o.exit_code, 2) << o.output;
+    EXPECT_NE(o.output.find("parameter maze = no_such_maze (from the command line): "),
+              std::string::npos)
+        << o.output;
+    std::ifstream in(dir_ / "result.json");
+    EXPECT_EQ(nlohmann::json::parse(in)["exit_code"], 2);
+  }
+}
+
 TEST_F(CliTest, MazeIsRefusedForAScenarioThatBuildsItsOwnWorld) {
   const Outcome o =
       Unimouse("run --scenario speed_control --maze japan2019 --out " + dir_.string());

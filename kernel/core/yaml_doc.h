@@ -63,6 +63,10 @@ class YamlNode {
   bool IsSequence() const { return kind == Kind::kSequence; }
 };
 
+/// Most values (scalars, lists and maps) a YAML document may hold once its aliases are
+/// expanded: a robot file has a few hundred.
+inline constexpr size_t kMaxYamlNodes = 100000;
+
 /// Parses a YAML file; a syntax error becomes an InputError with file:line:col.
 YamlNode LoadYamlFile(const std::string& path);
 /// Parses YAML text; `file` names it in errors.

@@ -37,6 +37,7 @@ struct LinkParams {
   std::string profile = "unimouse";
   bool extensions = true;
   param::GivenSet given;
+  param::GivenSet from_data_file;
   std::string mcu = "atmega2560";
   double f_cpu_hz = 16000000;
 
@@ -93,6 +94,10 @@ class Link final : public Component {
 
   /// Most bytes read from the firmware in one step; the rest waits for the next one.
   static constexpr size_t kReadPerStep_bytes = 64 * 1024;
+  /// Steps in a row that may each bring half of kReadPerStep_bytes or more before the firmware
+  /// counts as flooding the link, which ends the run: no firmware talks that much (a 115200 baud
+  /// line carries 12 bytes a millisecond).
+  static constexpr int kFloodSteps = 50;
 
   /// Reads the frame tables; throws InputError naming a wrong entry. Opens nothing.
   explicit Link(Params params);
@@ -153,6 +158,7 @@ class Link final : public Component {
   mutable FrameDecoder decoder_;
   mutable std::vector<uint8_t> inbox_;
   mutable size_t read_this_step_ = 0;
+  mutable int flooded_steps_ = 0;  // steps in a row that read kReadPerStep_bytes
   mutable bool was_connected_ = false;
   // what the firmware says it believes, for the run's maze picture
   struct Beliefs {

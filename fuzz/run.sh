@@ -13,7 +13,7 @@ build=build-fuzz
 cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ -DUNIMOUSE_FUZZ=ON \
   -DUNIMOUSE_BUILD_TESTS=OFF -DUNIMOUSE_BUILD_BENCH=OFF > /dev/null
-targets=(fuzz_maze fuzz_robot fuzz_scenario fuzz_frames)
+targets=(fuzz_maze fuzz_robot fuzz_frames fuzz_scenario)
 cmake --build "$build" -j2 --target "${targets[@]}"
 
 # seeds: the bundled files, and a few frames of every kind the firmware sends
@@ -33,7 +33,7 @@ for target in "${targets[@]}"; do
   mkdir -p "$corpus"
   echo "== $target: ${seconds} s"
   # -rss_limit_mb: every input's memory is bounded; -timeout: so is its time
-  "$build/fuzz/$target" "$corpus" "$seeds/${target#fuzz_}" -max_total_time="$seconds" \
+  "$build/bin/$target" "$corpus" "$seeds/${target#fuzz_}" -max_total_time="$seconds" \
     -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 \
     -artifact_prefix="$build/findings/$target-" 2>&1 | tail -n 12
 done

@@ -110,7 +110,7 @@ void Link::Reset(const ResetContext& ctx) const {
   decoder_ = FrameDecoder(data_frames_);
   inbox_.clear();
   read_this_step_ = 0;
-  flooded_steps_ = 0;
+  received_bytes_ = 0;
   was_connected_ = false;
   beliefs_ = {};
   queue_.clear();
@@ -265,6 +265,7 @@ void Link::Receive(const SenseContext& ctx, Heard& heard) const {
     transport_->Read(inbox_, kReadPerStep_bytes - read_this_step_);
   }
   read_this_step_ += inbox_.size();
+  received_bytes_ += inbox_.size();
   if (transport_->Connected() != was_connected_) {
     was_connected_ = transport_->Connected();
     if (was_connected_) {
@@ -394,13 +395,13 @@ void Link::Sense(const SenseContext& ctx) const {
   read_this_step_ = 0;
   Heard heard;
   Receive(ctx, heard);
-  flooded_steps_ = read_this_step_ >= kReadPerStep_bytes / 2 ? flooded_steps_ + 1 : 0;
-  if (flooded_steps_ >= kFloodSteps) {
+  if (static_cast<double>(received_bytes_) >
+      kFloodAllowance_bytes + kFloodRate_bytes_per_s * ctx.time_s()) {
     char text[192];
     std::snprintf(text, sizeof(text),
-                  "the firmware floods the link: %zu bytes or more in each of %d steps in a row "
-                  "at t=%.3f s",
-                  kReadPerStep_bytes / 2, kFloodSteps, ctx.time_s());
+                  "the firmware floods the link: %llu bytes by t=%.3f s, more than 1 MiB and "
+                  "1 MiB a simulated second",
+                  static_cast<unsigned long long>(received_bytes_), ctx.time_s());
     ctx.Fail(text);
     return;
   }

@@ -77,6 +77,8 @@ unimouse_config ValidateParams(const unimouse_component_type& type, const Compon
     }
     const std::string what = who + p.name;
     config.given.emplace_back(p.name);
+    // a command-line option has no line in a file
+    if (value->location.line > 0) config.from_data_file.emplace_back(p.name);
     switch (p.kind) {
       case UNIMOUSE_PARAM_NUMBER: {
         const double v = value->AsNumber(what);
@@ -125,6 +127,12 @@ const unimouse_host& ConfigHost() {
     };
     h.config_given = [](const unimouse_config* cfg, const char* name) -> int {
       for (const auto& g : cfg->given) {
+        if (g == name) return 1;
+      }
+      return 0;
+    };
+    h.config_from_data_file = [](const unimouse_config* cfg, const char* name) -> int {
+      for (const auto& g : cfg->from_data_file) {
         if (g == name) return 1;
       }
       return 0;

@@ -16,6 +16,8 @@ struct unimouse_config {
   std::map<std::string, double> numbers;
   std::map<std::string, std::string> strings;
   std::vector<std::string> given;  ///< names the robot file set explicitly
+  /// names whose values a data file gave, not the command line (see KernelOptions)
+  std::vector<std::string> from_data_file;
 };
 
 namespace unimouse {

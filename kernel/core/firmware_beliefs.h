@@ -15,6 +15,9 @@
 
 namespace unimouse {
 
+/// Most visited cells kept: a firmware that reports more is repeating itself.
+inline constexpr size_t kMaxVisitedReports = 1 << 20;
+
 struct FirmwareBeliefs {
   /// Side bits as in the protocol: north 1, east 2, south 4, west 8.
   struct CellWalls {
@@ -25,7 +28,8 @@ struct FirmwareBeliefs {
   std::vector<Cell> visited;
   std::vector<Cell> path;  ///< the path it last planned
 
-  /// Takes one report; returns false for a kind that says nothing about the maze.
+  /// Takes one report; returns false for a kind that says nothing about the maze. Cells outside
+  /// every maze (beyond kMaxMazeSide_cells) are left out; a path with one is ignored whole.
   bool Apply(const unimouse_report& report);
   /// Whether the firmware reported anything at all.
   bool empty() const { return walls.empty() && visited.empty() && path.empty(); }

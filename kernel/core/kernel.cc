@@ -131,7 +131,8 @@ std::unique_ptr<Kernel> Kernel::Create(const RobotSpec& robot, const Maze* maze,
                        (near.empty() ? "" : " (did you mean '" + near + "'?)") +
                        "; `unimouse plugins` lists the types found");
     }
-    const unimouse_config config = ValidateParams(*entry->type, spec);
+    unimouse_config config = ValidateParams(*entry->type, spec);
+    if (options.trust_robot_file) config.from_data_file.clear();
     ComponentInstance c;
     c.type = entry->type;
     c.name = spec.name;
@@ -317,6 +318,37 @@ void Kernel::RunHook(int index, void (*hook)(const void*, const unimouse_tick*))
 }
 
 void Kernel::Emit(int level, const std::string& component, const std::string& message) {
+  // a firmware sending junk, or a component in a loop, must not fill the disk or the memory:
+  // errors always pass, warnings and log lines up to a budget, then a note and a count
+  if (level != UNIMOUSE_LOG_ERROR) {
+    MessageBudget& b = message_budgets_[component];
+    const bool warning = level == UNIMOUSE_LOG_WARNING;
+    bool& full = warning ? b.warnings_full : b.log_full;
+    if (!full) {
+      full = warning ? b.warnings_shown == kMaxWarningsShown
+                     : b.log_shown_bytes + message.size() > kMaxLogShown_bytes;
+      if (full) {
+        Store(UNIMOUSE_LOG_WARNING, component,
+              warning ? "more than " + std::to_string(kMaxWarningsShown) +
+                            " warnings: later ones are counted, not shown"
+                      : "more than " + std::to_string(kMaxLogShown_bytes >> 20) +
+                            " MiB of log lines: later ones are counted, not shown");
+      }
+    }
+    if (full) {
+      ++b.held_back;
+      return;
+    }
+    if (warning) {
+      ++b.warnings_shown;
+    } else {
+      b.log_shown_bytes += message.size();
+    }
+  }
+  Store(level, component, Shortened(message, kMaxMessage_bytes));
+}
+
+void Kernel::Store(int level, const std::string& component, const std::string& message) {
   // stored only: views are added between hooks, so a hook's view array never moves under it
   messages_.push_back({state_->data().time, level, component, message});
   if (level == UNIMOUSE_LOG_ERROR && fault_.empty()) {
@@ -334,6 +366,13 @@ void Kernel::Emit(int level, const std::string& component, const std::string& me
 }
 
 void Kernel::Finish() {
+  for (const auto& [source, budget] : message_budgets_) {
+    if (budget.held_back > 0) {
+      Store(UNIMOUSE_LOG_WARNING, source,
+            std::to_string(budget.held_back) + " more messages were not shown");
+    }
+  }
+  message_budgets_.clear();
   for (size_t i = 0; i < model_.components.size(); ++i) {
     const ComponentInstance& c = model_.components[i];
     if (c.type->finish != nullptr) RunHook(static_cast<int>(i), c.type->finish);
@@ -385,6 +424,7 @@ void Kernel::Reset() {
   messages_.clear();
   message_views_.clear();
   std::fill(message_cursor_.begin(), message_cursor_.end(), 0);
+  message_budgets_.clear();
   for (size_t i = 0; i < model_.components.size(); ++i) {
     const ComponentInstance& c = model_.components[i];
     if (c.type->reset != nullptr) RunHook(static_cast<int>(i), c.type->reset);

@@ -14,6 +14,7 @@
 #include <cstdint>
 #include <deque>
 #include <functional>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -32,6 +33,15 @@ using LogSink = std::function<void(double time_s, int level, const std::string& 
                                    const std::string& message)>;
 
 /// Choices made per run rather than per robot.
+/// Most warnings a component shows in a run; later ones are counted, and the count is logged
+/// when the run finishes.
+inline constexpr int kMaxWarningsShown = 100;
+/// Most bytes of log lines (its own and its firmware's) a component shows in a run; later lines
+/// are counted, not shown.
+inline constexpr size_t kMaxLogShown_bytes = 1 << 20;
+/// Longest message shown; a longer one is cut, saying how long it was.
+inline constexpr size_t kMaxMessage_bytes = 1000;
+
 struct KernelOptions {
   uint64_t seed = 1;
   std::string output_dir = ".";  ///< where components write their files
@@ -41,6 +51,10 @@ struct KernelOptions {
   /// false: components are created and bound but not started (no port, process or file is
   /// opened), as `unimouse check` does
   bool start_components = true;
+  /// true: the robot file's own parameters may start a program or make a path, as if given on
+  /// the command line (tests, and tools that wrote the file themselves); false for files from
+  /// people the run does not trust
+  bool trust_robot_file = false;
 };
 
 /// Wall time spent in each part of the tick since the last reset: where a run's time goes.
@@ -131,7 +145,9 @@ class Kernel {
   // runs one phase's hook of every due component; returns the wall time of the pace setter's
   double RunPhase(int64_t step,
                   void (*unimouse_component_type::*hook)(const void*, const unimouse_tick*));
+  // applies the component's message budget, then stores and hands on what is shown
   void Emit(int level, const std::string& component, const std::string& message);
+  void Store(int level, const std::string& component, const std::string& message);
   void ThrowIfFaulted();
   void ForgetSeenMessages();
 
@@ -154,6 +170,15 @@ class Kernel {
   std::deque<StoredMessage> messages_;
   std::vector<unimouse_message> message_views_;
   std::vector<size_t> message_cursor_;
+  // what each source has shown and held back since the last reset
+  struct MessageBudget {
+    int warnings_shown = 0;
+    size_t log_shown_bytes = 0;
+    bool warnings_full = false;  // later warnings are held back
+    bool log_full = false;       // later log lines are held back
+    uint64_t held_back = 0;
+  };
+  std::map<std::string, MessageBudget> message_budgets_;
 };
 
 }  // namespace unimouse

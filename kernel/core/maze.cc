@@ -37,15 +37,33 @@ std::vector<std::string> SplitLines(const std::string& text) {
 
 }  // namespace
 
+void CheckMazeSize(int64_t width, int64_t height, const std::string& file) {
+  if (width > kMaxMazeSide_cells || height > kMaxMazeSide_cells) {
+    throw InputError(file + ": a " + std::to_string(width) + " x " + std::to_string(height) +
+                     " maze is larger than the " + std::to_string(kMaxMazeSide_cells) + " x " +
+                     std::to_string(kMaxMazeSide_cells) + " cells unimouse reads (docs/limits.md)");
+  }
+}
+
 double HeadingYaw(Heading h) { return static_cast<int>(h) * std::numbers::pi / 2; }
 
 Maze::Maze(int width, int height)
     : width_(width),
       height_(height),
       horizontal_(static_cast<size_t>(width) * (height + 1), 0),
-      vertical_(static_cast<size_t>(width + 1) * height, 0),
-      goals_(CentreCells(width, height)) {
-  UNIMOUSE_DEMAND(width > 0 && height > 0);
+      vertical_(static_cast<size_t>(width + 1) * height, 0) {
+  UNIMOUSE_DEMAND(width > 0 && height > 0 && width <= kMaxMazeSide_cells &&
+                  height <= kMaxMazeSide_cells);
+  set_goals(CentreCells(width, height));
+}
+
+void Maze::set_goals(std::vector<Cell> goals) {
+  is_goal_.assign(static_cast<size_t>(width_) * height_, 0);
+  for (const Cell& c : goals) {
+    UNIMOUSE_DEMAND(Contains(c));
+    is_goal_[c.y * width_ + c.x] = 1;
+  }
+  goals_ = std::move(goals);
 }
 
 bool Maze::HasWall(Cell c, Heading h) const {
@@ -128,6 +146,8 @@ Maze ParseMazeText(const std::string& text, const std::string& file) {
            "per cell; it has " +
                std::to_string(lines[0].size()) + " characters");
   }
+  CheckMazeSize(static_cast<int64_t>((lines[0].size() + 2) / 4),
+                static_cast<int64_t>((lines.size() - 1) / 2), file);
   const int width = static_cast<int>((lines[0].size() + 2) / 4);
   const size_t row_length = static_cast<size_t>(4 * width + 1);
   const int height = static_cast<int>((lines.size() - 1) / 2);
@@ -214,9 +234,7 @@ std::string FormatMazeText(const Maze& maze) {
       out += maze.HasVerticalWall(x, y) ? '|' : ' ';
       if (x == maze.width()) break;
       const Cell c{x, y};
-      const bool goal =
-          std::find(maze.goals().begin(), maze.goals().end(), c) != maze.goals().end();
-      out += c == maze.start() ? " S " : goal ? " G " : "   ";
+      out += c == maze.start() ? " S " : maze.IsGoal(c) ? " G " : "   ";
     }
     out += '\n';
   }

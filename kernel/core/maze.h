@@ -10,6 +10,14 @@
 
 namespace unimouse {
 
+/// Most cells on a side of a maze that anything reads or builds: 256 x 256 cells (the classic
+/// contest maze is 16 x 16, the half-size one 32 x 32). A larger one is refused, not attempted.
+inline constexpr int kMaxMazeSide_cells = 256;
+
+/// Throws InputError naming `file` unless a `width` x `height` maze is within
+/// kMaxMazeSide_cells a side; takes 64-bit sizes so that a huge one is named, not wrapped.
+void CheckMazeSize(int64_t width, int64_t height, const std::string& file);
+
 /// Compass headings, counter-clockwise from east as in the world frame.
 enum class Heading : int { kEast = 0, kNorth = 1, kWest = 2, kSouth = 3 };
 
@@ -44,11 +52,14 @@ class Maze {
   Cell start() const { return start_; }
   Heading start_heading() const { return start_heading_; }
   const std::vector<Cell>& goals() const { return goals_; }
+  /// Returns whether `c` is one of the goal cells, in constant time.
+  bool IsGoal(Cell c) const { return Contains(c) && is_goal_[c.y * width_ + c.x] != 0; }
   void set_start(Cell c, Heading h) {
     start_ = c;
     start_heading_ = h;
   }
-  void set_goals(std::vector<Cell> goals) { goals_ = std::move(goals); }
+  /// Sets the goal cells; each must be inside the maze.
+  void set_goals(std::vector<Cell> goals);
 
  private:
   int width_;
@@ -58,6 +69,7 @@ class Maze {
   Cell start_;
   Heading start_heading_ = Heading::kNorth;
   std::vector<Cell> goals_;
+  std::vector<uint8_t> is_goal_;  // width x height: 1 on a goal cell
 };
 
 /// Turns the start heading towards the start cell's opening: north, as in the classic rules,

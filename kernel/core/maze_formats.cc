@@ -103,6 +103,10 @@ Maze ParseMazeNum(const std::string& text, const std::string& file) {
     if (fields >> extra) {
       throw InputError(file + ":" + std::to_string(number) + ":1: more than six numbers");
     }
+    if (v[0] >= kMaxMazeSide_cells || v[1] >= kMaxMazeSide_cells) {
+      CheckMazeSize(int64_t{v[0]} + 1, int64_t{v[1]} + 1,
+                    file + ":" + std::to_string(number) + ":1");
+    }
     // N E S W in the file; east, north, west, south here
     const uint8_t walls = static_cast<uint8_t>(v[3] << 0 | v[2] << 1 | v[5] << 2 | v[4] << 3);
     entries.push_back({v[0], v[1], walls, number});
@@ -110,9 +114,8 @@ Maze ParseMazeNum(const std::string& text, const std::string& file) {
     h = std::max(h, v[1] + 1);
   }
   UNIMOUSE_THROW_UNLESS(!entries.empty(), file + ": no cells: not a .num maze");
-  UNIMOUSE_THROW_UNLESS(w <= 1024 && h <= 1024, file + ": more than 1024 cells a side");
 
-  CellWalls walls(static_cast<size_t>(w * h), 0);
+  CellWalls walls(static_cast<size_t>(w) * static_cast<size_t>(h), 0);
   std::vector<int> defined_at(walls.size(), 0);
   for (const Entry& e : entries) {
     int& at = defined_at[e.y * w + e.x];
@@ -147,6 +150,14 @@ Maze ParseMazeNum(const std::string& text, const std::string& file) {
 }
 
 Maze ParseMazeBinary(const std::string& bytes, const std::string& file, std::string* layout) {
+  // one byte a cell: more bytes than the largest maze has cells is no maze we read
+  const int64_t most = int64_t{kMaxMazeSide_cells} * kMaxMazeSide_cells;
+  if (static_cast<int64_t>(bytes.size()) > most) {
+    throw InputError(file + ": " + std::to_string(bytes.size()) +
+                     " bytes is more than a binary maze of at most " +
+                     std::to_string(kMaxMazeSide_cells) + " x " +
+                     std::to_string(kMaxMazeSide_cells) + " cells has (docs/limits.md)");
+  }
   int side = 0;
   while (side * side < static_cast<int>(bytes.size())) ++side;
   UNIMOUSE_THROW_UNLESS(side * side == static_cast<int>(bytes.size()) && side >= 2,
@@ -211,10 +222,11 @@ Maze LoadMaze(const std::string& path, std::string* format) {
   const std::string content = ReadTextFile(path);
   std::string found = "text";
   Maze maze = [&] {
-    // binary: bytes no text has; every real maze has such cells (the classic start, 0x0E)
+    // binary: control bytes no text has; every real maze has such cells (the classic start,
+    // 0x0e). Bytes from 0x80 up are not a sign: text may carry UTF-8 or Latin-1 in its notes
     const bool binary = std::any_of(content.begin(), content.end(), [](char c) {
       const auto b = static_cast<unsigned char>(c);
-      return (b < 0x20 && c != '\t' && c != '\r' && c != '\n') || b >= 0x80;
+      return b < 0x20 && c != '\t' && c != '\r' && c != '\n';
     });
     if (binary) return ParseMazeBinary(content, path, &found);
     // .num: the first line is six numbers

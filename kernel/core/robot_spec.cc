@@ -143,7 +143,15 @@ BodySpec ParseBody(const YamlNode& node, NameBook& names, bool is_chassis) {
   if (!geoms.IsSequence() || geoms.items.empty()) {
     geoms.Fail("geoms must be a list with at least one geom (every body needs mass)");
   }
-  for (const auto& g : geoms.items) b.geoms.push_back(ParseGeom(g, names));
+  double mass_kg = 0;
+  for (const auto& g : geoms.items) {
+    b.geoms.push_back(ParseGeom(g, names));
+    mass_kg += b.geoms.back().mass_kg;
+  }
+  // a body that moves needs mass, or the physics cannot accelerate it
+  if (!(mass_kg > 0)) {
+    geoms.Fail("body '" + b.name + "': its geoms weigh 0 kg in all; give one a mass_kg");
+  }
   if (const YamlNode* sites = r.Optional("sites")) {
     if (!sites->IsSequence()) sites->Fail("sites must be a list");
     for (const auto& s : sites->items) b.sites.push_back(ParseSite(s, names));
@@ -153,6 +161,14 @@ BodySpec ParseBody(const YamlNode& node, NameBook& names, bool is_chassis) {
     for (const auto& child : bodies->items) b.bodies.push_back(ParseBody(child, names, false));
   }
   return b;
+}
+
+const JointSpec* FindJoint(const BodySpec& body, const std::string& name) {
+  if (body.joint && body.joint->name == name) return &*body.joint;
+  for (const BodySpec& child : body.bodies) {
+    if (const JointSpec* j = FindJoint(child, name)) return j;
+  }
+  return nullptr;
 }
 
 }  // namespace
@@ -167,8 +183,8 @@ RobotSpec ParseRobotSpec(const std::string& text, const std::string& file) {
   robot.name = r.Required("name").AsString("name");
   if (const YamlNode* t = r.Optional("timestep_s")) {
     robot.timestep_s = t->AsNumber("timestep_s");
-    if (!(robot.timestep_s > 0 && robot.timestep_s <= 0.01)) {
-      t->Fail("timestep_s must be within (0, 0.01]");
+    if (!(robot.timestep_s >= kMinTimestep_s && robot.timestep_s <= kMaxTimestep_s)) {
+      t->Fail("timestep_s must be within [0.0001, 0.01] (docs/limits.md)");
     }
   }
   if (const YamlNode* i = r.Optional("integrator")) {
@@ -194,6 +210,10 @@ RobotSpec ParseRobotSpec(const std::string& text, const std::string& file) {
       spec.joint = joint.AsString("joint");
       if (!names.Has("joint", spec.joint)) {
         joint.Fail("actuator '" + spec.name + "': no joint named '" + spec.joint + "'");
+      }
+      if (FindJoint(robot.chassis, spec.joint)->type != "hinge") {
+        joint.Fail("actuator '" + spec.name + "': joint '" + spec.joint +
+                   "' is a ball joint; a motor turns a hinge");
       }
       robot.actuators.push_back(spec);
     }

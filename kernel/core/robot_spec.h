@@ -74,6 +74,11 @@ struct ComponentSpec {
   SourceLocation location;
 };
 
+/// Shortest physics step a robot file may ask for: 0.1 ms, ten thousand steps a simulated second.
+inline constexpr double kMinTimestep_s = 1e-4;
+/// Longest physics step: 10 ms.
+inline constexpr double kMaxTimestep_s = 0.01;
+
 struct RobotSpec {
   std::string name;
   std::string file;

@@ -5,7 +5,6 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 
 #include "unimouse/errors.h"
 
@@ -19,9 +18,18 @@ std::string ReadTextFile(const std::string& path) {
   if (!in.good()) {
     throw InputError(path + ": cannot open file (" + std::strerror(errno) + ")");
   }
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
+  // read in pieces and stop past the limit: a huge file (or an endless one, /dev/zero) is
+  // never read whole
+  std::string text;
+  char piece[1 << 16];
+  while (text.size() <= kMaxInputFile_bytes && in.read(piece, sizeof(piece)).gcount() > 0) {
+    text.append(piece, static_cast<size_t>(in.gcount()));
+  }
+  if (text.size() > kMaxInputFile_bytes) {
+    throw InputError(path + ": larger than " + std::to_string(kMaxInputFile_bytes >> 20) +
+                     " MiB, more than any input unimouse reads (docs/limits.md)");
+  }
+  return text;
 }
 
 void WriteTextFile(const std::string& path, const std::string& content) {

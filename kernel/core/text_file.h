@@ -6,7 +6,12 @@
 
 namespace unimouse {
 
-/// Returns the whole content of a file; throws InputError "path: reason" when it cannot be read.
+/// Largest input file unimouse reads (a robot, scenario, controller or maze): 16 MiB, far above
+/// the largest maze (about 1 MB) and any hand-written file.
+inline constexpr size_t kMaxInputFile_bytes = 16 << 20;
+
+/// Returns the whole content of a file; throws InputError "path: reason" when it cannot be read
+/// or is larger than kMaxInputFile_bytes.
 std::string ReadTextFile(const std::string& path);
 
 /// Writes a file whole, through a temporary name so that readers never see half of it.

@@ -48,6 +48,33 @@ class Mjcf {
   std::ostringstream out_;
 };
 
+// a name from the robot file as an XML attribute value: it may hold any character
+std::string Xml(const std::string& text) {
+  std::string out;
+  for (const char c : text) {
+    switch (c) {
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '\'':
+        out += "&apos;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      default:
+        out += c;
+    }
+  }
+  return out;
+}
+
 const char* MaterialOf(StaticBox::Kind kind) {
   switch (kind) {
     case StaticBox::Kind::kWall:
@@ -81,7 +108,7 @@ void WriteAssets(Mjcf& x) {
 
 void WriteGeom(Mjcf& x, const GeomSpec& g) {
   x << "<geom";
-  if (!g.name.empty()) x << " name='" << g.name << "'";
+  if (!g.name.empty()) x << " name='" << Xml(g.name) << "'";
   x << " type='" << g.type << "' group='" << kGroupRobot << "' ";
   x << (g.contact ? kRobotContact : "contype='0' conaffinity='0'");
   if (g.type == "box") {
@@ -99,7 +126,7 @@ void WriteGeom(Mjcf& x, const GeomSpec& g) {
 }
 
 void WriteBody(Mjcf& x, const BodySpec& b, bool is_chassis) {
-  x << "<body name='" << b.name << "'";
+  x << "<body name='" << Xml(b.name) << "'";
   if (!is_chassis) {
     x << " pos='";
     x.Vec(b.pos_m) << "' euler='";
@@ -107,10 +134,10 @@ void WriteBody(Mjcf& x, const BodySpec& b, bool is_chassis) {
   }
   x << ">\n";
   if (is_chassis) {
-    x << "<freejoint name='" << b.name << "_free'/>\n";
+    x << "<freejoint name='" << Xml(b.name) << "_free'/>\n";
   } else {
     const JointSpec& j = *b.joint;
-    x << "<joint name='" << j.name << "' type='" << j.type << "'";
+    x << "<joint name='" << Xml(j.name) << "' type='" << j.type << "'";
     if (j.type == "hinge") {
       x << " axis='";
       x.Vec(j.axis) << "'";
@@ -119,7 +146,7 @@ void WriteBody(Mjcf& x, const BodySpec& b, bool is_chassis) {
   }
   for (const auto& g : b.geoms) WriteGeom(x, g);
   for (const auto& s : b.sites) {
-    x << "<site name='" << s.name << "' group='" << kGroupRobot << "' size='0.003' pos='";
+    x << "<site name='" << Xml(s.name) << "' group='" << kGroupRobot << "' size='0.003' pos='";
     x.Vec(s.pos_m) << "' euler='";
     x.Vec(s.euler_deg) << "'/>\n";
   }
@@ -268,6 +295,13 @@ std::unique_ptr<World> World::Build(const RobotSpec& robot, const Maze* maze,
   MazeDimensions dims;
   double floor_centre_x = 0, floor_centre_y = 0, floor_half_m = 5;
   if (maze != nullptr) {
+    if (maze->width() > kMaxMazeSide_cells || maze->height() > kMaxMazeSide_cells) {
+      throw InputError("a " + std::to_string(maze->width()) + " x " +
+                       std::to_string(maze->height()) + " maze is larger than the " +
+                       std::to_string(kMaxMazeSide_cells) + " x " +
+                       std::to_string(kMaxMazeSide_cells) +
+                       " cells a run builds (docs/limits.md); the maze tools read larger ones");
+    }
     w->scenery_ = MazeBoxes(*maze, dims);
     w->collision_shapes_ = MazeCollisionBoxes(*maze, dims);
     floor_centre_x = dims.cell_m * maze->width() / 2;
@@ -294,7 +328,7 @@ std::unique_ptr<World> World::Build(const RobotSpec& robot, const Maze* maze,
 
   // physics: floor, proxies, robot
   Mjcf x;
-  x << "<mujoco model='" << robot.name << "'>\n"
+  x << "<mujoco model='" << Xml(robot.name) << "'>\n"
     << "<compiler angle='degree' eulerseq='xyz' autolimits='true'/>\n"
     << "<option timestep='" << robot.timestep_s << "' integrator='" << robot.integrator << "'/>\n"
     << "<visual><global offwidth='1920' offheight='1080'/></visual>\n";
@@ -313,7 +347,7 @@ std::unique_ptr<World> World::Build(const RobotSpec& robot, const Maze* maze,
   WriteBody(x, robot.chassis, true);
   x << "</worldbody>\n<actuator>\n";
   for (const auto& a : robot.actuators) {
-    x << "<motor name='" << a.name << "' joint='" << a.joint << "' gear='1'/>\n";
+    x << "<motor name='" << Xml(a.name) << "' joint='" << Xml(a.joint) << "' gear='1'/>\n";
   }
   x << "</actuator>\n</mujoco>\n";
   w->mjcf_ = x.str();

@@ -61,9 +61,13 @@ class World {
   World& operator=(const World&) = delete;
   ~World();
 
+  /// Most cells on a side of a maze a run builds a world from: its walls and posts are shapes
+  /// the physics loads one by one, and a 128 x 128 maze takes about two seconds.
+  static constexpr int kMaxMazeSide_cells = 128;
+
   /// Builds a robot in a maze (or on an open floor when maze is null), facing the maze's start
   /// heading in its start cell, or `spawn` when given; `boxes` are more walls and obstacles, as a
-  /// scenario adds. Throws InputError.
+  /// scenario adds. Throws InputError, also for a maze beyond kMaxMazeSide_cells a side.
   static std::unique_ptr<World> Build(const RobotSpec& robot, const Maze* maze,
                                       std::optional<Pose2D> spawn = std::nullopt,
                                       const std::vector<StaticBox>& boxes = {});

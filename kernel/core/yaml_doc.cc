@@ -7,6 +7,7 @@
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <map>
 
 #include "text_file.h"
 #include "unimouse/errors.h"
@@ -19,7 +20,20 @@ SourceLocation At(const std::string& file, const YAML::Mark& mark) {
   return {file, mark.line + 1, mark.column + 1};
 }
 
-YamlNode Convert(const YAML::Node& in, const std::string& file) {
+// aliases let a short file name a node many times over: count what the tree would hold
+struct Budget {
+  const std::string& file;
+  size_t nodes_left = kMaxYamlNodes;
+};
+
+YamlNode Convert(const YAML::Node& in, Budget& budget) {
+  const std::string& file = budget.file;
+  if (budget.nodes_left-- == 0) {
+    throw InputError(At(file, in.Mark()).ToString() + ": more than " +
+                     std::to_string(kMaxYamlNodes) +
+                     " values once aliases are expanded; no robot needs that many "
+                     "(docs/limits.md)");
+  }
   YamlNode out;
   out.location = At(file, in.Mark());
   switch (in.Type()) {
@@ -30,25 +44,26 @@ YamlNode Convert(const YAML::Node& in, const std::string& file) {
     case YAML::NodeType::Sequence:
       out.kind = YamlNode::Kind::kSequence;
       for (const auto& item : in) {
-        out.items.push_back(Convert(item, file));
+        out.items.push_back(Convert(item, budget));
       }
       break;
-    case YAML::NodeType::Map:
+    case YAML::NodeType::Map: {
       out.kind = YamlNode::Kind::kMap;
+      // key -> its line, so that a map of many keys is checked in n log n
+      std::map<std::string, int, std::less<>> lines;
       for (const auto& entry : in) {
-        YamlNode key = Convert(entry.first, file);
+        YamlNode key = Convert(entry.first, budget);
         if (key.kind != YamlNode::Kind::kScalar) {
           key.Fail("map keys must be plain words");
         }
-        for (const auto& [seen, value] : out.entries) {
-          if (seen.scalar == key.scalar) {
-            key.Fail("duplicate key '" + key.scalar + "' (first given at line " +
-                     std::to_string(seen.location.line) + ")");
-          }
+        if (const auto [seen, fresh] = lines.emplace(key.scalar, key.location.line); !fresh) {
+          key.Fail("duplicate key '" + key.scalar + "' (first given at line " +
+                   std::to_string(seen->second) + ")");
         }
-        out.entries.emplace_back(std::move(key), Convert(entry.second, file));
+        out.entries.emplace_back(std::move(key), Convert(entry.second, budget));
       }
       break;
+    }
     default:
       out.kind = YamlNode::Kind::kNull;
   }
@@ -129,7 +144,8 @@ const std::string& YamlNode::AsString(std::string_view what) const {
 
 YamlNode ParseYaml(const std::string& text, const std::string& file) {
   try {
-    YamlNode root = Convert(YAML::Load(text), file);
+    Budget budget{file};
+    YamlNode root = Convert(YAML::Load(text), budget);
     if (root.kind == YamlNode::Kind::kNull) {
       root.location = {file, 1, 1};
     }

@@ -24,6 +24,8 @@ struct SourceLocation {
   std::string ToString() const;
 };
 
+struct YamlEntry;
+
 /// One node of a YAML document.
 class YamlNode {
  public:
@@ -31,8 +33,8 @@ class YamlNode {
 
   Kind kind = Kind::kNull;
   std::string scalar;
-  std::vector<YamlNode> items;                         ///< sequence items
-  std::vector<std::pair<YamlNode, YamlNode>> entries;  ///< map keys and values, in file order
+  std::vector<YamlNode> items;     ///< sequence items
+  std::vector<YamlEntry> entries;  ///< map keys and values, in file order
   SourceLocation location;
 
   /// Throws InputError "file:line:col: reason".
@@ -61,6 +63,18 @@ class YamlNode {
 
   bool IsMap() const { return kind == Kind::kMap; }
   bool IsSequence() const { return kind == Kind::kSequence; }
+};
+
+/// Most values (scalars, lists and maps) a YAML document may hold once its aliases are
+/// expanded: a robot file has a few hundred.
+inline constexpr size_t kMaxYamlNodes = 100000;
+
+/// A key of a map and its value, named as std::pair names them (a pair of an incomplete type
+/// cannot be a member of that type for every compiler).
+struct YamlEntry {
+  YamlEntry(YamlNode key, YamlNode value) : first(std::move(key)), second(std::move(value)) {}
+  YamlNode first;
+  YamlNode second;
 };
 
 /// Parses a YAML file; a syntax error becomes an InputError with file:line:col.

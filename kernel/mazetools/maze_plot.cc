@@ -41,13 +41,15 @@ constexpr uint8_t kDigits[10][5] = {
 
 class Canvas {
  public:
-  Canvas(int w, int h) : w_(w), h_(h), rgb_(static_cast<size_t>(w * h * 3), 255) {}
+  Canvas(int w, int h)
+      : w_(w), h_(h), rgb_(static_cast<size_t>(w) * static_cast<size_t>(h) * 3, 255) {}
 
   void Fill(int x0, int y0, int x1, int y1, Rgb c) {
     x0 = std::max(x0, 0), y0 = std::max(y0, 0), x1 = std::min(x1, w_), y1 = std::min(y1, h_);
     for (int y = y0; y < y1; ++y) {
       for (int x = x0; x < x1; ++x) {
-        uint8_t* p = &rgb_[static_cast<size_t>((y * w_ + x) * 3)];
+        uint8_t* p =
+            &rgb_[(static_cast<size_t>(y) * static_cast<size_t>(w_) + static_cast<size_t>(x)) * 3];
         p[0] = c.r, p[1] = c.g, p[2] = c.b;
       }
     }
@@ -90,10 +92,6 @@ bool Visited(const MazePicture& p, Cell c) {
   return !p.visited.empty() && p.visited[static_cast<size_t>(c.y * p.maze->width() + c.x)];
 }
 
-bool Contains(const std::vector<Cell>& cells, Cell c) {
-  return std::find(cells.begin(), cells.end(), c) != cells.end();
-}
-
 // every wall once: cells' south and west sides, plus the north and east edges
 template <class F>
 void ForEachWall(const Maze& m, F draw) {
@@ -122,7 +120,7 @@ std::vector<uint8_t> RenderMazePixels(const MazePicture& p, const PlotGeometry& 
       const Cell c{x, y};
       Rgb fill = kBackground;
       if (Visited(p, c)) fill = kVisited;
-      if (Contains(m.goals(), c)) fill = kGoal;
+      if (m.IsGoal(c)) fill = kGoal;
       if (c == m.start()) fill = kStart;
       const int cx = g.CentreX(m, x), cy = g.CentreY(m, y);
       canvas.Fill(cx - half, cy - half, cx + half, cy + half, fill);
@@ -193,7 +191,7 @@ std::string RenderMazeSvg(const MazePicture& p) {
       const Cell c{x, y};
       std::string fill;
       if (Visited(p, c)) fill = Hex(kVisited);
-      if (Contains(m.goals(), c)) fill = Hex(kGoal);
+      if (m.IsGoal(c)) fill = Hex(kGoal);
       if (c == m.start()) fill = Hex(kStart);
       if (!fill.empty()) {
         out << "<rect class='cell' x='" << g.CentreX(m, x) - half << "' y='"

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "maze_solver.h"
 
+#include <cstdint>
+
 #include "unimouse/errors.h"
 
 namespace unimouse {
@@ -30,7 +32,9 @@ MazePath DescribeRoute(const std::vector<Cell>& cells, Heading start) {
   path.cells = cells;
   int heading = static_cast<int>(start);
   for (size_t i = 1; i < cells.size(); ++i) {
-    const int dx = cells[i].x - cells[i - 1].x, dy = cells[i].y - cells[i - 1].y;
+    // 64-bit: a route reported by a firmware may hold any two cells one after the other
+    const int64_t dx = int64_t{cells[i].x} - cells[i - 1].x;
+    const int64_t dy = int64_t{cells[i].y} - cells[i - 1].y;
     const int move = dx == 1 ? kEast : dx == -1 ? kWest : dy == 1 ? kNorth : kSouth;
     path.turns += QuarterTurns(heading, move);
     path.straights += 1;

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstdio>
 
+#include "unimouse/errors.h"
+
 namespace unimouse::link {
 namespace {
 
@@ -16,6 +18,9 @@ constexpr int kFailsafe = 3;
 constexpr int kUnknownReported = 4;
 constexpr int kRepeats = 5;  // the firmware said it resends its commands
 constexpr int kStateSize = 6;
+
+// visited cells kept for the beliefs file: a firmware that reports more repeats itself
+constexpr size_t kMaxVisitedKept = 1 << 20;
 
 // a time for a message, to the millisecond
 std::string Seconds(double t_s) {
@@ -49,6 +54,18 @@ std::string Sides(uint8_t bits) {
 }  // namespace
 
 Link::Link(Params params) : p_(WithProfile(std::move(params))) {
+  // a robot file is data: it may name a port or a server, never a program to run or a path to
+  // make, which only the person running the simulator chooses
+  if (param::Given(p_.from_data_file, "transport")) {
+    const std::string scheme = p_.transport.substr(0, p_.transport.find(':'));
+    const bool runs = scheme == "native" || scheme == "inproc" || scheme == "avr";
+    if (runs || (scheme == "pty" && scheme != p_.transport)) {
+      throw InputError("transport '" + p_.transport.substr(0, 200) + "' " +
+                       (runs ? "runs a firmware" : "makes a path") +
+                       ": a robot file may not ask for that; give it on the command line "
+                       "(--link) instead");
+    }
+  }
   // a wrong table is bad input now, before anything is bound or opened
   for (TableEntry& e : ParseSendTable(p_.send)) send_.push_back({std::move(e), {}, 1});
   for (TableEntry& e : ParseReceiveTable(p_.receive)) {
@@ -70,7 +87,7 @@ void Link::Bind(BindContext& ctx) {
   }
   for (Incoming& i : receive_) i.signal = ctx.WriteSignal(i.entry.signal);
   ctx.SetStateSize(kStateSize);
-  if (!p_.beliefs_out.empty()) beliefs_path_ = ctx.output_dir() + "/" + p_.beliefs_out;
+  if (!p_.beliefs_out.empty()) beliefs_path_ = ctx.OutputFile(p_.beliefs_out);
 }
 
 void Link::Start() {
@@ -93,6 +110,7 @@ void Link::Reset(const ResetContext& ctx) const {
   decoder_ = FrameDecoder(data_frames_);
   inbox_.clear();
   read_this_step_ = 0;
+  received_bytes_ = 0;
   was_connected_ = false;
   beliefs_ = {};
   queue_.clear();
@@ -193,7 +211,8 @@ void Link::Apply(const SenseContext& ctx, const FirmwareFrame& f, Heard& heard) 
       break;
     }
     case UNIMOUSE_ID_DEBUG_VISITED: {
-      beliefs_.visited.emplace_back(f.data[0], f.data[1]);
+      if (beliefs_.visited.size() < kMaxVisitedKept)
+        beliefs_.visited.emplace_back(f.data[0], f.data[1]);
       unimouse_report r{};
       r.size = sizeof(r);
       r.kind = UNIMOUSE_REPORT_VISITED;
@@ -246,6 +265,7 @@ void Link::Receive(const SenseContext& ctx, Heard& heard) const {
     transport_->Read(inbox_, kReadPerStep_bytes - read_this_step_);
   }
   read_this_step_ += inbox_.size();
+  received_bytes_ += inbox_.size();
   if (transport_->Connected() != was_connected_) {
     was_connected_ = transport_->Connected();
     if (was_connected_) {
@@ -375,6 +395,16 @@ void Link::Sense(const SenseContext& ctx) const {
   read_this_step_ = 0;
   Heard heard;
   Receive(ctx, heard);
+  if (static_cast<double>(received_bytes_) >
+      kFloodAllowance_bytes + kFloodRate_bytes_per_s * ctx.time_s()) {
+    char text[192];
+    std::snprintf(text, sizeof(text),
+                  "the firmware floods the link: %llu bytes by t=%.3f s, more than 1 MiB and "
+                  "1 MiB a simulated second",
+                  static_cast<unsigned long long>(received_bytes_), ctx.time_s());
+    ctx.Fail(text);
+    return;
+  }
   if (transport_->lockstep_from_start() && p_.extensions && ctx.step() == 0 && s[kLockstep] == 0 &&
       !AwaitFirmware(ctx, heard, &Heard::lockstep_on, "ask for lock-step")) {
     return;

@@ -12,6 +12,7 @@
 #ifndef UNIMOUSE_PLUGINS_LINK_LINK_H_
 #define UNIMOUSE_PLUGINS_LINK_LINK_H_
 
+#include <cstdint>
 #include <map>
 #include <memory>
 #include <string>
@@ -37,6 +38,7 @@ struct LinkParams {
   std::string profile = "unimouse";
   bool extensions = true;
   param::GivenSet given;
+  param::GivenSet from_data_file;
   std::string mcu = "atmega2560";
   double f_cpu_hz = 16000000;
 
@@ -93,6 +95,11 @@ class Link final : public Component {
 
   /// Most bytes read from the firmware in one step; the rest waits for the next one.
   static constexpr size_t kReadPerStep_bytes = 64 * 1024;
+  /// Bytes a firmware may send in a run, plus kFloodRate_bytes_per_s for every simulated
+  /// second, before it counts as flooding the link, which ends the run: no firmware talks that
+  /// much (a 115200 baud line carries 11.5 kB a second, a 1 Mbaud one 100 kB).
+  static constexpr uint64_t kFloodAllowance_bytes = 1 << 20;
+  static constexpr uint64_t kFloodRate_bytes_per_s = 1 << 20;
 
   /// Reads the frame tables; throws InputError naming a wrong entry. Opens nothing.
   explicit Link(Params params);
@@ -153,6 +160,7 @@ class Link final : public Component {
   mutable FrameDecoder decoder_;
   mutable std::vector<uint8_t> inbox_;
   mutable size_t read_this_step_ = 0;
+  mutable uint64_t received_bytes_ = 0;  // since the last reset
   mutable bool was_connected_ = false;
   // what the firmware says it believes, for the run's maze picture
   struct Beliefs {

@@ -29,9 +29,21 @@ class PtyTransport final : public StreamTransport {
     slave_path_ = name;
     Adopt(master);
     if (!link_path_.empty()) {
+      namespace fs = std::filesystem;
       std::error_code ec;
-      std::filesystem::remove(link_path_, ec);
-      std::filesystem::create_symlink(slave_path_, link_path_, ec);
+      // only a link left by an earlier run (to a pseudo-terminal) makes way; anything else at
+      // that path is someone's file
+      const fs::file_status status = fs::symlink_status(link_path_, ec);
+      if (fs::exists(status)) {
+        const bool ours = fs::is_symlink(status) &&
+                          fs::read_symlink(link_path_, ec).string().rfind("/dev/pts/", 0) == 0;
+        if (!ours) {
+          throw InputError(link_path_ +
+                           ": exists and is not a link to a pseudo-terminal; not replaced");
+        }
+        fs::remove(link_path_, ec);
+      }
+      fs::create_symlink(slave_path_, link_path_, ec);
       UNIMOUSE_THROW_UNLESS(!ec, link_path_ + ": cannot link it to the pty: " + ec.message());
     }
   }

@@ -71,8 +71,13 @@ void Logger::Bind(BindContext& ctx) {
     columns_.push_back(signal);
   }
 
+  path_ = ctx.OutputFile(p_.path);
+}
+
+void Logger::Start() {
+  // files are opened for a run only: checking a robot file writes nothing
   namespace fs = std::filesystem;
-  const fs::path path = fs::path(ctx.output_dir()) / p_.path;
+  const fs::path path = path_;
   std::error_code ec;
   fs::create_directories(path.parent_path(), ec);
   auto open = [](const fs::path& file) {
@@ -95,6 +100,8 @@ void Logger::Bind(BindContext& ctx) {
 }
 
 void Logger::Sense(const SenseContext& ctx) const {
+  // a logger that was only checked, never started, has no file
+  if (!trace_) return;
   const mjModel& m = ctx.model();
   const mjData& d = ctx.data();
   std::vector<double> row;
@@ -132,6 +139,7 @@ void Logger::Sense(const SenseContext& ctx) const {
 }
 
 void Logger::Finish(const SenseContext& ctx) const {
+  if (!trace_) return;
   WriteMessages(ctx);
   std::fflush(trace_.get());
   if (messages_) std::fflush(messages_.get());

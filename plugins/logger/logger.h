@@ -43,6 +43,8 @@ class Logger final : public Component {
 
   explicit Logger(Params params) : p_(std::move(params)) {}
   void Bind(BindContext& ctx) override;
+  /// Opens the trace files.
+  void Start() override;
   void Sense(const SenseContext& ctx) const override;
   void Finish(const SenseContext& ctx) const override;
 
@@ -59,6 +61,7 @@ class Logger final : public Component {
   std::vector<std::string> columns_;
   std::vector<int> joint_dofs_;
   std::vector<SignalId> signals_;
+  std::string path_;  // the trace file, inside the output directory
   // files are resources, not state: rebuilt on load, never part of a snapshot
   File trace_;
   File messages_;

@@ -120,6 +120,69 @@ TEST(MazeFormatsTest, TextMayLeaveOutPostsAndEndWithFreeText) {
   EXPECT_FALSE(m.HasWall({1, 0}, Heading::kNorth));
 }
 
+TEST(MazeFormatsTest, TextWithOneNonAsciiByteInItsNotesIsStillText) {
+  const std::string drawing =
+      "o---o---o\n"
+      "|       |\n"
+      "o   o   o\n"
+      "| S |   |\n"
+      "o---o---o\n"
+      "\n";
+  std::string format;
+  // UTF-8, then a lone Latin-1 byte
+  for (const std::string notes : {"Drawn by Ren\xc3\xa9e.\n", "Drawn by Ren\xe9\x65.\n"}) {
+    const Maze m = LoadMaze(WriteTemp("accent.txt", drawing + notes), &format);
+    EXPECT_EQ(format, "text");
+    EXPECT_EQ(m.width(), 2);
+    EXPECT_TRUE(m.HasWall({0, 0}, Heading::kEast));
+  }
+}
+
+// what reading `content` says, or "read" when it reads
+std::string LoadError(const std::string& name, const std::string& content) {
+  try {
+    LoadMaze(WriteTemp(name, content));
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "read";
+}
+
+TEST(MazeFormatsTest, ANumCoordinateBeyondTheLimitIsRefusedAtItsLine) {
+  const std::string path = WriteTemp("big.num", "");
+  EXPECT_EQ(LoadError("big.num", "0 0 1 1 1 1\n2147483647 0 1 1 1 1\n"),
+            path +
+                ":2:1: a 2147483648 x 1 maze is larger than the 256 x 256 cells unimouse "
+                "reads (docs/limits.md)");
+  EXPECT_EQ(LoadError("big.num", "0 0 1 1 1 1\n1023 1023 1 1 1 1\n"),
+            path +
+                ":2:1: a 1024 x 1024 maze is larger than the 256 x 256 cells unimouse reads "
+                "(docs/limits.md)");
+}
+
+TEST(MazeFormatsTest, TheLargestMazeIsReadInEveryFormatAndOneMoreIsRefused) {
+  Maze largest(kMaxMazeSide_cells, kMaxMazeSide_cells);
+  for (int i = 0; i < kMaxMazeSide_cells; ++i) {
+    largest.SetWall({i, 0}, Heading::kSouth, true);
+    largest.SetWall({i, kMaxMazeSide_cells - 1}, Heading::kNorth, true);
+    largest.SetWall({0, i}, Heading::kWest, true);
+    largest.SetWall({kMaxMazeSide_cells - 1, i}, Heading::kEast, true);
+  }
+  EXPECT_EQ(LoadError("largest.txt", FormatMazeText(largest)), "read");
+  const std::string path = WriteTemp("wider.txt", "");
+  std::string posts = "o";
+  for (int x = 0; x <= kMaxMazeSide_cells; ++x) posts += "   o";
+  EXPECT_EQ(LoadError("wider.txt", posts + "\n|\n" + posts + "\n"),
+            path +
+                ": a 257 x 1 maze is larger than the 256 x 256 cells unimouse reads "
+                "(docs/limits.md)");
+  const std::string bin = WriteTemp("huge.maz", "");
+  EXPECT_EQ(LoadError("huge.maz", std::string(kMaxMazeSide_cells * kMaxMazeSide_cells + 1, '\x0e')),
+            bin +
+                ": 65537 bytes is more than a binary maze of at most 256 x 256 cells has "
+                "(docs/limits.md)");
+}
+
 TEST(MazeFormatsTest, EveryBrokenFileOfTheCorpusGivesItsExpectedError) {
   const fs::path dir = UNIMOUSE_SOURCE_DIR "/tests/data/broken_mazes";
   int cases = 0;

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <filesystem>
 
 #include "inline_assets.h"
@@ -87,6 +88,22 @@ TEST(MazeTextTest, ErrorsNameTheLineAndColumn) {
   EXPECT_EQ(ErrorOf("o---o---o\n| S | S |\no---o---o\n"),
             "m.txt:2:7: a second start 'S'; a maze has one start");
   EXPECT_EQ(ErrorOf("o---x\n|   |\no---o\n"), "m.txt:1:5: expected a post 'o' or '+', found 'x'");
+}
+
+TEST(MazeTextTest, AGoalInEveryCellOfTheLargestMazeWritesAndReadsInLinearTime) {
+  Maze maze(kMaxMazeSide_cells, kMaxMazeSide_cells);
+  std::vector<Cell> goals;
+  for (int y = 0; y < maze.height(); ++y) {
+    for (int x = 0; x < maze.width(); ++x) goals.push_back({x, y});
+  }
+  maze.set_goals(goals);
+  const auto start = std::chrono::steady_clock::now();
+  const Maze read = ParseMazeText(FormatMazeText(maze), "goals.txt");
+  EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(2));
+  // every cell but the start, which shows 'S'
+  EXPECT_EQ(read.goals().size(), goals.size() - 1);
+  EXPECT_TRUE(read.IsGoal({kMaxMazeSide_cells - 1, kMaxMazeSide_cells - 1}));
+  EXPECT_FALSE(read.IsGoal({0, 0}));
 }
 
 TEST(MazeTextTest, ReadsTheDissertationsMazes) {

@@ -86,10 +86,37 @@ TEST(RobotSpecTest, NonFiniteNumbersAreRefused) {
 
 TEST(RobotSpecTest, OutOfRangeValuesAreRefused) {
   EXPECT_EQ(ErrorOf(std::string(kTiny) + "timestep_s: 0.5\n"),
-            "robot.yaml:6:13: timestep_s must be within (0, 0.01]");
+            "robot.yaml:6:13: timestep_s must be within [0.0001, 0.01] (docs/limits.md)");
   EXPECT_EQ(ErrorOf(TinyWith("0.02", "-0.02")), "robot.yaml:5:33: radius_m must be greater than 0");
   EXPECT_EQ(ErrorOf(std::string(kTiny) + "integrator: RK4\n"),
             "robot.yaml:6:13: integrator must be Euler or implicit, not 'RK4'");
+}
+
+TEST(RobotSpecTest, TimestepsOutsideTheDocumentedRangeAreRefused) {
+  EXPECT_EQ(ErrorOf(std::string(kTiny) + "timestep_s: 1e-9\n"),
+            "robot.yaml:6:13: timestep_s must be within [0.0001, 0.01] (docs/limits.md)");
+  EXPECT_EQ(ParseRobotSpec(std::string(kTiny) + "timestep_s: 0.0001\n", "robot.yaml").timestep_s,
+            1e-4);
+}
+
+TEST(RobotSpecTest, ABodyWhoseGeomsWeighNothingIsRefusedAtItsGeoms) {
+  EXPECT_EQ(ErrorOf(TinyWith("mass_kg: 0.1", "mass_kg: 0")),
+            "robot.yaml:5:5: body 'body': its geoms weigh 0 kg in all; give one a mass_kg");
+  EXPECT_EQ(ErrorOf(std::string(kTiny) + "  bodies:\n"
+                                         "    - name: wheel\n"
+                                         "      joint: { name: j, type: hinge, axis: [0, 1, 0] }\n"
+                                         "      geoms: [{ type: sphere, radius_m: 0.01 }]\n"),
+            "robot.yaml:9:14: body 'wheel': its geoms weigh 0 kg in all; give one a mass_kg");
+}
+
+TEST(RobotSpecTest, AMotorOnABallJointIsRefusedAtTheActuator) {
+  EXPECT_EQ(ErrorOf(std::string(kTiny) +
+                    "  bodies:\n"
+                    "    - name: caster\n"
+                    "      joint: { name: ball, type: ball }\n"
+                    "      geoms: [{ type: sphere, radius_m: 0.01, mass_kg: 0.01 }]\n"
+                    "actuators:\n  - { name: m, joint: ball }\n"),
+            "robot.yaml:11:23: actuator 'm': joint 'ball' is a ball joint; a motor turns a hinge");
 }
 
 TEST(RobotSpecTest, KeysThatDoNotApplyToTheGeomTypeAreRefused) {

@@ -8,6 +8,7 @@
 
 #include "inline_assets.h"
 #include "kernel.h"
+#include "unimouse/errors.h"
 
 namespace unimouse {
 namespace {
@@ -181,6 +182,29 @@ TEST(OpenWorldTest, FlatWorldHasNoSceneryAndPlacesTheRobotAtTheOrigin) {
   const Pose2D pose = kernel->world().RobotPose(kernel->state().data());
   EXPECT_NEAR(pose.x_m, 0, 1e-12);
   EXPECT_NEAR(pose.yaw_rad, std::numbers::pi / 2, 1e-12);
+}
+
+TEST(OpenWorldTest, NamesWithQuotesAndMarkupReachThePhysicsAsWritten) {
+  RobotSpec robot = testing::BareRobot();
+  robot.name = "it's <b>&\"bold\"";
+  robot.chassis.name = "a'b<c>&d";
+  auto world = World::Build(robot, nullptr, std::nullopt, {});
+  EXPECT_GT(mj_name2id(&world->model(), mjOBJ_BODY, "a'b<c>&d"), 0);
+  // the text cannot close its attribute and add an element of its own
+  EXPECT_EQ(world->mjcf().find("<b>"), std::string::npos);
+}
+
+TEST(OpenWorldTest, AMazeLargerThanARunBuildsIsRefusedBeforeBuilding) {
+  const Maze maze(World::kMaxMazeSide_cells + 1, 4);
+  try {
+    World::Build(testing::BareRobot(), &maze, std::nullopt, {});
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("a 129 x 4 maze is larger than the 128 x 128 cells a run "
+                                         "builds"),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 }  // namespace

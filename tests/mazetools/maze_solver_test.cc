@@ -72,6 +72,14 @@ TEST(MazeSolverTest, DescribesARouteByItsMovesAndQuarterTurns) {
   EXPECT_EQ(DescribeRoute({{0, 1}, {0, 0}}, Heading::kNorth).turns, 2);
 }
 
+TEST(MazeSolverTest, ARouteBetweenTheFarthestCellsAnIntHoldsIsDescribedWithoutOverflow) {
+  // 2147483647 - (-2147483648) does not fit an int; as a 64-bit step it is no east-west
+  // neighbour, and the route's last case (south) takes it: an about-turn from north
+  const MazePath p = DescribeRoute({{-2147483647 - 1, 0}, {2147483647, 0}}, Heading::kNorth);
+  EXPECT_EQ(p.straights, 1);
+  EXPECT_EQ(p.turns, 2);
+}
+
 TEST(MazeSolverTest, AGoalThatCannotBeReachedGivesNoPath) {
   // the goal cell (2, 0) is walled off
   const Maze maze = ParseMazeText(

@@ -38,6 +38,7 @@ class AvrLinkTest : public ::testing::Test {
         testing::ReadBundledRobot() +
         "  - { type: unimouse.link, name: link, params: { transport: 'avr:" + image + "' } }\n";
     KernelOptions options;
+    options.trust_robot_file = true;  // the test wrote the robot file
     options.seed = 5;
     options.log_sink = [this](double, int, const std::string&, const std::string& message) {
       messages_.push_back(message);

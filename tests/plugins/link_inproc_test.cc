@@ -24,6 +24,7 @@ std::unique_ptr<Kernel> Make(const std::string& transport, const Maze* maze) {
                            "  - { type: unimouse.link, name: link, params: { transport: '" +
                            transport + "' } }\n";
   KernelOptions options;
+  options.trust_robot_file = true;  // the test wrote the robot file
   options.seed = 5;
   return testing::MakeKernel(yaml, maze, options);
 }

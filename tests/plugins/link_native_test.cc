@@ -35,6 +35,7 @@ class NativeLinkTest : public ::testing::Test {
         std::string(UNIMOUSE_TEST_FIRMWARE) + firmware_args +
         "', lockstep_timeout_s: " + std::to_string(timeout_s) + " } }\n";
     KernelOptions options;
+    options.trust_robot_file = true;  // the test wrote the robot file
     options.seed = 5;
     options.log_sink = [this](double, int, const std::string&, const std::string& message) {
       std::smatch m;

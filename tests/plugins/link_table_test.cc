@@ -5,16 +5,21 @@
 // zeroes them all; a reset forgets everything the link holds; a flood is read 64 KiB a step.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <sstream>
+#include <thread>
 
 #include "frame_codec.h"
 #include "inline_assets.h"
+#include "link.h"
 #include "plugin_rig.h"
 #include "probe_components.h"
 #include "pty_board.h"
@@ -68,6 +73,7 @@ class LinkTableTest : public ::testing::Test {
 
   void Make(const std::string& robot_yaml, const Maze* maze = nullptr) {
     KernelOptions options;
+    options.trust_robot_file = true;  // the test wrote the robot file
     options.seed = 9;
     options.output_dir = dir_;
     options.log_sink = [this](double, int level, const std::string&, const std::string& text) {
@@ -292,6 +298,62 @@ TEST_F(LinkTableTest, AFirmwareThatFloodsIsReadAtMost64KiBAStep) {
               std::string::npos)
         << e.what();
   }
+}
+
+TEST_F(LinkTableTest, AFirmwareThatFloodsEveryStepEndsTheRunWithAFault) {
+  // 40000 bytes before each step's answer, in lock-step, so that every step reads all of them
+  Make(testing::ReadBundledRobot() +
+       "  - { type: unimouse.link, name: link, params: { transport: 'native:" +
+       UNIMOUSE_TEST_FIRMWARE + " --flood-every-step 40000' } }\n");
+  int steps = 0;
+  try {
+    for (; steps < 500; ++steps) kernel_->Step();
+    FAIL() << "the flood went on";
+  } catch (const RuntimeFault& e) {
+    EXPECT_NE(std::string(e.what()).find("the firmware floods the link: "), std::string::npos)
+        << e.what();
+  }
+  // 1 MiB, plus 1048.576 bytes a 1 ms step, is past after 1048576 / (40000 - 1048.576) = 26.9
+  // steps of it
+  EXPECT_GE(steps, 26);
+  EXPECT_LE(steps, 28);
+}
+
+TEST_F(LinkTableTest, RandomBytesFromAFirmwareGiveABoundedNumberOfWarnings) {
+  // 256 KiB from a fixed generator: every unknown id and manager byte there is, many times
+  std::string bytes;
+  uint32_t x = 12345;
+  for (int i = 0; i < 256 * 1024; ++i) {
+    x = x * 1664525u + 1013904223u;
+    bytes += static_cast<char>(x >> 24);
+  }
+  const std::string junk = dir_ + "/junk.bin";
+  std::ofstream(junk, std::ios::binary) << bytes;
+  Make(testing::ReadBundledRobot() +
+       "  - { type: unimouse.link, name: link, params: { transport: 'native:/usr/bin/tail -c +1 "
+       "-f " +
+       junk + "', extensions: false } }\n");
+  // tail sends the file, then stays, as a firmware would; the pauses give it the time to
+  for (int i = 0; i < 200; ++i) {
+    kernel_->Step();
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  kernel_->Finish();
+  // what random bytes warn of (the link's last line counts unknown bytes too, as information)
+  int warnings = 0;
+  for (const std::string& m : messages_) {
+    warnings += m.rfind("link: ", 0) != 0 &&
+                (m.find("unknown") != std::string::npos || m.find("ignored") != std::string::npos);
+  }
+  EXPECT_LE(warnings, 100);
+  const auto note = std::find(messages_.begin(), messages_.end(),
+                              "more than 100 warnings: later ones are counted, not shown");
+  EXPECT_NE(note, messages_.end());
+  EXPECT_NE(std::find_if(messages_.begin(), messages_.end(),
+                         [](const std::string& m) {
+                           return m.find("more messages were not shown") != std::string::npos;
+                         }),
+            messages_.end());
 }
 
 TEST_F(LinkTableTest, ATableMistakeIsBadInputNamingTheParameterAndEntry) {

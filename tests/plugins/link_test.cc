@@ -50,6 +50,7 @@ class LinkTest : public ::testing::Test {
         "  - { type: unimouse.link, name: link, params: { transport: 'pty:" + path_ + "'" + params +
         " } }\n";
     KernelOptions options;
+    options.trust_robot_file = true;  // the test wrote the robot file
     options.seed = 3;
     kernel_ = testing::MakeKernel(yaml, maze, options);
   }
@@ -268,7 +269,9 @@ std::unique_ptr<Kernel> KernelWithLink(const std::string& transport) {
   const std::string yaml = testing::ReadBundledRobot() +
                            "  - { type: unimouse.link, name: link, params: { transport: '" +
                            transport + "' } }\n";
-  return testing::MakeKernel(yaml);
+  KernelOptions options;
+  options.trust_robot_file = true;  // the test wrote the robot file
+  return testing::MakeKernel(yaml, nullptr, options);
 }
 
 std::vector<uint8_t> MotorFrames(int16_t left, int16_t right) {

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // The link's one list of transports: the help and the error for an unknown scheme show every
-// entry, and checking a robot file opens none of them.
+// entry; checking a robot file opens none of them, and a robot file cannot ask for one that runs
+// a firmware or makes a path.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -101,22 +102,53 @@ class CheckOpensNothingTest : public ::testing::Test {
 
 TEST_F(CheckOpensNothingTest, CheckingANativeLinkStartsNoProgram) {
   const std::string started = dir_ + "/started";
-  const std::string robot =
-      RobotFile(std::string("native:") + UNIMOUSE_TEST_FIRMWARE + " --touch " + started);
+  const std::string robot = RobotFile("native:/bin/touch " + started);
   const testing::Outcome check = testing::Unimouse("check " + robot);
-  EXPECT_EQ(check.exit_code, 0) << check.output;
+  EXPECT_EQ(check.exit_code, 2) << check.output;
+  EXPECT_NE(check.output.find("robot.yaml:"), std::string::npos) << check.output;
+  EXPECT_NE(check.output.find("runs a firmware: a robot file may not ask for that"),
+            std::string::npos)
+      << check.output;
   EXPECT_FALSE(std::filesystem::exists(started));
-  // a run of the same file does start it: the mark is a true witness
+}
+
+TEST_F(CheckOpensNothingTest, ARobotFileCannotStartAProgramInARunEither) {
+  const std::string started = dir_ + "/started";
   const testing::Outcome run =
-      testing::Unimouse("run --robot " + robot + " --maze none " +
-                        "--duration 0.01 --no-pictures --out " + dir_ + "/out");
-  EXPECT_EQ(run.exit_code, 0) << run.output;
+      testing::Unimouse("run --robot " + RobotFile("native:/bin/touch " + started) +
+                        " --maze none --duration 0.01 --no-pictures --out " + dir_ + "/out");
+  EXPECT_EQ(run.exit_code, 2) << run.output;
+  EXPECT_FALSE(std::filesystem::exists(started));
+  // the same program from the command line does start: the mark is a true witness
+  const testing::Outcome allowed = testing::Unimouse(
+      "run --maze none --duration 0.01 --no-pictures --out " + dir_ +
+      "/out --link 'native:" + UNIMOUSE_TEST_FIRMWARE + " --touch " + started + "'");
+  EXPECT_EQ(allowed.exit_code, 0) << allowed.output;
   EXPECT_TRUE(std::filesystem::exists(started));
 }
 
-TEST_F(CheckOpensNothingTest, CheckingAPtyLinkMakesNoLink) {
+TEST_F(CheckOpensNothingTest, ALinkSetValueIsTakenAsWrittenNotReadAsYaml) {
+  const testing::Outcome run =
+      testing::Unimouse("run --maze none --duration 0.01 --no-pictures --out " + dir_ +
+                        "/out --link 'native:" + UNIMOUSE_TEST_FIRMWARE +
+                        "' --link-set \"beliefs_out=b: {x}'s.json\"");
+  EXPECT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_TRUE(std::filesystem::exists(dir_ + "/out/b: {x}'s.json")) << run.output;
+}
+
+TEST_F(CheckOpensNothingTest, ARobotFileCannotLoadOrEmulateAFirmware) {
+  for (const std::string transport : {"inproc:/tmp/x.so", "avr:/tmp/x.elf"}) {
+    const testing::Outcome check = testing::Unimouse("check " + RobotFile(transport));
+    EXPECT_EQ(check.exit_code, 2) << check.output;
+    EXPECT_NE(check.output.find("runs a firmware"), std::string::npos) << check.output;
+  }
+}
+
+TEST_F(CheckOpensNothingTest, ARobotFileMayNameAPortButNotMakeAPtyPath) {
+  EXPECT_EQ(testing::Unimouse("check " + RobotFile("serial:/dev/ttyUSB0@115200")).exit_code, 0);
   const testing::Outcome check = testing::Unimouse("check " + RobotFile("pty:" + dir_ + "/board"));
-  EXPECT_EQ(check.exit_code, 0) << check.output;
+  EXPECT_EQ(check.exit_code, 2) << check.output;
+  EXPECT_NE(check.output.find("makes a path"), std::string::npos) << check.output;
   EXPECT_FALSE(std::filesystem::exists(std::filesystem::symlink_status(dir_ + "/board")));
   // and writes nothing beside the robot file
   int files = 0;
@@ -124,10 +156,26 @@ TEST_F(CheckOpensNothingTest, CheckingAPtyLinkMakesNoLink) {
   EXPECT_EQ(files, 1);
 }
 
+TEST_F(CheckOpensNothingTest, APtyLinkNeverReplacesAFileThatIsNotOneOfItsLinks) {
+  const std::string path = dir_ + "/notes.txt";
+  std::ofstream(path) << "mine";
+  EXPECT_THROW(link::OpenTransport("pty:" + path), InputError);
+  std::ifstream in(path);
+  std::string content;
+  in >> content;
+  EXPECT_EQ(content, "mine");
+  // a link to a pseudo-terminal left by an earlier run does make way
+  const std::string stale = dir_ + "/board";
+  std::filesystem::create_symlink("/dev/pts/999999", stale);
+  auto pty = link::OpenTransport("pty:" + stale);
+  EXPECT_NE(std::filesystem::read_symlink(stale).string(), "/dev/pts/999999");
+}
+
 TEST_F(CheckOpensNothingTest, ALinkNeverStartedNeitherSendsNorWrites) {
   KernelOptions options;
   options.output_dir = dir_;
   options.start_components = false;
+  options.trust_robot_file = true;  // the test wrote the robot file
   auto kernel = testing::MakeKernel(testing::ReadBundledRobot() +
                                         "  - { type: unimouse.link, name: link, params: { "
                                         "transport: 'pty:" +

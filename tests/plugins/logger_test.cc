@@ -40,7 +40,7 @@ class LoggerTest : public ::testing::Test {
   void TearDown() override { fs::remove_all(dir_); }
 
   // runs the bundled robot with a talker and a logger for `steps`, driving both wheels
-  void RunRobot(const std::string& logger_params, int steps) {
+  void RunRobot(const std::string& logger_params, int steps, bool start = true) {
     const std::string components =
         testing::ReadBundledRobot().substr(testing::ReadBundledRobot().find("\ncomponents:\n") +
                                            13) +
@@ -49,6 +49,7 @@ class LoggerTest : public ::testing::Test {
         logger_params + " } }\n";
     KernelOptions options;
     options.output_dir = dir_.string();
+    options.start_components = start;
     auto kernel =
         Kernel::Create(ParseRobotSpec(testing::BundledRobotWith(components).text, "robot.yaml"),
                        nullptr, registry_, options);
@@ -120,6 +121,27 @@ TEST_F(LoggerTest, UnwritablePathIsABadInput) {
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("cannot write the log"), std::string::npos) << e.what();
   }
+}
+
+TEST_F(LoggerTest, APathOutsideTheOutputDirectoryIsRefusedWithItsLine) {
+  const fs::path outside = dir_.parent_path() / "escaped.csv";
+  for (const std::string path :
+       {outside.string(), std::string("../escaped.csv"), std::string("logs/../../escaped.csv")}) {
+    try {
+      RunRobot("path: '" + path + "'", 1);
+      ADD_FAILURE() << path;
+    } catch (const InputError& e) {
+      const std::string what = e.what();
+      EXPECT_EQ(what.rfind("robot.yaml:", 0), 0u) << what;
+      EXPECT_NE(what.find("output directory"), std::string::npos) << what;
+    }
+    EXPECT_FALSE(fs::exists(outside)) << path;
+  }
+}
+
+TEST_F(LoggerTest, ALoggerThatIsOnlyCheckedWritesNothing) {
+  RunRobot("path: logs/trace.csv", 20, /*start=*/false);
+  EXPECT_FALSE(fs::exists(dir_));
 }
 
 }  // namespace

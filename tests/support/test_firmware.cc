@@ -9,6 +9,7 @@
 //   --motors L,R         send these commands every step instead
 //   --touch PATH         create the file PATH first, to show that it was started
 //   --flood N            send N zero bytes first, as a firmware gone mad would
+//   --flood-every-step N send N zero bytes before each step's answer
 #include <unistd.h>
 
 #include <cstdio>
@@ -75,7 +76,11 @@ int main(int argc, char** argv) {
   std::map<int, std::string> report;
   bool fixed_motors = false;
   int left = 0, right = 0;
+  size_t junk_every_step = 0;
   for (int i = 1; i + 1 < argc; ++i) {
+    if (std::strcmp(argv[i], "--flood-every-step") == 0) {
+      junk_every_step = static_cast<size_t>(std::atol(argv[i + 1]));
+    }
     if (std::strcmp(argv[i], "--hang-at") == 0) hang_at = std::atol(argv[i + 1]);
     if (std::strcmp(argv[i], "--report") == 0) report = ParseReport(argv[i + 1]);
     if (std::strcmp(argv[i], "--motors") == 0) {
@@ -124,6 +129,7 @@ int main(int argc, char** argv) {
         if (step++ == hang_at) {
           for (;;) ::pause();
         }
+        if (junk_every_step > 0) Send(std::vector<uint8_t>(junk_every_step, 0));
         const int16_t speed =
             unimouse_tof_to_metres(front, UNIMOUSE_TOF_FULL_SCALE_M) > 0.3 ? 600 : 0;
         uint8_t f[8] = {

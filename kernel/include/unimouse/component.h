@@ -56,6 +56,25 @@ class BindContext {
   std::string name() const { return b_.component_name; }
   /// Returns the directory the run writes its files into.
   std::string output_dir() const { return b_.output_dir; }
+  /// Returns `relative` inside the run's output directory. Throws InputError for an absolute
+  /// path or one with a '..' part: a robot file writes inside the output directory only.
+  std::string OutputFile(const std::string& relative) const {
+    size_t begin = 0;
+    while (begin <= relative.size()) {
+      size_t end = relative.find('/', begin);
+      if (end == std::string::npos) end = relative.size();
+      if (relative.compare(begin, end - begin, "..") == 0) {
+        throw InputError("'" + relative.substr(0, 200) +
+                         "' leaves the output directory ('..'); give a path inside it");
+      }
+      begin = end + 1;
+    }
+    if (relative.empty() || relative[0] == '/') {
+      throw InputError("'" + relative.substr(0, 200) +
+                       "' is not a path inside the output directory; give a relative one");
+    }
+    return std::string(b_.output_dir) + "/" + relative;
+  }
   int JointId(const std::string& name) const { return Check(b_.joint(b_.ctx, name.c_str())); }
   int ActuatorId(const std::string& name) const { return Check(b_.actuator(b_.ctx, name.c_str())); }
   int SiteId(const std::string& name) const { return Check(b_.site(b_.ctx, name.c_str())); }
@@ -219,6 +238,9 @@ const unimouse_component_type* ComponentType() {
         param::ConfigReader reader(cfg, host);
         params.Visit(reader);
         if constexpr (requires { params.given; }) params.given = reader.given();
+        if constexpr (requires { params.from_data_file; }) {
+          params.from_data_file = reader.from_data_file();
+        }
         return new T(std::move(params));
       } catch (const std::exception& e) {
         internal::CopyMessage(e.what(), err, err_size);

@@ -19,17 +19,31 @@ enum ExitCode : int {
   kExitRuntimeFault = 3,  ///< a script, plugin or firmware error during the run
 };
 
+/// Longest error message kept: a huge input echoed in one is cut.
+inline constexpr size_t kMaxErrorMessage_bytes = 2000;
+
+/// Returns `text`, or its first `max_bytes` followed by "... (N bytes in all)".
+inline std::string Shortened(const std::string& text, size_t max_bytes) {
+  if (text.size() <= max_bytes) return text;
+  return text.substr(0, max_bytes) + "... (" + std::to_string(text.size()) + " bytes in all)";
+}
+
 /// Bad user input: a file, an option or a parameter. The message is one line, starting with
-/// `file:line:col:` when there is a location.
+/// `file:line:col:` when there is a location, and at most kMaxErrorMessage_bytes long.
 class InputError : public std::runtime_error {
  public:
-  using std::runtime_error::runtime_error;
+  explicit InputError(const std::string& message)
+      : std::runtime_error(Shortened(message, kMaxErrorMessage_bytes)) {}
+  explicit InputError(const char* message) : InputError(std::string(message)) {}
 };
 
-/// A fault during a run: a plugin, script or firmware failed. The message is one line.
+/// A fault during a run: a plugin, script or firmware failed. The message is one line, at most
+/// kMaxErrorMessage_bytes long.
 class RuntimeFault : public std::runtime_error {
  public:
-  using std::runtime_error::runtime_error;
+  explicit RuntimeFault(const std::string& message)
+      : std::runtime_error(Shortened(message, kMaxErrorMessage_bytes)) {}
+  explicit RuntimeFault(const char* message) : RuntimeFault(std::string(message)) {}
 };
 
 [[noreturn]] inline void AbortBrokenInvariant(const char* cond, const char* file, int line) {

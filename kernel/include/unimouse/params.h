@@ -84,7 +84,9 @@ class SchemaBuilder {
 };
 
 /// Names of the parameters the robot file gave; the others kept their defaults. A Params struct
-/// with a `given` member of this type receives it (for presets that supply defaults).
+/// with a `given` member of this type receives it (for presets that supply defaults); one with a
+/// `from_data_file` member receives the names whose values came from a data file rather than
+/// the command line (for values that may start a program).
 using GivenSet = std::vector<std::string>;
 
 /// Reads validated values into a Params struct through the host table.
@@ -93,10 +95,16 @@ class ConfigReader {
   ConfigReader(const unimouse_config* cfg, const unimouse_host* host) : cfg_(cfg), host_(host) {}
 
   const GivenSet& given() const { return given_; }
+  const GivenSet& from_data_file() const { return from_data_file_; }
 
   template <class T, class... Constraints>
   void operator()(const char* name, T& field, const char*, Constraints...) {
     if (host_->config_given(cfg_, name)) given_.emplace_back(name);
+    // a host too old to tell is taken to say "from a data file": the careful answer
+    if (!UNIMOUSE_HAS_FIELD(host_, unimouse_host, config_from_data_file) ||
+        host_->config_from_data_file(cfg_, name)) {
+      if (host_->config_given(cfg_, name)) from_data_file_.emplace_back(name);
+    }
     if constexpr (std::is_same_v<T, bool>) {
       field = host_->config_number(cfg_, name) != 0;
     } else if constexpr (std::is_arithmetic_v<T>) {
@@ -110,6 +118,7 @@ class ConfigReader {
   const unimouse_config* cfg_;
   const unimouse_host* host_;
   GivenSet given_;
+  GivenSet from_data_file_;
 };
 
 /// Returns the items of a comma-separated list parameter, spaces trimmed, empty items dropped.

@@ -67,6 +67,9 @@ typedef struct unimouse_host {
   const char* (*config_string)(const unimouse_config* cfg, const char* name);
   int (*config_given)(const unimouse_config* cfg, const char* name); /* 0: the default applies */
   void (*log)(void* ctx, int level, const char* message);
+  /* appended in 0.2: 1 when a data file (the robot file) gave the value, 0 when the command line
+   * or a default did; a value from a data file may not start a program or make a path */
+  int (*config_from_data_file)(const unimouse_config* cfg, const char* name);
 } unimouse_host;
 
 /* Name resolution at bind time. Every lookup returns an id >= 0, or -1 after the kernel has

@@ -57,7 +57,8 @@ uint32_t RamStart(const std::string& mcu) {
 double AvrBoardStats::LatencyQuantile_s(double q) const {
   if (latency_cycles.empty() || f_cpu_hz == 0) return -1;
   std::vector<uint32_t> sorted = latency_cycles;
-  const size_t k = std::min(sorted.size() - 1, static_cast<size_t>(q * (sorted.size() - 1) + 0.5));
+  const size_t last = sorted.size() - 1;
+  const size_t k = std::min(last, static_cast<size_t>(q * static_cast<double>(last) + 0.5));
   std::nth_element(sorted.begin(), sorted.begin() + static_cast<long>(k), sorted.end());
   return static_cast<double>(sorted[k]) / f_cpu_hz;
 }
@@ -72,7 +73,8 @@ std::string AvrBoardStats::Describe() const {
       "%u baud: %llu bytes in, %llu out, %llu RX overruns, %llu lost in, %llu lost out, %llu "
       "before the receiver was on; sensor-to-command latency p50 %.3f ms, p99 %.3f ms (%zu)",
       mcu.c_str(), f_cpu_hz / 1e6, s, static_cast<unsigned long long>(instructions),
-      s > 0 ? instructions / s / 1e6 : 0.0, cycles ? 100.0 * sleep_cycles / cycles : 0.0,
+      s > 0 ? static_cast<double>(instructions) / s / 1e6 : 0.0,
+      cycles ? 100.0 * static_cast<double>(sleep_cycles) / static_cast<double>(cycles) : 0.0,
       emulated_mhz(), ram_high_water_bytes, sram_bytes, static_bytes, heap_bytes, stack_max_bytes,
       baud, static_cast<unsigned long long>(bytes_to_mcu),
       static_cast<unsigned long long>(bytes_from_mcu), static_cast<unsigned long long>(rx_overruns),
@@ -92,7 +94,7 @@ std::vector<std::pair<std::string, double>> AvrBoardStats::Named() const {
       {"avr.cycles", D(cycles)},
       {"avr.instructions", D(instructions)},
       {"avr.instructions_per_s", s > 0 ? static_cast<double>(instructions) / s : 0},
-      {"avr.asleep_fraction", cycles ? static_cast<double>(sleep_cycles) / cycles : 0},
+      {"avr.asleep_fraction", cycles ? D(sleep_cycles) / D(cycles) : 0},
       {"avr.host_emulated_mhz", D(emulated_mhz())},
       {"avr.host_cpu_s", D(host_cpu_s)},
       {"avr.sram_bytes", D(sram_bytes)},

@@ -130,7 +130,10 @@ TEST(MazeFormatsTest, TextWithOneNonAsciiByteInItsNotesIsStillText) {
       "\n";
   std::string format;
   // UTF-8, then a lone Latin-1 byte
-  for (const std::string notes : {"Drawn by Ren\xc3\xa9e.\n", "Drawn by Ren\xe9\x65.\n"}) {
+  for (const std::string notes : {"Drawn by Ren\xc3\xa9"
+                                  "e.\n",
+                                  "Drawn by Ren\xe9"
+                                  "e.\n"}) {
     const Maze m = LoadMaze(WriteTemp("accent.txt", drawing + notes), &format);
     EXPECT_EQ(format, "text");
     EXPECT_EQ(m.width(), 2);

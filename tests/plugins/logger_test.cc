@@ -125,7 +125,7 @@ TEST_F(LoggerTest, UnwritablePathIsABadInput) {
 
 TEST_F(LoggerTest, APathOutsideTheOutputDirectoryIsRefusedWithItsLine) {
   const fs::path outside = dir_.parent_path() / "escaped.csv";
-  for (const std::string path :
+  for (const std::string& path :
        {outside.string(), std::string("../escaped.csv"), std::string("logs/../../escaped.csv")}) {
     try {
       RunRobot("path: '" + path + "'", 1);

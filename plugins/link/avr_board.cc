@@ -119,8 +119,16 @@ AvrBoard::AvrBoard(const std::string& elf_path, const Options& options) : option
   std::error_code ec;
   UNIMOUSE_THROW_UNLESS(std::filesystem::is_regular_file(elf_path, ec),
                         elf_path + ": no such firmware image");
-  elf_firmware_t fw;
-  std::memset(&fw, 0, sizeof(fw));
+  // what elf_read_firmware allocates, freed however the constructor ends
+  struct Image : elf_firmware_t {
+    Image() : elf_firmware_t{} {}
+    ~Image() {
+      std::free(flash);
+      std::free(eeprom);
+      for (uint32_t i = 0; i < symbolcount; ++i) std::free(symbol[i]);
+      std::free(symbol);
+    }
+  } fw;
   avr_global_logger_set(&Logger);
   UNIMOUSE_THROW_UNLESS(elf_read_firmware(elf_path.c_str(), &fw) == 0 && fw.flashsize > 0,
                         elf_path + ": not an AVR .elf image");
@@ -128,20 +136,14 @@ AvrBoard::AvrBoard(const std::string& elf_path, const Options& options) : option
   stats_.mcu = fw.mmcu[0] ? fw.mmcu : options.mcu;
   stats_.f_cpu_hz = fw.frequency ? fw.frequency : options.f_cpu_hz;
   avr_ = avr_make_mcu_by_name(stats_.mcu.c_str());
-  if (avr_ == nullptr) {
-    std::free(fw.flash);
-    throw InputError(elf_path + ": simavr does not know the MCU '" + stats_.mcu + "'");
-  }
+  UNIMOUSE_THROW_UNLESS(avr_ != nullptr,
+                        elf_path + ": simavr does not know the MCU '" + stats_.mcu + "'");
   Boards().emplace_back(avr_, this);
   avr_init(avr_);
   avr_->log = LOG_ERROR;
   fw.frequency = stats_.f_cpu_hz;
   avr_load_firmware(avr_, &fw);
   avr_->frequency = stats_.f_cpu_hz;
-  std::free(fw.flash);
-  std::free(fw.eeprom);
-  for (uint32_t i = 0; i < fw.symbolcount; ++i) std::free(fw.symbol[i]);
-  std::free(fw.symbol);
 
   // lock-step: never wait for the wall clock while the firmware sleeps
   avr_->sleep = [](avr_t*, avr_cycle_count_t) {};

@@ -278,6 +278,7 @@ class InprocTransport final : public Transport {
   static size_t HostRead(void* self, uint8_t* bytes, size_t max) {
     auto* t = static_cast<InprocTransport*>(self);
     const size_t n = std::min(max, t->in_.size() - t->in_pos_);
+    if (n == 0) return 0;  // an empty queue may have no storage to copy from
     std::memcpy(bytes, t->in_.data() + t->in_pos_, n);
     t->in_pos_ += n;
     return n;

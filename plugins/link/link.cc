@@ -478,7 +478,7 @@ void Link::Finish(const SenseContext& ctx) const {
   }
   char text[160];
   std::snprintf(text, sizeof(text),
-                "link: %llu frames from the firmware, %llu unknown bytes; %llu bytes dropped",
+                "%llu frames from the firmware, %llu unknown bytes; %llu bytes dropped",
                 static_cast<unsigned long long>(decoder_.frames()),
                 static_cast<unsigned long long>(decoder_.unknown_bytes()),
                 static_cast<unsigned long long>(dropped_bytes_));
@@ -487,7 +487,7 @@ void Link::Finish(const SenseContext& ctx) const {
   if (!summary.empty()) {
     std::snprintf(text, sizeof(text), "; %llu lock-step steps late",
                   static_cast<unsigned long long>(late_steps_));
-    ctx.Log("link: " + summary + text);
+    ctx.Log(summary + text);
   }
   // the same, typed, for the run's record
   auto measured = transport_->Measurements();

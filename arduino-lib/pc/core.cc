@@ -5,6 +5,7 @@
 
 #include <cerrno>
 #include <chrono>
+#include <cstdio>
 #include <cstdlib>
 #include <thread>
 #include <vector>
@@ -15,6 +16,7 @@ HardwareSerial Serial;
 
 namespace {
 
+int link_fd = 1;  // the protocol's way out: the standard output the program started with
 std::vector<uint8_t> out;
 uint8_t in[4096];
 size_t in_pos = 0, in_len = 0;
@@ -22,7 +24,7 @@ size_t in_pos = 0, in_len = 0;
 void WriteOut() {
   size_t done = 0;
   while (done < out.size()) {
-    const ssize_t n = ::write(1, out.data() + done, out.size() - done);
+    const ssize_t n = ::write(link_fd, out.data() + done, out.size() - done);
     if (n < 0 && errno == EINTR) continue;
     if (n <= 0) std::exit(0);  // the simulator went away
     done += static_cast<size_t>(n);
@@ -72,6 +74,12 @@ void delay(unsigned long ms) {
 }
 
 int main() {
+  // printf and std::cout are the firmware's own text, not the protocol: the protocol keeps the
+  // standard output the program started with, and text goes to standard error, which the
+  // simulator logs line by line
+  link_fd = ::dup(1);
+  ::dup2(2, 1);
+  std::setvbuf(stdout, nullptr, _IOLBF, 0);
   setup();
   for (;;) loop();
 }

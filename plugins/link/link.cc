@@ -266,6 +266,10 @@ void Link::Receive(const SenseContext& ctx, Heard& heard) const {
   }
   read_this_step_ += inbox_.size();
   received_bytes_ += inbox_.size();
+  // what a PC-built firmware printed (printf, std::cout) is its log, as its log frames are
+  text_.clear();
+  transport_->TakeText(text_);
+  for (const std::string& line : text_) ctx.Firmware(line);
   if (transport_->Connected() != was_connected_) {
     was_connected_ = transport_->Connected();
     if (was_connected_) {

@@ -159,6 +159,7 @@ class Link final : public Component {
   // what the link holds between steps; Reset clears all of it
   mutable FrameDecoder decoder_;
   mutable std::vector<uint8_t> inbox_;
+  mutable std::vector<std::string> text_;  // lines printed outside the protocol, this read
   mutable size_t read_this_step_ = 0;
   mutable uint64_t received_bytes_ = 0;  // since the last reset
   mutable bool was_connected_ = false;

@@ -2,6 +2,7 @@
 // A firmware program on this machine, started by the link and talking on its stdin and stdout;
 // stopped when the link goes. It runs in lock-step from the first step, so that its runs repeat
 // exactly.
+#include <fcntl.h>
 #include <sched.h>
 #include <signal.h>
 #include <sys/socket.h>
@@ -32,6 +33,13 @@ class NativeTransport final : public StreamTransport {
     int sockets[2];
     UNIMOUSE_THROW_UNLESS(::socketpair(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0, sockets) == 0,
                           "cannot make a socket pair for the firmware");
+    // its standard error is its text: the link logs it line by line
+    int text[2];
+    if (::pipe2(text, O_CLOEXEC) != 0) {
+      ::close(sockets[0]);
+      ::close(sockets[1]);
+      throw RuntimeFault("cannot make a pipe for the firmware's text");
+    }
     std::vector<char*> argv;
     for (auto& w : words) argv.push_back(w.data());
     argv.push_back(nullptr);
@@ -47,10 +55,14 @@ class NativeTransport final : public StreamTransport {
       if (share_cpu) ::sched_setaffinity(0, sizeof(one_cpu), &one_cpu);
       ::dup2(sockets[1], 0);
       ::dup2(sockets[1], 1);
+      ::dup2(text[1], 2);
       ::execv(argv[0], argv.data());
       ::_exit(127);
     }
     ::close(sockets[1]);
+    ::close(text[1]);
+    text_fd_ = text[0];
+    ::fcntl(text_fd_, F_SETFL, O_NONBLOCK);
     if (child_ < 0) ::close(sockets[0]);
     UNIMOUSE_THROW_UNLESS(child_ > 0, "cannot start " + program);
     pinned_ = share_cpu && ::sched_setaffinity(0, sizeof(one_cpu), &one_cpu) == 0;
@@ -59,6 +71,7 @@ class NativeTransport final : public StreamTransport {
   ~NativeTransport() override {
     // a firmware never ends by itself: ask it to stop, then insist
     CloseStream();
+    if (text_fd_ >= 0) ::close(text_fd_);
     if (pinned_) ::sched_setaffinity(0, sizeof(own_cpus_), &own_cpus_);
     if (child_ <= 0) return;
     ::kill(child_, SIGTERM);
@@ -75,9 +88,35 @@ class NativeTransport final : public StreamTransport {
   }
   bool lockstep_from_start() const override { return true; }
 
+  void TakeText(std::vector<std::string>& lines) override {
+    char buffer[4096];
+    // bounded like the link's reads: a program that prints without end cannot hold a step
+    for (size_t total = 0; total < kTextPerRead_bytes;) {
+      const ssize_t n = ::read(text_fd_, buffer, sizeof(buffer));
+      if (n <= 0) break;
+      total += static_cast<size_t>(n);
+      partial_.append(buffer, static_cast<size_t>(n));
+    }
+    size_t from = 0;
+    for (size_t end; (end = partial_.find('\n', from)) != std::string::npos; from = end + 1) {
+      lines.push_back(partial_.substr(from, end - from));
+    }
+    partial_.erase(0, from);
+    // a line without its end is shown in pieces rather than held without bound
+    if (partial_.size() >= kLongestLine_bytes) {
+      lines.push_back(partial_);
+      partial_.clear();
+    }
+  }
+
  private:
+  static constexpr size_t kTextPerRead_bytes = 64 * 1024;
+  static constexpr size_t kLongestLine_bytes = 1000;
+
   std::string command_;
   pid_t child_ = -1;
+  int text_fd_ = -1;     // the read end of the program's standard error
+  std::string partial_;  // its text after the last whole line
   cpu_set_t own_cpus_;   // the simulator thread's cores before the firmware shared one
   bool pinned_ = false;  // whether the simulator thread runs on the firmware's core
 };

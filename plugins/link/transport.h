@@ -51,6 +51,9 @@ class Transport {
   /// Returns why the firmware ended for good (it crashed, called exit(), hung), or "" while it
   /// runs or when the transport cannot tell.
   virtual std::string Failure() const { return ""; }
+  /// Appends the whole lines the firmware printed outside the protocol since the last call (a
+  /// program's standard error); never waits.
+  virtual void TakeText(std::vector<std::string>& /*lines*/) {}
 };
 
 /// What the link's parameters tell a transport beyond its spec.

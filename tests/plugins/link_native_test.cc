@@ -139,6 +139,25 @@ TEST_F(NativeLinkTest, WhatTheFirmwareReportsReachesTheHostAsTypedReports) {
   EXPECT_EQ(values, std::vector<double>{1.5});
 }
 
+TEST_F(NativeLinkTest, WhatASketchPrintsIsItsLogAndLeavesTheProtocolAlone) {
+  const std::string out = testing::FreshDirectory("native_printf");
+  const auto o = testing::Unimouse("run --maze none --duration 0.35 --out " + out +
+                                   " --link native:" + std::string(UNIMOUSE_PRINTING_FIRMWARE));
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  const std::string log = ReadTextFile(out + "/log.txt");
+  // each line at the step the sketch printed it, as a line the firmware logged
+  for (const char* line :
+       {"0.100000\tlink\tprintf at 100 ms\n", "0.100000\tlink\tcout at 100 ms\n",
+        "0.300000\tlink\tprintf at 300 ms\n", "0.300000\tlink\tcout at 300 ms\n"}) {
+    EXPECT_NE(log.find(line), std::string::npos) << line << " not in\n" << log;
+  }
+  EXPECT_EQ(log.find("unknown frame id"), std::string::npos) << log;
+  EXPECT_NE(log.find(" frames from the firmware, 0 unknown bytes; 0 bytes dropped"),
+            std::string::npos)
+      << log;
+  EXPECT_EQ(log.find("at 400 ms"), std::string::npos) << log;
+}
+
 TEST_F(NativeLinkTest, TheRunCommandRunsLockstepFirmwareFasterThanRealTime) {
   const std::string out = testing::FreshDirectory("native_fast");
   const auto o = testing::Unimouse("run --maze none --duration 3 --out " + out +

@@ -5,22 +5,10 @@
 
 #include <gtest/gtest.h>
 
+#include "inline_assets.h"
+
 namespace unimouse {
 namespace {
-
-// 5 x 5, no inner walls but one east of the start; the goal is the centre cell (2, 2)
-constexpr const char* kOpenMaze = R"(o---o---o---o---o---o
-|                   |
-o   o   o   o   o   o
-|                   |
-o   o   o   o   o   o
-|                   |
-o   o   o   o   o   o
-|                   |
-o   o   o   o   o   o
-| S |               |
-o---o---o---o---o---o
-)";
 
 class MmsWorldTest : public ::testing::Test {
  protected:
@@ -32,7 +20,7 @@ class MmsWorldTest : public ::testing::Test {
   }
   MmsResponse::Kind KindOf(const std::string& line) { return world_.Handle(line).kind; }
 
-  Maze maze_ = ParseMazeText(kOpenMaze, "open.txt");
+  Maze maze_ = ParseMazeText(testing::kOpenMaze5x5, "open.txt");
   MmsWorld world_{maze_, MmsTiming{}};
 };
 

@@ -22,20 +22,6 @@ namespace {
 namespace fs = std::filesystem;
 using testing::FreshDirectory;
 
-// 5 x 5, no inner walls but one east of the start; the goal is the centre cell (2, 2)
-constexpr const char* kOpenMaze = R"(o---o---o---o---o---o
-|                   |
-o   o   o   o   o   o
-|                   |
-o   o   o   o   o   o
-|                   |
-o   o   o   o   o   o
-|                   |
-o   o   o   o   o   o
-| S |               |
-o---o---o---o---o---o
-)";
-
 // 5 x 5 with a wall from the west side to the centre's east side: a left-wall follower walks
 // north to (0, 2), turns right and follows the wall east into the centre (2, 2)
 constexpr const char* kWallToTheCentreMaze = R"(o---o---o---o---o---o
@@ -80,7 +66,7 @@ class MmsRunTest : public ::testing::Test {
 
   std::string dir_ = FreshDirectory("mms");
   std::string out_ = dir_ + "/out";
-  std::string open_maze_ = WriteFile("open.txt", kOpenMaze);
+  std::string open_maze_ = WriteFile("open.txt", testing::kOpenMaze5x5);
 };
 
 const std::string kFloodFill = UNIMOUSE_MMS_FLOODFILL;

@@ -60,13 +60,13 @@ MmsResponse Invalid(std::string problem) {
 }
 MmsResponse Bool(bool value) { return Reply(value ? "true" : "false"); }
 
-std::string Number(double value) {
+}  // namespace
+
+std::string MmsNumber(double value) {
   char text[32];
   std::snprintf(text, sizeof(text), "%g", value);
   return text;
 }
-
-}  // namespace
 
 double MmsStats::Score() const {
   if (!has_best_run) return 2000;
@@ -268,7 +268,7 @@ MmsResponse MmsWorld::Handle(const std::string& raw) {
     double value = 0;
     if (nargs != 1) return Invalid("takes one stat name");
     if (!stats_.Find(tokens[1], &value)) return Invalid("unknown stat '" + tokens[1] + "'");
-    return Reply(Number(value));
+    return Reply(MmsNumber(value));
   }
   return Show(tokens, line);
 }

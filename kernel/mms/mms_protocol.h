@@ -19,6 +19,9 @@
 
 namespace unimouse {
 
+/// Returns a number as mms prints it, as printf's %g does: 2000, 7.7.
+std::string MmsNumber(double value);
+
 /// What the program's clock charges for moving; all of it stays out of the protocol's replies.
 struct MmsTiming {
   double cell_time_s = 0.5;  ///< one cell straight on; a half-step costs half

@@ -153,7 +153,7 @@ class Exchange {
           std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now());
       if (left.count() < 0) {
         return {"program_hang",
-                "the program sent no command line for " + Seconds(options_.reply_timeout_s) +
+                "the program sent no command line for " + MmsNumber(options_.reply_timeout_s) +
                     " s (does it flush stdout after each command?)",
                 kExitRuntimeFault};
       }
@@ -181,9 +181,11 @@ class Exchange {
           discarding = false;
           continue;
         }
-        deadline = Clock::now() + reply_timeout;
         if (std::optional<Ending> ending = Command(partial)) return *ending;
         partial.clear();
+
+        // after the command: a paced move's wait is not the program's time
+        deadline = Clock::now() + reply_timeout;
       }
     }
   }
@@ -192,12 +194,6 @@ class Exchange {
   long invalid() const { return invalid_; }
 
  private:
-  static std::string Seconds(double s) {
-    char text[32];
-    std::snprintf(text, sizeof(text), "%g", s);
-    return text;
-  }
-
   void LogInvalid(const std::string& line, const std::string& problem, long number) {
     ++invalid_;
     if (invalid_ <= kMaxLoggedInvalid) {
@@ -232,7 +228,7 @@ class Exchange {
     if (world_.contest_time_s() > options_.time_limit_s) {
       return world_.goal_reached()
                  ? Ending{"goal_reached", "the contest time ran out after the goal", kExitPassed}
-                 : Ending{"time_out", "the contest time of " + Seconds(options_.time_limit_s) +
+                 : Ending{"time_out", "the contest time of " + MmsNumber(options_.time_limit_s) +
                                           " s ran out before the goal"};
     }
     if (response.crash && options_.end_on_crash) {

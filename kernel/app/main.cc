@@ -8,6 +8,7 @@
 #include "commands.h"
 #include "install_paths.h"
 #include "maze_commands.h"
+#include "mms_run.h"
 #include "plugin_registry.h"
 #include "scenario.h"
 #include "unimouse/errors.h"
@@ -186,6 +187,35 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   generate_cmd->add_option("--out", maze.out, "file to write instead of printing");
 
+  MmsRunOptions mms;
+  CLI::App* mms_cmd = app.add_subcommand(
+      "mms", "run a program written for the mms simulator on the maze (docs/mms.md)");
+  mms_cmd->add_option("--maze", mms.maze, "maze file or bundled maze name")->capture_default_str();
+  mms_cmd->add_option("--out", mms.out_dir, "directory for result.json")->capture_default_str();
+  mms_cmd
+      ->add_option("--cell-time-s", mms.timing.cell_time_s,
+                   "contest seconds per cell moved (a half-step costs half)")
+      ->capture_default_str();
+  mms_cmd
+      ->add_option("--turn-time-s", mms.timing.turn_time_s,
+                   "contest seconds per 90 degree turn (45 degrees cost half)")
+      ->capture_default_str();
+  mms_cmd->add_option("--time-limit-s", mms.time_limit_s, "the contest clock's limit")
+      ->capture_default_str();
+  mms_cmd
+      ->add_option("--reply-timeout-s", mms.reply_timeout_s,
+                   "wall seconds the program has to send each command line")
+      ->capture_default_str();
+  mms_cmd->add_option("--max-commands", mms.max_commands, "command lines before the run stops")
+      ->capture_default_str();
+  mms_cmd->add_flag("--realtime", mms.realtime, "wait each move's contest time on the wall clock");
+  mms_cmd->add_flag("--until-exit", mms.until_exit,
+                    "keep answering after the goal until the program exits or time runs out");
+  mms_cmd->add_flag("--end-on-crash", mms.end_on_crash,
+                    "a move into a wall ends the run (mms itself only replies crash)");
+  mms_cmd->add_option("program", mms.program, "the program and its arguments, after --")
+      ->required();
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -211,6 +241,7 @@ int main(int argc, char** argv) {
       }
       return RunCommand(run);
     }
+    if (mms_cmd->parsed()) return RunMms(mms);
     if (check_cmd->parsed()) return CheckCommand(check_robot, plugin_path);
     if (plugins_cmd->parsed()) return PluginsCommand(plugin_path);
     if (scenarios_cmd->parsed()) return ScenariosCommand(scenarios_markdown);

@@ -51,6 +51,20 @@ inline constexpr const char* kSmallMaze =
     "| S     |   |\n"
     "o---o---o---o\n";
 
+/// 5 x 5, no inner walls but one east of the start (0, 0); the goal is the centre cell (2, 2).
+inline constexpr const char* kOpenMaze5x5 =
+    "o---o---o---o---o---o\n"
+    "|                   |\n"
+    "o   o   o   o   o   o\n"
+    "|                   |\n"
+    "o   o   o   o   o   o\n"
+    "|                   |\n"
+    "o   o   o   o   o   o\n"
+    "|                   |\n"
+    "o   o   o   o   o   o\n"
+    "| S |               |\n"
+    "o---o---o---o---o---o\n";
+
 }  // namespace unimouse::testing
 
 #endif  // UNIMOUSE_TESTS_INLINE_ASSETS_H_

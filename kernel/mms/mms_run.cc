@@ -1,0 +1,351 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "mms_run.h"
+
+#include <fcntl.h>
+#include <poll.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <optional>
+#include <thread>
+
+#include "install_paths.h"
+#include "text_file.h"
+#include "unimouse/errors.h"
+
+namespace unimouse {
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+constexpr size_t kMaxLineBytes = 4096;
+constexpr int kMaxLoggedInvalid = 20;
+
+// how a run ended, in result.json's words
+struct Ending {
+  std::string status;
+  std::string reason;
+  int exit_code = kExitFailed;
+};
+
+// a line as the log shows it: printable, short
+std::string Printable(const std::string& line) {
+  std::string shown;
+  for (const unsigned char c : line.substr(0, 80)) {
+    if (c >= 32 && c < 127) {
+      shown += char(c);
+    } else {
+      char hex[8];
+      std::snprintf(hex, sizeof(hex), "\\x%02x", c);
+      shown += hex;
+    }
+  }
+  return line.size() > 80 ? shown + "..." : shown;
+}
+
+// the program, in its own process group so that whatever it starts goes with it
+class Child {
+ public:
+  explicit Child(const std::vector<std::string>& program) {
+    int to_child[2], from_child[2], exec_error[2];
+    if (pipe(to_child) != 0 || pipe(from_child) != 0 || pipe2(exec_error, O_CLOEXEC) != 0) {
+      throw RuntimeFault(std::string("cannot make pipes: ") + std::strerror(errno));
+    }
+    pid_ = fork();
+    if (pid_ < 0) throw RuntimeFault(std::string("cannot fork: ") + std::strerror(errno));
+    if (pid_ == 0) {
+      setpgid(0, 0);
+      dup2(to_child[0], 0);
+      dup2(from_child[1], 1);
+      for (int fd : {to_child[0], to_child[1], from_child[0], from_child[1], exec_error[0]}) {
+        close(fd);
+      }
+      signal(SIGPIPE, SIG_DFL);
+      std::vector<char*> argv;
+      for (const std::string& arg : program) argv.push_back(const_cast<char*>(arg.c_str()));
+      argv.push_back(nullptr);
+      execvp(argv[0], argv.data());
+      const int error = errno;
+      (void)!write(exec_error[1], &error, sizeof(error));
+      _exit(127);
+    }
+    setpgid(pid_, pid_);
+    close(to_child[0]);
+    close(from_child[1]);
+    close(exec_error[1]);
+    in_ = to_child[1];
+    out_ = from_child[0];
+
+    // the exec-error pipe closes unread when exec succeeds
+    int error = 0;
+    const ssize_t n = read(exec_error[0], &error, sizeof(error));
+    close(exec_error[0]);
+    if (n == sizeof(error)) {
+      Stop();
+      throw InputError("cannot run '" + program[0] + "': " + std::strerror(error));
+    }
+    fcntl(in_, F_SETFL, fcntl(in_, F_GETFL) | O_NONBLOCK);
+    fcntl(out_, F_SETFL, fcntl(out_, F_GETFL) | O_NONBLOCK);
+  }
+  ~Child() { Stop(); }
+
+  int in() const { return in_; }
+  int out() const { return out_; }
+
+  /// Waits up to `timeout` for the program to exit by itself; returns its wait status or -1.
+  int WaitExit(Clock::duration timeout) {
+    const Clock::time_point deadline = Clock::now() + timeout;
+    while (pid_ > 0) {
+      int status = 0;
+      if (waitpid(pid_, &status, WNOHANG) == pid_) {
+        pid_ = -1;
+        return status;
+      }
+      if (Clock::now() > deadline) break;
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    }
+    return -1;
+  }
+
+  /// Kills the program and its process group, and reaps it.
+  void Stop() {
+    if (in_ >= 0) close(in_);
+    if (out_ >= 0) close(out_);
+    in_ = out_ = -1;
+    if (pid_ > 0) {
+      kill(-pid_, SIGKILL);
+      int status = 0;
+      waitpid(pid_, &status, 0);
+      pid_ = -1;
+    }
+  }
+
+ private:
+  pid_t pid_ = -1;
+  int in_ = -1;
+  int out_ = -1;
+};
+
+// the protocol session: reads command lines, answers them, decides when the run ends
+class Exchange {
+ public:
+  Exchange(const MmsRunOptions& options, MmsWorld& world, Child& child)
+      : options_(options), world_(world), child_(child) {}
+
+  Ending Run() {
+    const auto reply_timeout = std::chrono::duration_cast<Clock::duration>(
+        std::chrono::duration<double>(options_.reply_timeout_s));
+    Clock::time_point deadline = Clock::now() + reply_timeout;
+    std::string partial;
+    bool discarding = false;  // inside an over-long line
+    for (;;) {
+      pollfd fds[2] = {{child_.out(), POLLIN, 0}, {child_.in(), POLLOUT, 0}};
+      const int nfds = pending_.empty() || child_.in() < 0 ? 1 : 2;
+      const auto left =
+          std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now());
+      if (left.count() < 0) {
+        return {"program_hang",
+                "the program sent no command line for " + MmsNumber(options_.reply_timeout_s) +
+                    " s (does it flush stdout after each command?)",
+                kExitRuntimeFault};
+      }
+      if (poll(fds, nfds_t(nfds), int(left.count()) + 1) < 0 && errno != EINTR) {
+        return {"error", std::string("poll: ") + std::strerror(errno), kExitRuntimeFault};
+      }
+      if (nfds == 2 && (fds[1].revents & (POLLOUT | POLLERR | POLLHUP)) != 0) Flush();
+      if ((fds[0].revents & (POLLIN | POLLHUP | POLLERR)) == 0) continue;
+      char buffer[65536];
+      const ssize_t n = read(child_.out(), buffer, sizeof(buffer));
+      if (n < 0 && (errno == EAGAIN || errno == EINTR)) continue;
+      if (n <= 0) return Exited();
+      for (ssize_t i = 0; i < n; ++i) {
+        if (buffer[i] != '\n') {
+          if (discarding) continue;
+          partial += buffer[i];
+          if (partial.size() > kMaxLineBytes) {
+            LogInvalid(partial, "longer than 4096 bytes", ++commands_);
+            partial.clear();
+            discarding = true;
+          }
+          continue;
+        }
+        if (discarding) {
+          discarding = false;
+          continue;
+        }
+        if (std::optional<Ending> ending = Command(partial)) return *ending;
+        partial.clear();
+
+        // after the command: a paced move's wait is not the program's time
+        deadline = Clock::now() + reply_timeout;
+      }
+    }
+  }
+
+  long commands() const { return commands_; }
+  long invalid() const { return invalid_; }
+
+ private:
+  void LogInvalid(const std::string& line, const std::string& problem, long number) {
+    ++invalid_;
+    if (invalid_ <= kMaxLoggedInvalid) {
+      std::fprintf(stderr, "mms: line %ld: invalid command '%s' dropped: %s\n", number,
+                   Printable(line).c_str(), problem.c_str());
+    } else if (invalid_ == kMaxLoggedInvalid + 1) {
+      std::fprintf(stderr, "mms: more invalid commands are dropped without a line each\n");
+    }
+  }
+
+  // carries out one line; returns how the run ends if it does
+  std::optional<Ending> Command(const std::string& line) {
+    if (++commands_ > options_.max_commands) {
+      return Ending{"command_limit", "the program sent more than " +
+                                         std::to_string(options_.max_commands) + " command lines"};
+    }
+    const MmsResponse response = world_.Handle(line);
+    if (response.kind == MmsResponse::Kind::kInvalid) {
+      LogInvalid(line, response.problem, commands_);
+      return std::nullopt;
+    }
+    if (response.motion && options_.realtime) {
+      std::this_thread::sleep_for(
+          std::chrono::duration<double>(world_.contest_time_s() - paced_s_));
+      paced_s_ = world_.contest_time_s();
+    }
+    if (response.kind == MmsResponse::Kind::kReply) {
+      pending_ += response.reply + "\n";
+      Flush();
+    }
+    if (!response.motion) return std::nullopt;
+    if (world_.contest_time_s() > options_.time_limit_s) {
+      return world_.goal_reached()
+                 ? Ending{"goal_reached", "the contest time ran out after the goal", kExitPassed}
+                 : Ending{"time_out", "the contest time of " + MmsNumber(options_.time_limit_s) +
+                                          " s ran out before the goal"};
+    }
+    if (response.crash && options_.end_on_crash) {
+      return Ending{"crash", "the mouse ran into a wall (line " + std::to_string(commands_) + ": " +
+                                 Printable(line) + ")"};
+    }
+    if (world_.goal_reached() && !options_.until_exit) {
+      return Ending{"goal_reached", "the mouse reached the goal", kExitPassed};
+    }
+    return std::nullopt;
+  }
+
+  void Flush() {
+    while (!pending_.empty() && child_.in() >= 0) {
+      const ssize_t n = write(child_.in(), pending_.data(), pending_.size());
+      if (n > 0) {
+        pending_.erase(0, size_t(n));
+        continue;
+      }
+      // a program that closed its stdin no longer hears replies
+      if (n < 0 && errno != EAGAIN && errno != EINTR) pending_.clear();
+      return;
+    }
+  }
+
+  Ending Exited() {
+    const int status = child_.WaitExit(std::chrono::duration_cast<Clock::duration>(
+        std::chrono::duration<double>(options_.reply_timeout_s)));
+    if (status != -1 && WIFSIGNALED(status)) {
+      return {"program_crashed",
+              std::string("the program was killed by signal ") + strsignal(WTERMSIG(status)),
+              kExitRuntimeFault};
+    }
+    if (world_.goal_reached()) {
+      return {"goal_reached", "the program ended after the goal", kExitPassed};
+    }
+    const std::string how = status == -1
+                                ? "closed its stdout"
+                                : "exited with code " + std::to_string(WEXITSTATUS(status));
+    return {"program_exited", "the program " + how + " before the mouse reached the goal",
+            kExitRuntimeFault};
+  }
+
+  const MmsRunOptions& options_;
+  MmsWorld& world_;
+  Child& child_;
+  std::string pending_;
+  long commands_ = 0;
+  long invalid_ = 0;
+  double paced_s_ = 0;
+};
+
+void CheckOptions(const MmsRunOptions& o) {
+  UNIMOUSE_THROW_UNLESS(!o.program.empty(), "unimouse mms: name the program after --");
+  auto positive = [](double v) { return std::isfinite(v) && v > 0; };
+  auto non_negative = [](double v) { return std::isfinite(v) && v >= 0; };
+  UNIMOUSE_THROW_UNLESS(positive(o.reply_timeout_s), "--reply-timeout-s must be positive");
+  UNIMOUSE_THROW_UNLESS(positive(o.time_limit_s), "--time-limit-s must be positive");
+  UNIMOUSE_THROW_UNLESS(non_negative(o.timing.cell_time_s), "--cell-time-s must be >= 0");
+  UNIMOUSE_THROW_UNLESS(non_negative(o.timing.turn_time_s), "--turn-time-s must be >= 0");
+  UNIMOUSE_THROW_UNLESS(o.max_commands > 0, "--max-commands must be positive");
+}
+
+}  // namespace
+
+int RunMms(const MmsRunOptions& options) {
+  nlohmann::json record = {{"mode", "mms-logic"}, {"program", options.program}};
+  std::error_code ec;
+  fs::remove(fs::path(options.out_dir) / "result.json", ec);
+  Ending ending;
+  try {
+    CheckOptions(options);
+    const std::string maze_file = ResolveDataFile(options.maze, "mazes/", ".txt");
+    const Maze maze = LoadMaze(maze_file);
+    record["maze"] = maze_file;
+    record["maze_size"] = {maze.width(), maze.height()};
+    fs::create_directories(options.out_dir);
+    signal(SIGPIPE, SIG_IGN);
+    MmsWorld world(maze, options.timing);
+    Child child(options.program);
+    Exchange exchange(options, world, child);
+    ending = exchange.Run();
+    child.Stop();
+    record["commands"] = exchange.commands();
+    record["invalid_commands"] = exchange.invalid();
+    record["goal_reached"] = world.goal_reached();
+    record["moves"] = world.moves();
+    record["crashes"] = world.crashes();
+    record["contest_time_s"] = world.contest_time_s();
+    record["stats"] = world.stats().ToJson();
+    record["score"] = world.stats().Score();
+    record["display"] = world.Display();
+  } catch (const InputError& e) {
+    ending = {"error", e.what(), kExitBadInput};
+  } catch (const std::exception& e) {
+    ending = {"error", e.what(), kExitRuntimeFault};
+  }
+  record["status"] = ending.status;
+  record["reason"] = ending.reason;
+  record["exit_code"] = ending.exit_code;
+  const std::string result = (fs::path(options.out_dir) / "result.json").string();
+  try {
+    fs::create_directories(options.out_dir);
+    WriteTextFile(result,
+                  record.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "unimouse: error: %s\n", e.what());
+    return ending.exit_code == kExitPassed ? kExitRuntimeFault : ending.exit_code;
+  }
+  if (ending.status == "error") {
+    std::fprintf(stderr, "unimouse: error: %s\n", ending.reason.c_str());
+  } else {
+    std::printf("mms: %s: %s; %s moves, score %g\n  result: %s\n", ending.status.c_str(),
+                ending.reason.c_str(), record["moves"].dump().c_str(),
+                record["score"].get<double>(), result.c_str());
+  }
+  return ending.exit_code;
+}
+
+}  // namespace unimouse

@@ -1,0 +1,283 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// `unimouse mms` as a user runs it: programs written in mms style, in C++, Python and shell,
+// against mazes; what result.json and the exit code say, and what the log shows.
+#include "mms_run.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <deque>
+#include <filesystem>
+
+#include "inline_assets.h"
+#include "run_program.h"
+#include "text_file.h"
+
+namespace unimouse {
+namespace {
+
+namespace fs = std::filesystem;
+using testing::FreshDirectory;
+
+// 5 x 5 with a wall from the west side to the centre's east side: a left-wall follower walks
+// north to (0, 2), turns right and follows the wall east into the centre (2, 2)
+constexpr const char* kWallToTheCentreMaze = R"(o---o---o---o---o---o
+|                   |
+o   o   o   o   o   o
+|                   |
+o---o---o---o   o   o
+|           |       |
+o   o   o   o   o   o
+|                   |
+o   o   o   o   o   o
+| S |               |
+o---o---o---o---o---o
+)";
+
+struct MmsOutcome {
+  testing::Outcome outcome;
+  nlohmann::json result;  ///< null when no result.json was written
+};
+
+class MmsRunTest : public ::testing::Test {
+ protected:
+  std::string WriteFile(const std::string& name, const std::string& text) {
+    const std::string path = dir_ + "/" + name;
+    WriteTextFile(path, text);
+    fs::permissions(path, fs::perms::owner_exec, fs::perm_options::add);
+    return path;
+  }
+
+  MmsOutcome Mms(const std::string& arguments) {
+    MmsOutcome run{testing::Unimouse("mms --out " + out_ + " " + arguments), nullptr};
+    if (fs::exists(out_ + "/result.json")) {
+      run.result = nlohmann::json::parse(ReadTextFile(out_ + "/result.json"));
+    }
+    return run;
+  }
+
+  // a shell client: `ask` sends a line and reads the reply into $reply
+  std::string ShellClient(const std::string& body) {
+    return WriteFile("client.sh", "#!/bin/sh\nask() { echo \"$1\"; read -r reply; }\n" + body);
+  }
+
+  std::string dir_ = FreshDirectory("mms");
+  std::string out_ = dir_ + "/out";
+  std::string open_maze_ = WriteFile("open.txt", testing::kOpenMaze5x5);
+};
+
+const std::string kFloodFill = UNIMOUSE_MMS_FLOODFILL;
+const std::string kLeftWall = UNIMOUSE_SOURCE_DIR "/tests/mms/clients/left_wall.py";
+
+bool HavePython() { return std::system("python3 -c '' >/dev/null 2>&1") == 0; }
+
+TEST_F(MmsRunTest, FloodFillClientReachesTheGoalOfTheBundledMaze) {
+  const MmsOutcome run = Mms("--maze japan2018 -- " + kFloodFill);
+  EXPECT_EQ(run.outcome.exit_code, 0) << run.outcome.output;
+  ASSERT_TRUE(run.result.is_object()) << run.outcome.output;
+  EXPECT_EQ(run.result["status"], "goal_reached");
+  EXPECT_EQ(run.result["goal_reached"], true);
+  EXPECT_EQ(run.result["maze_size"], nlohmann::json::parse("[16, 16]"));
+  EXPECT_GT(run.result["moves"].get<int>(), 14);
+  EXPECT_EQ(run.result["crashes"], 0);
+  EXPECT_EQ(run.result["invalid_commands"], 0);
+  // the client colours every cell it stood on, the start first
+  EXPECT_EQ(run.result["display"]["colors"][0],
+            nlohmann::json::parse(R"({"x": 0, "y": 0, "color": "c"})"));
+  EXPECT_NE(run.outcome.output.find("flood fill starting"), std::string::npos);
+}
+
+TEST_F(MmsRunTest, LeftWallPythonClientFollowsTheWallIntoTheCentre) {
+  if (!HavePython()) GTEST_SKIP() << "no python3";
+  const std::string maze = WriteFile("wall.txt", kWallToTheCentreMaze);
+  const MmsOutcome run = Mms("--maze " + maze + " -- python3 " + kLeftWall);
+  EXPECT_EQ(run.outcome.exit_code, 0) << run.outcome.output;
+  ASSERT_TRUE(run.result.is_object());
+  EXPECT_EQ(run.result["status"], "goal_reached");
+  // two cells north, a right turn, two cells east
+  EXPECT_EQ(run.result["moves"], 5);
+  EXPECT_DOUBLE_EQ(run.result["contest_time_s"].get<double>(), 2.5);
+  EXPECT_EQ(run.result["display"]["texts"][0]["text"], "start here");
+}
+
+TEST_F(MmsRunTest, LeftWallClientRunsOutOfContestTimeWhereTheCentreIsAnIsland) {
+  if (!HavePython()) GTEST_SKIP() << "no python3";
+  // the open maze's centre has no wall to follow in: the follower circles the perimeter
+  const MmsOutcome run = Mms("--maze " + open_maze_ + " --time-limit-s 30 -- python3 " + kLeftWall);
+  EXPECT_EQ(run.outcome.exit_code, 1) << run.outcome.output;
+  ASSERT_TRUE(run.result.is_object());
+  EXPECT_EQ(run.result["status"], "time_out");
+  EXPECT_EQ(run.result["goal_reached"], false);
+  EXPECT_GE(run.result["contest_time_s"].get<double>(), 30);
+  EXPECT_EQ(run.result["score"], 2000);
+}
+
+TEST_F(MmsRunTest, ResultStatsOfAScriptedClientMatchTheHandWorkedValues) {
+  // the sequence of mms_protocol_test's ScriptedMoves..., up to the crash, then the program ends
+  const std::string client = ShellClient(R"(ask "moveForward 2"
+ask turnRight
+ask "moveForward 2"
+ask "moveForward 3"
+echo "$reply" >&2
+)");
+  const MmsOutcome run = Mms("--until-exit --maze " + open_maze_ + " -- " + client);
+  EXPECT_EQ(run.outcome.exit_code, 0) << run.outcome.output;
+  ASSERT_TRUE(run.result.is_object());
+  EXPECT_EQ(run.result["status"], "goal_reached");
+  EXPECT_EQ(run.result["moves"], 4);
+  EXPECT_EQ(run.result["crashes"], 1);
+  const nlohmann::json stats = nlohmann::json::parse(R"({
+    "total-distance": 14, "total-turns": 1, "total-effective-distance": 10,
+    "best-run-distance": 8, "best-run-turns": 1, "best-run-effective-distance": 6,
+    "current-run-distance": -1, "current-run-turns": -1, "current-run-effective-distance": -1,
+    "score": 8.1})");
+  for (const auto& [name, value] : stats.items()) {
+    EXPECT_DOUBLE_EQ(run.result["stats"][name].get<double>(), value.get<double>()) << name;
+  }
+  EXPECT_DOUBLE_EQ(run.result["score"].get<double>(), 8.1);
+  // 2 + 2 + 2 cells at 0.5 s (the crash stops after two) and a quarter turn
+  EXPECT_DOUBLE_EQ(run.result["contest_time_s"].get<double>(), 3.5);
+  EXPECT_NE(run.outcome.output.find("crash"), std::string::npos);
+}
+
+TEST_F(MmsRunTest, InvalidCommandsAreDroppedAndLoggedAndTheRunGoesOn) {
+  const std::string client = ShellClient(R"(echo bogus
+echo "setColor 0 0 X"
+printf 'wallFront\t\n'
+ask mazeWidth
+echo "$reply" >&2
+)");
+  const MmsOutcome run = Mms("--maze " + open_maze_ + " -- " + client);
+  EXPECT_EQ(run.outcome.exit_code, 3) << run.outcome.output;
+  ASSERT_TRUE(run.result.is_object());
+  EXPECT_EQ(run.result["status"], "program_exited");
+  EXPECT_EQ(run.result["invalid_commands"], 3);
+  EXPECT_EQ(run.result["commands"], 4);
+  const std::string& log = run.outcome.output;
+  EXPECT_NE(log.find("mms: line 1: invalid command 'bogus' dropped: unknown command"),
+            std::string::npos)
+      << log;
+  EXPECT_NE(log.find("mms: line 2: invalid command 'setColor 0 0 X' dropped: unknown colour 'X'"),
+            std::string::npos);
+  EXPECT_NE(log.find("'wallFront\\x09'"), std::string::npos);
+  EXPECT_NE(log.find("\n5\n"), std::string::npos) << "the reply to mazeWidth";
+}
+
+TEST_F(MmsRunTest, ACrashEndsTheRunOnlyWhenAsked) {
+  const std::string client = ShellClient("ask turnRight\nask moveForward\nask moveForward\n");
+  const MmsOutcome mms_rule = Mms("--maze " + open_maze_ + " -- " + client);
+  EXPECT_EQ(mms_rule.outcome.exit_code, 3);
+  EXPECT_EQ(mms_rule.result["status"], "program_exited");
+  EXPECT_EQ(mms_rule.result["crashes"], 2);
+  const MmsOutcome contest_rule = Mms("--end-on-crash --maze " + open_maze_ + " -- " + client);
+  EXPECT_EQ(contest_rule.outcome.exit_code, 1) << contest_rule.outcome.output;
+  EXPECT_EQ(contest_rule.result["status"], "crash");
+  EXPECT_EQ(contest_rule.result["crashes"], 1);
+}
+
+TEST_F(MmsRunTest, AProgramThatExitsEarlyIsAProgramError) {
+  const MmsOutcome run = Mms("--maze " + open_maze_ + " -- " + ShellClient("exit 4\n"));
+  EXPECT_EQ(run.outcome.exit_code, 3);
+  EXPECT_EQ(run.result["status"], "program_exited");
+  EXPECT_NE(run.result["reason"].get<std::string>().find("exited with code 4"), std::string::npos);
+}
+
+TEST_F(MmsRunTest, AProgramThatStopsSendingIsStoppedAfterTheReplyTimeout) {
+  const std::string client = ShellClient("ask mazeWidth\nsleep 60\n");
+  const auto start = std::chrono::steady_clock::now();
+  const MmsOutcome run = Mms("--reply-timeout-s 0.3 --maze " + open_maze_ + " -- " + client);
+  const double took_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  EXPECT_EQ(run.outcome.exit_code, 3) << run.outcome.output;
+  EXPECT_EQ(run.result["status"], "program_hang");
+  EXPECT_LT(took_s, 10);
+}
+
+TEST_F(MmsRunTest, AProgramThatIsKilledIsAProgramError) {
+  const MmsOutcome run = Mms("--maze " + open_maze_ + " -- " + ShellClient("kill -SEGV $$\n"));
+  EXPECT_EQ(run.outcome.exit_code, 3);
+  EXPECT_EQ(run.result["status"], "program_crashed");
+}
+
+TEST_F(MmsRunTest, AFloodOfGarbageIsLoggedWithACapAndEndsByTheCommandLimit) {
+  const std::string client = ShellClient(
+      "head -c 300000 /dev/zero\nyes 'no such command' | head -n 50000\n"
+      "while true; do echo wallFront; done\n");
+  const MmsOutcome run = Mms("--max-commands 100000 --maze " + open_maze_ + " -- " + client);
+  EXPECT_EQ(run.outcome.exit_code, 1) << run.outcome.output.substr(0, 2000);
+  EXPECT_EQ(run.result["status"], "command_limit");
+  // the zeros make one over-long line; 20 lines are shown, then one notice
+  EXPECT_NE(run.outcome.output.find("longer than 4096 bytes"), std::string::npos);
+  EXPECT_NE(run.outcome.output.find("more invalid commands are dropped"), std::string::npos);
+  EXPECT_LT(run.outcome.output.size(), 10000u);
+}
+
+TEST_F(MmsRunTest, BadInputExitsTwoAndReplacesAStaleResult) {
+  Mms("--maze " + open_maze_ + " -- " + ShellClient("exit 0\n"));
+  const MmsOutcome missing = Mms("--maze " + dir_ + "/nowhere.txt -- " + kFloodFill);
+  EXPECT_EQ(missing.outcome.exit_code, 2);
+  EXPECT_EQ(missing.result["status"], "error");
+  const MmsOutcome no_program = Mms("--maze " + open_maze_ + " -- " + dir_ + "/no-such-program");
+  EXPECT_EQ(no_program.outcome.exit_code, 2);
+  EXPECT_NE(no_program.outcome.output.find("cannot run"), std::string::npos);
+  EXPECT_EQ(Mms("--reply-timeout-s 0 -- " + kFloodFill).outcome.exit_code, 2);
+}
+
+// the goal cells reachable from the start: a maze the flood fill must solve
+bool Solvable(const Maze& maze) {
+  std::vector<bool> seen(maze.width() * maze.height(), false);
+  std::deque<Cell> queue = {{0, 0}};
+  seen[0] = true;
+  const int dx[4] = {1, 0, -1, 0};
+  const int dy[4] = {0, 1, 0, -1};
+  while (!queue.empty()) {
+    const Cell c = queue.front();
+    queue.pop_front();
+    for (const Cell& goal : maze.goals()) {
+      if (c == goal) return true;
+    }
+    for (int h = 0; h < 4; ++h) {
+      const Cell n{c.x + dx[h], c.y + dy[h]};
+      if (maze.HasWall(c, Heading(h)) || !maze.Contains(n) || seen[n.y * maze.width() + n.x]) {
+        continue;
+      }
+      seen[n.y * maze.width() + n.x] = true;
+      queue.push_back(n);
+    }
+  }
+  return false;
+}
+
+TEST_F(MmsRunTest, FloodFillClientReachesTheGoalOfEverySolvableClassicMaze) {
+  const std::string shared = testing::SharedMazesDir();
+  if (shared.empty())
+    GTEST_SKIP() << "the maze collection (../shared/mazes) is not beside the project";
+  std::vector<fs::path> files;
+  for (const auto& entry : fs::directory_iterator(shared + "/classic")) {
+    if (entry.path().extension() == ".txt") files.push_back(entry.path());
+  }
+  std::sort(files.begin(), files.end());
+  int solvable = 0;
+  int reached = 0;
+  const auto start = std::chrono::steady_clock::now();
+  for (const fs::path& file : files) {
+    if (!Solvable(LoadMaze(file.string()))) continue;
+    ++solvable;
+    const MmsOutcome run = Mms("--maze " + file.string() + " -- " + kFloodFill);
+    const bool ok = run.outcome.exit_code == 0 && run.result["status"] == "goal_reached";
+    EXPECT_TRUE(ok) << file << ": " << run.outcome.output;
+    reached += ok ? 1 : 0;
+  }
+  const double took_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::printf("flood fill over %d solvable classic mazes of %zu: %d reached, %.1f s\n", solvable,
+              files.size(), reached, took_s);
+  EXPECT_GT(solvable, 500);
+  EXPECT_EQ(reached, solvable);
+}
+
+}  // namespace
+}  // namespace unimouse

@@ -117,6 +117,15 @@ arduino-builder -verbose -hardware /usr/share/arduino/hardware \
   > ide.log 2>&1 || { cat ide.log; exit 1; }
 grep -E '^(Using library|Sketch uses)' ide.log
 
+step "unimouse firmware build: a sketch outside the tree, for the PC and for the emulated board"
+mkdir mine && cp /usr/share/arduino/libraries/UnimouseSim/examples/wall_distance/wall_distance.ino \
+  mine/mine.ino
+unimouse firmware build mine --out mine-bin
+unimouse run --scenario wall_distance --link native:mine-bin/mine --no-pictures --out mine-run
+unimouse firmware build mine --board mega2560 --out mine-bin > mine-avr.log
+unimouse run --link avr:mine-bin/mine.elf --duration 1 --no-pictures --out mine-avr
+unimouse run --scenario wall_distance --link native:wall_distance --no-pictures --out bundled
+
 step "the example out-of-tree plugin, built against unimouse-dev"
 cp -r /usr/share/doc/unimouse-dev/examples/out-of-tree-plugin plugin
 cmake -S plugin -B plugin/build > /dev/null

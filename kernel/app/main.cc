@@ -6,6 +6,7 @@
 #include <exception>
 
 #include "commands.h"
+#include "firmware_command.h"
 #include "install_paths.h"
 #include "maze_commands.h"
 #include "mms_run.h"
@@ -216,6 +217,25 @@ int main(int argc, char** argv) {
   mms_cmd->add_option("program", mms.program, "the program and its arguments, after --")
       ->required();
 
+  FirmwareBuildOptions firmware;
+  CLI::App* firmware_cmd =
+      app.add_subcommand("firmware", "build a sketch written against the Arduino library");
+  firmware_cmd->require_subcommand(1);
+  CLI::App* firmware_build_cmd = firmware_cmd->add_subcommand(
+      "build",
+      "build a sketch for the PC (a program for --link native: and a module for --link "
+      "inproc:) or for the emulated board (an image for --link avr:), docs/firmware.md");
+  firmware_build_cmd->add_option("sketch", firmware.sketch, "sketch folder or .ino file")
+      ->required();
+  firmware_build_cmd
+      ->add_option("--out", firmware.out_dir,
+                   "directory for the built files (the build tree goes in its .unimouse-build)")
+      ->capture_default_str();
+  firmware_build_cmd->add_option("--board", firmware.board, "pc, or mega2560 for avr:")
+      ->capture_default_str();
+  firmware_build_cmd->add_option("--name", firmware.name,
+                                 "name of the built files (default: the sketch's)");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -242,6 +262,7 @@ int main(int argc, char** argv) {
       return RunCommand(run);
     }
     if (mms_cmd->parsed()) return RunMms(mms);
+    if (firmware_build_cmd->parsed()) return FirmwareBuild(firmware);
     if (check_cmd->parsed()) return CheckCommand(check_robot, plugin_path);
     if (plugins_cmd->parsed()) return PluginsCommand(plugin_path);
     if (scenarios_cmd->parsed()) return ScenariosCommand(scenarios_markdown);

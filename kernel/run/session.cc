@@ -134,7 +134,8 @@ void Session::Assemble() {
   UNIMOUSE_THROW_UNLESS((o.link_sets.empty() && o.firmware_profile.empty()) || !o.link.empty(),
                         "--link-set and --firmware-profile go with --link");
   if (!o.link.empty()) {
-    robot_.components.push_back(LinkComponent(o.link, o.firmware_profile, o.link_sets));
+    robot_.components.push_back(
+        LinkComponent(ResolveBundledFirmware(o.link), o.firmware_profile, o.link_sets));
   }
 
   // a scenario builds its own world

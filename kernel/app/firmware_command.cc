@@ -1,0 +1,145 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "firmware_command.h"
+
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <thread>
+#include <vector>
+
+#include "install_paths.h"
+#include "unimouse/errors.h"
+
+extern char** environ;
+
+namespace unimouse {
+namespace {
+
+namespace fs = std::filesystem;
+
+// the sketch's file: NAME/NAME.ino for a folder, as the Arduino IDE lays sketches out
+fs::path SketchFile(const std::string& sketch) {
+  const fs::path path = fs::absolute(sketch).lexically_normal();
+  if (fs::is_directory(path)) {
+    const fs::path folder = path.has_filename() ? path : path.parent_path();
+    const fs::path ino = folder / (folder.filename().string() + ".ino");
+    if (!fs::is_regular_file(ino)) {
+      throw InputError(sketch + ": a sketch folder holds a sketch of its name, " +
+                       ino.filename().string() + ", and this one does not");
+    }
+    return ino;
+  }
+  if (!fs::is_regular_file(path)) throw InputError(sketch + ": no such sketch file or folder");
+  const std::string extension = path.extension().string();
+  if (extension != ".ino" && extension != ".cc" && extension != ".cpp") {
+    throw InputError(sketch + ": a sketch is an .ino file (or a .cc or .cpp written like one)");
+  }
+  return path;
+}
+
+bool OnPath(const std::string& program) {
+  const char* path = std::getenv("PATH");
+  std::istringstream dirs(path ? path : "");
+  for (std::string dir; std::getline(dirs, dir, ':');) {
+    if (!dir.empty() && ::access((fs::path(dir) / program).c_str(), X_OK) == 0) return true;
+  }
+  return false;
+}
+
+// runs a program with this process's output, and returns its exit status
+int Run(const std::vector<std::string>& words) {
+  std::vector<char*> argv;
+  for (const auto& w : words) argv.push_back(const_cast<char*>(w.c_str()));
+  argv.push_back(nullptr);
+  pid_t pid = 0;
+  if (::posix_spawnp(&pid, argv[0], nullptr, nullptr, argv.data(), environ) != 0) return 127;
+  int status = 0;
+  while (::waitpid(pid, &status, 0) < 0) {
+  }
+  return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+}
+
+// a CMake bracket argument holds any text but its own closing bracket
+std::string CMakeQuoted(const std::string& text) {
+  std::string equals = "=";
+  while (text.find("]" + equals + "]") != std::string::npos) equals += "=";
+  return "[" + equals + "[" + text + "]" + equals + "]";
+}
+
+}  // namespace
+
+int FirmwareBuild(const FirmwareBuildOptions& options) {
+  const fs::path sketch = SketchFile(options.sketch);
+  const std::string name = options.name.empty() ? sketch.stem().string() : options.name;
+  if (name.empty() || name.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
+                                             "0123456789_-") != std::string::npos) {
+    throw InputError("firmware name '" + name +
+                     "': use letters, digits, _ and - only (--name sets another)");
+  }
+  const bool avr = options.board == "mega2560";
+  if (!avr && options.board != "pc") {
+    throw InputError("--board " + options.board + ": the boards are pc and mega2560");
+  }
+  const fs::path config = FirmwareCMakeDirectory();
+  if (!fs::is_regular_file(config / "UnimouseFirmwareConfig.cmake")) {
+    throw InputError("the Arduino library is not installed (no " + config.string() +
+                     "/UnimouseFirmwareConfig.cmake): install the arduino-unimousesim package");
+  }
+  for (const char* tool : {"cmake", avr ? "avr-g++" : "c++"}) {
+    if (!OnPath(tool)) {
+      throw InputError(std::string("firmware build needs ") + tool + " (apt install " +
+                       (avr ? "cmake gcc-avr avr-libc arduino-core-avr" : "cmake g++ make") + ")");
+    }
+  }
+
+  const fs::path out = fs::absolute(options.out_dir).lexically_normal();
+  const fs::path work = out / ".unimouse-build" / (name + "-" + options.board);
+  fs::create_directories(work);
+  // a project of two lines, as a student's own CMake project would have it
+  std::ofstream project(work / "CMakeLists.txt");
+  project << "# written by unimouse firmware build\n"
+          << "cmake_minimum_required(VERSION 3.25)\n"
+          << "project(" << (avr ? "firmware NONE" : "firmware C CXX") << ")\n"
+          << "find_package(UnimouseFirmware REQUIRED PATHS " << CMakeQuoted(config.string())
+          << " NO_DEFAULT_PATH)\n";
+  if (avr) {
+    project << "unimouse_add_avr_firmware(firmware SKETCHES "
+            << CMakeQuoted(name + "=" + sketch.string()) << " OUTPUT_DIRECTORY "
+            << CMakeQuoted(out.string()) << ")\n";
+  } else {
+    project << "unimouse_add_firmware(firmware " << CMakeQuoted(sketch.string())
+            << " OUTPUT_DIRECTORY " << CMakeQuoted(out.string()) << ")\n"
+            << "set_target_properties(firmware firmware_module PROPERTIES OUTPUT_NAME "
+            << CMakeQuoted(name) << ")\n";
+  }
+  project.close();
+  if (!project) throw InputError("cannot write " + (work / "CMakeLists.txt").string());
+
+  const std::string jobs = std::to_string(std::max(1u, std::thread::hardware_concurrency()));
+  if (Run({"cmake", "-S", work.string(), "-B", (work / "build").string(), "-Wno-dev",
+           "-DCMAKE_BUILD_TYPE=RelWithDebInfo"}) != 0 ||
+      Run({"cmake", "--build", (work / "build").string(), "-j", jobs}) != 0) {
+    throw InputError(options.sketch + ": the sketch did not build (the messages are above)");
+  }
+  if (avr) {
+    std::printf(
+        "built %s\nrun it on the emulated board: unimouse run --link avr:%s --scenario ...\n",
+        (out / (name + ".elf")).c_str(), (out / (name + ".elf")).c_str());
+  } else {
+    std::printf(
+        "built %s and %s\nrun it: unimouse run --link native:%s --scenario ...\n"
+        "or in the simulator's process, faster: --link inproc:%s\n",
+        (out / name).c_str(), (out / (name + ".so")).c_str(), (out / name).c_str(),
+        (out / (name + ".so")).c_str());
+  }
+  return kExitPassed;
+}
+
+}  // namespace unimouse

@@ -1,0 +1,156 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// `unimouse firmware build`: a student's sketch, written here outside the tree, built by the
+// documented command from the build tree and from an installed prefix, passes its challenge.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "run_program.h"
+#include "text_file.h"
+
+namespace unimouse {
+namespace {
+
+namespace fs = std::filesystem;
+using testing::FreshDirectory;
+using testing::Unimouse;
+using testing::UnimouseRun;
+
+// A student's wall follower for the wall distance challenge (0.50 m from the wall on the left):
+// a proportional-derivative law on the left sensor's reading, written from the challenge's text
+// alone, with a printf to the standard output as a student would debug.
+constexpr char kSketch[] = R"(#include <UnimouseSim.h>
+#include <stdio.h>
+
+SimulationRobot robot(Serial);
+float previous = 0;
+unsigned long printed = 0;
+
+void setup() {
+  Serial.begin(UNIMOUSE_BAUD);
+  robot.begin();
+}
+
+void loop() {
+  robot.update();
+  // the left sensor looks 45 degrees left from 0.048 m left of the centre
+  const float goal = (0.50f - 0.048f) * 1.41421356f;
+  const float error = robot.leftDistance() - goal;
+  const float change = error - previous;
+  previous = error;
+  int turn = (int)(800 * error + 4000 * change);
+  if (turn > 250) turn = 250;
+  if (turn < -250) turn = -250;
+  robot.motorLeft(450 - turn);
+  robot.motorRight(450 + turn);
+  if (millis() - printed >= 1000) {
+    printed = millis();
+    printf("my follower: error %d mm\n", (int)(error * 1000));
+  }
+}
+)";
+
+// Writes the sketch as the Arduino IDE lays it out, FOLDER/my_follower/my_follower.ino, and
+// returns the sketch folder.
+std::string WriteSketch(const std::string& folder, const std::string& text = kSketch) {
+  const fs::path sketch = fs::path(folder) / "my_follower";
+  fs::create_directories(sketch);
+  std::ofstream(sketch / "my_follower.ino") << text;
+  return sketch.string();
+}
+
+// Builds the sketch with `unimouse` (the build tree's or an installed one), then runs the
+// challenge over the native link and in-process; both pass, the printf in the log.
+void BuildAndPass(const std::string& unimouse, const std::string& stem) {
+  const std::string work = FreshDirectory(stem);
+  const std::string sketch = WriteSketch(work);
+  const std::string out = work + "/bin";
+  const std::string build = unimouse + " firmware build " + sketch + " --out " + out + " 2>&1";
+  FILE* pipe = popen(build.c_str(), "r");
+  std::string said;
+  char buffer[4096];
+  for (size_t n; (n = fread(buffer, 1, sizeof(buffer), pipe)) > 0;) said.append(buffer, n);
+  ASSERT_EQ(pclose(pipe), 0) << said;
+  EXPECT_NE(said.find("--link native:" + out + "/my_follower"), std::string::npos) << said;
+  ASSERT_TRUE(fs::is_regular_file(out + "/my_follower"));
+  ASSERT_TRUE(fs::is_regular_file(out + "/my_follower.so"));
+
+  for (const std::string link :
+       {"native:" + out + "/my_follower", "inproc:" + out + "/my_follower.so"}) {
+    const std::string run_out = work + "/run-" + link.substr(0, link.find(':'));
+    const int code = std::system((unimouse + " run --scenario wall_distance --link " + link +
+                                  " --no-pictures --out " + run_out + " >/dev/null 2>&1")
+                                     .c_str());
+    EXPECT_EQ(WEXITSTATUS(code), 0) << link << ": " << ReadTextFile(run_out + "/result.json");
+    if (link.rfind("native:", 0) == 0) {
+      EXPECT_NE(ReadTextFile(run_out + "/log.txt").find("my follower: error"), std::string::npos)
+          << "the sketch's printf is in the run's log";
+    }
+  }
+}
+
+TEST(FirmwareBuildTest, ASketchOutsideTheTreeBuildsAndPassesItsChallenge) {
+  BuildAndPass(UNIMOUSE_BINARY, "fw_build");
+}
+
+TEST(FirmwareBuildTest, ASketchOutsideTheTreeBuildsAgainstAnInstallAndPassesItsChallenge) {
+  const std::string prefix = FreshDirectory("fw_prefix");
+  ASSERT_EQ(
+      std::system(
+          ("cmake --install " UNIMOUSE_BINARY_DIR " --prefix " + prefix + " >/dev/null").c_str()),
+      0);
+  BuildAndPass(prefix + "/bin/unimouse", "fw_build_installed");
+}
+
+TEST(FirmwareBuildTest, ASketchOutsideTheTreeBuildsForTheEmulatedBoardAndPassesItsChallenge) {
+  if (std::system("command -v avr-g++ >/dev/null") != 0) {
+    GTEST_SKIP() << "no avr-g++ (gcc-avr): no board builds";
+  }
+  const std::string work = FreshDirectory("fw_avr");
+  const std::string sketch = WriteSketch(work);
+  const auto build = Unimouse("firmware build " + sketch + " --board mega2560 --out " + work);
+  ASSERT_EQ(build.exit_code, 0) << build.output;
+  ASSERT_TRUE(fs::is_regular_file(work + "/my_follower.elf"));
+  const auto run =
+      UnimouseRun("--scenario wall_distance --no-pictures --link avr:" + work + "/my_follower.elf",
+                  "fw_avr_run");
+  if (run.outcome.output.find("this build has no emulated board") != std::string::npos) {
+    GTEST_SKIP() << "this build has no emulated board (libsimavr-dev)";
+  }
+  EXPECT_EQ(run.outcome.exit_code, 0) << run.outcome.output;
+}
+
+TEST(FirmwareBuildTest, ASketchThatDoesNotCompileIsBadInputNamingTheSketch) {
+  const std::string sketch = WriteSketch(FreshDirectory("fw_broken"), "void setup() { oops; }\n");
+  const auto outcome = Unimouse("firmware build " + sketch + " --out " + sketch + "/bin");
+  EXPECT_EQ(outcome.exit_code, 2);
+  EXPECT_NE(outcome.output.find("oops"), std::string::npos) << "the compiler's message is shown";
+  EXPECT_NE(outcome.output.find(sketch + ": the sketch did not build"), std::string::npos)
+      << outcome.output;
+}
+
+TEST(FirmwareBuildTest, AFolderWithoutASketchOfItsNameIsBadInput) {
+  const std::string folder = FreshDirectory("fw_empty");
+  const auto outcome = Unimouse("firmware build " + folder);
+  EXPECT_EQ(outcome.exit_code, 2);
+  EXPECT_NE(outcome.output.find("a sketch folder holds a sketch of its name"), std::string::npos)
+      << outcome.output;
+}
+
+TEST(FirmwareBuildTest, BundledFirmwareIsNamedLikeBundledRobotsAndMazes) {
+  // from a directory with no file of that name, native:wall_distance is the bundled example
+  const std::string empty = FreshDirectory("fw_bundled");
+  for (const char* link : {"native:wall_distance", "inproc:wall_distance"}) {
+    const std::string out = empty + "/" + std::string(link).substr(0, 6);
+    const int code =
+        std::system(("cd " + empty +
+                     " && " UNIMOUSE_BINARY " run --scenario wall_distance --no-pictures --link " +
+                     link + " --out " + out + " >/dev/null 2>&1")
+                        .c_str());
+    EXPECT_EQ(WEXITSTATUS(code), 0) << link;
+  }
+}
+
+}  // namespace
+}  // namespace unimouse

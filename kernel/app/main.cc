@@ -214,8 +214,14 @@ int main(int argc, char** argv) {
                     "keep answering after the goal until the program exits or time runs out");
   mms_cmd->add_flag("--end-on-crash", mms.end_on_crash,
                     "a move into a wall ends the run (mms itself only replies crash)");
-  mms_cmd->add_option("program", mms.program, "the program and its arguments, after --")
-      ->required();
+  mms_cmd->add_option("program", mms.program, "the program and its arguments, after --");
+  mms_cmd->add_option("--port", mms.port,
+                      "instead of a program: a board or relay speaking the protocol on pty or "
+                      "pty:LINK, serial:PATH@BAUD or tcp::PORT, its log on lines starting 'log '");
+  mms_cmd
+      ->add_option("--connect-timeout-s", mms.connect_timeout_s,
+                   "wall seconds a --port peer has for its first command line")
+      ->capture_default_str();
 
   FirmwareBuildOptions firmware;
   CLI::App* firmware_cmd =

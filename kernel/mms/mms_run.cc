@@ -13,11 +13,13 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <memory>
 #include <optional>
 #include <thread>
 
 #include "install_paths.h"
 #include "text_file.h"
+#include "transport.h"
 #include "unimouse/errors.h"
 
 namespace unimouse {
@@ -51,8 +53,22 @@ std::string Printable(const std::string& line) {
   return line.size() > 80 ? shown + "..." : shown;
 }
 
+// where the command lines come from and the replies go
+class Channel {
+ public:
+  virtual ~Channel() = default;
+  /// Appends what arrived within `timeout` to `out`; false when the other side is gone for good.
+  virtual bool Read(std::string& out, std::chrono::milliseconds timeout) = 0;
+  /// Writes what the other side takes now and erases it from `pending`.
+  virtual void Write(std::string& pending) = 0;
+  /// Returns how long the first command line may take to come.
+  virtual Clock::duration first_wait(Clock::duration reply_timeout) const { return reply_timeout; }
+  /// Returns how the run ends when Read says the other side is gone.
+  virtual Ending Gone(bool goal_reached, double reply_timeout_s) = 0;
+};
+
 // the program, in its own process group so that whatever it starts goes with it
-class Child {
+class Child final : public Channel {
  public:
   explicit Child(const std::vector<std::string>& program) {
     int to_child[2], from_child[2], exec_error[2];
@@ -95,10 +111,50 @@ class Child {
     fcntl(in_, F_SETFL, fcntl(in_, F_GETFL) | O_NONBLOCK);
     fcntl(out_, F_SETFL, fcntl(out_, F_GETFL) | O_NONBLOCK);
   }
-  ~Child() { Stop(); }
+  ~Child() override { Stop(); }
 
-  int in() const { return in_; }
-  int out() const { return out_; }
+  bool Read(std::string& out, std::chrono::milliseconds timeout) override {
+    pollfd readable = {out_, POLLIN, 0};
+    if (poll(&readable, 1, int(timeout.count())) < 0 && errno != EINTR) {
+      throw RuntimeFault(std::string("poll: ") + std::strerror(errno));
+    }
+    if ((readable.revents & (POLLIN | POLLHUP | POLLERR)) == 0) return true;
+    char buffer[65536];
+    const ssize_t n = read(out_, buffer, sizeof(buffer));
+    if (n < 0 && (errno == EAGAIN || errno == EINTR)) return true;
+    if (n <= 0) return false;
+    out.append(buffer, size_t(n));
+    return true;
+  }
+
+  void Write(std::string& pending) override {
+    while (!pending.empty() && in_ >= 0) {
+      const ssize_t n = write(in_, pending.data(), pending.size());
+      if (n > 0) {
+        pending.erase(0, size_t(n));
+        continue;
+      }
+      // a program that closed its stdin no longer hears replies
+      if (n < 0 && errno != EAGAIN && errno != EINTR) pending.clear();
+      return;
+    }
+  }
+
+  Ending Gone(bool goal_reached, double reply_timeout_s) override {
+    const int status = WaitExit(std::chrono::duration_cast<Clock::duration>(
+        std::chrono::duration<double>(reply_timeout_s)));
+    if (status != -1 && WIFSIGNALED(status)) {
+      return {"program_crashed",
+              std::string("the program was killed by signal ") + strsignal(WTERMSIG(status)),
+              kExitRuntimeFault};
+    }
+    if (goal_reached) return {"goal_reached", "the program ended after the goal", kExitPassed};
+    const std::string how = status == -1
+                                ? "closed its stdout"
+                                : "exited with code " + std::to_string(WEXITSTATUS(status));
+    return {"program_exited", "the program " + how + " before the mouse reached the goal",
+            kExitRuntimeFault};
+  }
 
   /// Waits up to `timeout` for the program to exit by itself; returns its wait status or -1.
   int WaitExit(Clock::duration timeout) {
@@ -134,21 +190,63 @@ class Child {
   int out_ = -1;
 };
 
+// a board or relay on a pty, serial port or TCP connection, through the link's transports: it may
+// come and go (a board resets when its port opens), so only its silence ends the run
+class Device final : public Channel {
+ public:
+  Device(const std::string& spec, double connect_timeout_s)
+      : connect_timeout_(std::chrono::duration_cast<Clock::duration>(
+            std::chrono::duration<double>(connect_timeout_s))) {
+    const std::string scheme = spec.substr(0, spec.find(':'));
+    if (scheme != "pty" && scheme != "serial" && scheme != "tcp") {
+      throw InputError("--port " + spec +
+                       ": a pty or pty:LINK, serial:PATH@BAUD, or tcp::PORT / tcp:HOST:PORT");
+    }
+    transport_ = link::OpenTransport(spec);
+    std::fprintf(stderr, "mms: waiting for the program on the %s\n",
+                 transport_->Describe().c_str());
+  }
+
+  bool Read(std::string& out, std::chrono::milliseconds timeout) override {
+    transport_->WaitReadable(timeout);
+    if (!transport_->Connected()) {
+      // no peer yet, or it went away: Read tries to get one back
+      std::this_thread::sleep_for(std::min(timeout, std::chrono::milliseconds(20)));
+    }
+    std::vector<uint8_t> bytes;
+    transport_->Read(bytes, 65536);
+    out.append(bytes.begin(), bytes.end());
+    return true;
+  }
+
+  void Write(std::string& pending) override {
+    const size_t n = transport_->Write(
+        std::span(reinterpret_cast<const uint8_t*>(pending.data()), pending.size()));
+    pending.erase(0, n);
+  }
+
+  Clock::duration first_wait(Clock::duration) const override { return connect_timeout_; }
+
+  Ending Gone(bool, double) override { return {"error", "the device closed", kExitRuntimeFault}; }
+
+ private:
+  std::unique_ptr<link::Transport> transport_;
+  Clock::duration connect_timeout_;
+};
+
 // the protocol session: reads command lines, answers them, decides when the run ends
 class Exchange {
  public:
-  Exchange(const MmsRunOptions& options, MmsWorld& world, Child& child)
-      : options_(options), world_(world), child_(child) {}
+  Exchange(const MmsRunOptions& options, MmsWorld& world, Channel& channel)
+      : options_(options), world_(world), channel_(channel) {}
 
   Ending Run() {
     const auto reply_timeout = std::chrono::duration_cast<Clock::duration>(
         std::chrono::duration<double>(options_.reply_timeout_s));
-    Clock::time_point deadline = Clock::now() + reply_timeout;
+    Clock::time_point deadline = Clock::now() + channel_.first_wait(reply_timeout);
     std::string partial;
     bool discarding = false;  // inside an over-long line
     for (;;) {
-      pollfd fds[2] = {{child_.out(), POLLIN, 0}, {child_.in(), POLLOUT, 0}};
-      const int nfds = pending_.empty() || child_.in() < 0 ? 1 : 2;
       const auto left =
           std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now());
       if (left.count() < 0) {
@@ -157,16 +255,16 @@ class Exchange {
                     " s (does it flush stdout after each command?)",
                 kExitRuntimeFault};
       }
-      if (poll(fds, nfds_t(nfds), int(left.count()) + 1) < 0 && errno != EINTR) {
-        return {"error", std::string("poll: ") + std::strerror(errno), kExitRuntimeFault};
+      channel_.Write(pending_);
+      // replies still to go: back soon to write them
+      const auto wait = pending_.empty() ? left + std::chrono::milliseconds(1)
+                                         : std::min(left, std::chrono::milliseconds(5));
+      std::string buffer;
+      if (!channel_.Read(buffer, wait)) {
+        return channel_.Gone(world_.goal_reached(), options_.reply_timeout_s);
       }
-      if (nfds == 2 && (fds[1].revents & (POLLOUT | POLLERR | POLLHUP)) != 0) Flush();
-      if ((fds[0].revents & (POLLIN | POLLHUP | POLLERR)) == 0) continue;
-      char buffer[65536];
-      const ssize_t n = read(child_.out(), buffer, sizeof(buffer));
-      if (n < 0 && (errno == EAGAIN || errno == EINTR)) continue;
-      if (n <= 0) return Exited();
-      for (ssize_t i = 0; i < n; ++i) {
+      const size_t n = buffer.size();
+      for (size_t i = 0; i < n; ++i) {
         if (buffer[i] != '\n') {
           if (discarding) continue;
           partial += buffer[i];
@@ -206,6 +304,12 @@ class Exchange {
 
   // carries out one line; returns how the run ends if it does
   std::optional<Ending> Command(const std::string& line) {
+    // mms-arduino's convention: a board has one line for commands and its log, and a line
+    // starting "log " is the log's
+    if (line.rfind("log ", 0) == 0) {
+      std::fprintf(stderr, "mms: log: %s\n", Printable(line.substr(4)).c_str());
+      return std::nullopt;
+    }
     if (++commands_ > options_.max_commands) {
       return Ending{"command_limit", "the program sent more than " +
                                          std::to_string(options_.max_commands) + " command lines"};
@@ -222,7 +326,7 @@ class Exchange {
     }
     if (response.kind == MmsResponse::Kind::kReply) {
       pending_ += response.reply + "\n";
-      Flush();
+      channel_.Write(pending_);
     }
     if (!response.motion) return std::nullopt;
     if (world_.contest_time_s() > options_.time_limit_s) {
@@ -241,40 +345,9 @@ class Exchange {
     return std::nullopt;
   }
 
-  void Flush() {
-    while (!pending_.empty() && child_.in() >= 0) {
-      const ssize_t n = write(child_.in(), pending_.data(), pending_.size());
-      if (n > 0) {
-        pending_.erase(0, size_t(n));
-        continue;
-      }
-      // a program that closed its stdin no longer hears replies
-      if (n < 0 && errno != EAGAIN && errno != EINTR) pending_.clear();
-      return;
-    }
-  }
-
-  Ending Exited() {
-    const int status = child_.WaitExit(std::chrono::duration_cast<Clock::duration>(
-        std::chrono::duration<double>(options_.reply_timeout_s)));
-    if (status != -1 && WIFSIGNALED(status)) {
-      return {"program_crashed",
-              std::string("the program was killed by signal ") + strsignal(WTERMSIG(status)),
-              kExitRuntimeFault};
-    }
-    if (world_.goal_reached()) {
-      return {"goal_reached", "the program ended after the goal", kExitPassed};
-    }
-    const std::string how = status == -1
-                                ? "closed its stdout"
-                                : "exited with code " + std::to_string(WEXITSTATUS(status));
-    return {"program_exited", "the program " + how + " before the mouse reached the goal",
-            kExitRuntimeFault};
-  }
-
   const MmsRunOptions& options_;
   MmsWorld& world_;
-  Child& child_;
+  Channel& channel_;
   std::string pending_;
   long commands_ = 0;
   long invalid_ = 0;
@@ -282,11 +355,13 @@ class Exchange {
 };
 
 void CheckOptions(const MmsRunOptions& o) {
-  UNIMOUSE_THROW_UNLESS(!o.program.empty(), "unimouse mms: name the program after --");
+  UNIMOUSE_THROW_UNLESS(o.program.empty() != o.port.empty(),
+                        "unimouse mms: name the program after --, or a --port, not both");
   auto positive = [](double v) { return std::isfinite(v) && v > 0; };
   auto non_negative = [](double v) { return std::isfinite(v) && v >= 0; };
   UNIMOUSE_THROW_UNLESS(positive(o.reply_timeout_s), "--reply-timeout-s must be positive");
   UNIMOUSE_THROW_UNLESS(positive(o.time_limit_s), "--time-limit-s must be positive");
+  UNIMOUSE_THROW_UNLESS(positive(o.connect_timeout_s), "--connect-timeout-s must be positive");
   UNIMOUSE_THROW_UNLESS(non_negative(o.timing.cell_time_s), "--cell-time-s must be >= 0");
   UNIMOUSE_THROW_UNLESS(non_negative(o.timing.turn_time_s), "--turn-time-s must be >= 0");
   UNIMOUSE_THROW_UNLESS(o.max_commands > 0, "--max-commands must be positive");
@@ -296,6 +371,7 @@ void CheckOptions(const MmsRunOptions& o) {
 
 int RunMms(const MmsRunOptions& options) {
   nlohmann::json record = {{"mode", "mms-logic"}, {"program", options.program}};
+  if (!options.port.empty()) record["port"] = options.port;
   std::error_code ec;
   fs::remove(fs::path(options.out_dir) / "result.json", ec);
   Ending ending;
@@ -308,10 +384,15 @@ int RunMms(const MmsRunOptions& options) {
     fs::create_directories(options.out_dir);
     signal(SIGPIPE, SIG_IGN);
     MmsWorld world(maze, options.timing);
-    Child child(options.program);
-    Exchange exchange(options, world, child);
+    std::unique_ptr<Channel> channel;
+    if (options.port.empty()) {
+      channel = std::make_unique<Child>(options.program);
+    } else {
+      channel = std::make_unique<Device>(options.port, options.connect_timeout_s);
+    }
+    Exchange exchange(options, world, *channel);
     ending = exchange.Run();
-    child.Stop();
+    channel.reset();
     record["commands"] = exchange.commands();
     record["invalid_commands"] = exchange.invalid();
     record["goal_reached"] = world.goal_reached();

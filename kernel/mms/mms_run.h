@@ -1,7 +1,9 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // `unimouse mms`: runs a program written for the mms simulator as a child process, speaks the
 // mms protocol with it over its stdin and stdout on the logic tier (MmsWorld), and writes
-// result.json. Its stderr is passed through. docs/mms.md describes the statuses.
+// result.json. Its stderr is passed through. Or the program runs elsewhere (an mms-arduino
+// sketch on a board, a relay) and speaks over a pty, serial port or TCP, its log on lines that
+// start "log ". docs/mms.md describes the statuses.
 #ifndef UNIMOUSE_MMS_MMS_RUN_H_
 #define UNIMOUSE_MMS_MMS_RUN_H_
 
@@ -14,15 +16,17 @@ namespace unimouse {
 
 struct MmsRunOptions {
   std::string maze = "japan2018";    ///< maze file or bundled maze name
-  std::vector<std::string> program;  ///< the program and its arguments
+  std::vector<std::string> program;  ///< the program and its arguments; or
+  std::string port;                  ///< a board or relay: pty:LINK, serial:PATH@BAUD, tcp::PORT
   std::string out_dir = "out";
   MmsTiming timing;
-  double time_limit_s = 600;     ///< the contest clock: the micromouse contest's 10 minutes
-  double reply_timeout_s = 5;    ///< wall time the program has for each command line
-  bool realtime = false;         ///< wait each move's contest time on the wall clock
-  bool until_exit = false;       ///< keep running after the goal until the program exits
-  bool end_on_crash = false;     ///< a move into a wall ends the run (contest rule)
-  long max_commands = 10000000;  ///< command lines before the run is stopped
+  double time_limit_s = 600;      ///< the contest clock: the micromouse contest's 10 minutes
+  double reply_timeout_s = 5;     ///< wall time the program has for each command line
+  double connect_timeout_s = 60;  ///< wall time a --port peer has for its first line
+  bool realtime = false;          ///< wait each move's contest time on the wall clock
+  bool until_exit = false;        ///< keep running after the goal until the program exits
+  bool end_on_crash = false;      ///< a move into a wall ends the run (contest rule)
+  long max_commands = 10000000;   ///< command lines before the run is stopped
 };
 
 /// Runs the program against the maze, writes out_dir/result.json, and returns the exit code:

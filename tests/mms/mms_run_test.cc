@@ -3,10 +3,18 @@
 // against mazes; what result.json and the exit code say, and what the log shows.
 #include "mms_run.h"
 
+#include <arpa/inet.h>
 #include <gtest/gtest.h>
+#include <netinet/in.h>
+#include <pty.h>
+#include <sys/socket.h>
+#include <sys/wait.h>
+#include <termios.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <deque>
@@ -277,6 +285,106 @@ TEST_F(MmsRunTest, FloodFillClientReachesTheGoalOfEverySolvableClassicMaze) {
               files.size(), reached, took_s);
   EXPECT_GT(solvable, 500);
   EXPECT_EQ(reached, solvable);
+}
+
+// --- the same protocol from a board or relay: a pty, a serial port, TCP ---
+
+// a port no one listens on now
+int FreePort() {
+  const int fd = socket(AF_INET, SOCK_STREAM, 0);
+  sockaddr_in address{};
+  address.sin_family = AF_INET;
+  address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  bind(fd, reinterpret_cast<sockaddr*>(&address), sizeof(address));
+  socklen_t size = sizeof(address);
+  getsockname(fd, reinterpret_cast<sockaddr*>(&address), &size);
+  close(fd);
+  return ntohs(address.sin_port);
+}
+
+// Starts `unimouse mms ARGUMENTS` in the background, waits until it waits for its peer, runs
+// CLIENT (a shell command line) and then waits for the run: what a user does with a board.
+std::string MmsWithPeer(const std::string& dir, const std::string& arguments,
+                        const std::string& client) {
+  const std::string script = dir + "/peer.sh";
+  WriteTextFile(script, "(" UNIMOUSE_BINARY " mms " + arguments + " > " + dir +
+                            "/mms.log 2>&1; echo $? > " + dir + "/mms.rc) &\n" +
+                            "until grep -q waiting " + dir +
+                            "/mms.log 2>/dev/null; do sleep 0.05; done\n" + client + "\nwait\n");
+  std::system(("bash " + script + " > " + dir + "/client.log 2>&1").c_str());
+  return ReadTextFile(dir + "/mms.log");
+}
+
+TEST_F(MmsRunTest, OverTcpAnMmsArduinoStyleClientReachesTheGoalWithItsLogShown) {
+  const MmsOutcome piped = Mms("--maze japan2018 -- " + kFloodFill);
+  ASSERT_EQ(piped.outcome.exit_code, 0);
+  const std::string port = std::to_string(FreePort());
+  // the board's sketch: a log line, then the algorithm, on one line to the simulator
+  const std::string log =
+      MmsWithPeer(dir_, "--maze japan2018 --out " + out_ + " --port tcp:127.0.0.1:" + port,
+                  "exec 3<>/dev/tcp/127.0.0.1/" + port + "\n{ echo 'log hello from the board'; " +
+                      kFloodFill + "; } <&3 >&3");
+  EXPECT_EQ(ReadTextFile(dir_ + "/mms.rc"), "0\n") << log;
+  EXPECT_NE(log.find("mms: log: hello from the board"), std::string::npos) << log;
+  const auto result = nlohmann::json::parse(ReadTextFile(out_ + "/result.json"));
+  EXPECT_EQ(result["status"], "goal_reached");
+  EXPECT_EQ(result["port"], "tcp:127.0.0.1:" + port);
+  // the log line is not a command: the same run as over stdin and stdout
+  EXPECT_EQ(result["stats"], piped.result["stats"]);
+  EXPECT_EQ(result["invalid_commands"], 0);
+}
+
+TEST_F(MmsRunTest, OverAPtyTheClientReachesTheGoal) {
+  const std::string link = dir_ + "/mouse";
+  const std::string log =
+      MmsWithPeer(dir_, "--maze japan2018 --out " + out_ + " --port pty:" + link,
+                  kFloodFill + " <>" + link + " >&0");
+  EXPECT_EQ(ReadTextFile(dir_ + "/mms.rc"), "0\n") << log;
+  EXPECT_EQ(nlohmann::json::parse(ReadTextFile(out_ + "/result.json"))["status"], "goal_reached");
+  EXPECT_FALSE(fs::exists(fs::symlink_status(link))) << "the run removes its link";
+}
+
+TEST_F(MmsRunTest, OverASerialPortTheClientReachesTheGoal) {
+  // a pseudo-terminal stands for the board's USB serial port: the client on its master side,
+  // the simulator opening its slave as a serial port
+  int master = -1, slave = -1;
+  char name[256] = "";
+  ASSERT_EQ(openpty(&master, &slave, name, nullptr, nullptr), 0);
+  termios raw{};
+  tcgetattr(slave, &raw);
+  cfmakeraw(&raw);
+  tcsetattr(slave, TCSANOW, &raw);
+  const pid_t client = fork();
+  if (client == 0) {
+    dup2(master, 0);
+    dup2(master, 1);
+    execl(kFloodFill.c_str(), kFloodFill.c_str(), nullptr);
+    _exit(127);
+  }
+  const MmsOutcome run = Mms("--maze japan2018 --port serial:" + std::string(name) + "@115200");
+  close(slave);
+  close(master);
+  kill(client, SIGKILL);
+  waitpid(client, nullptr, 0);
+  EXPECT_EQ(run.outcome.exit_code, 0) << run.outcome.output;
+  ASSERT_TRUE(run.result.is_object());
+  EXPECT_EQ(run.result["status"], "goal_reached");
+}
+
+TEST_F(MmsRunTest, ABoardThatNeverSpeaksEndsAfterTheConnectTimeout) {
+  const auto start = std::chrono::steady_clock::now();
+  const MmsOutcome run = Mms("--maze japan2018 --connect-timeout-s 0.5 --port tcp:127.0.0.1:" +
+                             std::to_string(FreePort()));
+  EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(10));
+  EXPECT_EQ(run.outcome.exit_code, 3) << run.outcome.output;
+  ASSERT_TRUE(run.result.is_object());
+  EXPECT_EQ(run.result["status"], "program_hang");
+}
+
+TEST_F(MmsRunTest, AProgramAndAPortTogetherAreBadInput) {
+  const MmsOutcome run = Mms("--maze japan2018 --port tcp::0 -- " + kFloodFill);
+  EXPECT_EQ(run.outcome.exit_code, 2) << run.outcome.output;
+  EXPECT_NE(run.outcome.output.find("not both"), std::string::npos) << run.outcome.output;
 }
 
 }  // namespace

@@ -7,8 +7,9 @@
 # task/none, every file in the temporary directory), submits BATCH_SCRIPT with `sbatch --wait`
 # from WORK_DIR, prints every job's (and array task's) state and exit code, and stops the
 # daemons it started, however it ends. Exits with sbatch's status (the highest of the array's
-# tasks), 77 when it cannot run here (not root, or the packages are missing), and 3 when the
-# cluster does not come up.
+# tasks), 77 when it cannot run here (not root, or the packages are missing), 3 when the cluster
+# does not come up, and 124 when the jobs have not ended after SLURM_ONE_NODE_WAIT_S seconds
+# (default 600).
 set -euo pipefail
 
 if [ $# -lt 2 ]; then
@@ -36,6 +37,14 @@ cluster=$(mktemp -d "${TMPDIR:-/tmp}/slurm-one-node-XXXXXX")
 daemons=()
 stop_daemons() {
   local pid
+  # a job still running would outlive slurmd: cancel every job and give them 10 s to end
+  if [ ${#daemons[@]} -gt 0 ]; then
+    scancel --partition=test 2>/dev/null || true
+    for _ in $(seq 50); do
+      [ -z "$(squeue -h 2>/dev/null)" ] && break
+      sleep 0.2
+    done
+  fi
   for pid in "${daemons[@]}"; do
     kill "$pid" 2>/dev/null || true
   done
@@ -67,6 +76,8 @@ slurmd_port=$(free_port $((ctld_port + 1)))
 
 node=$(hostname -s)
 cpus=$(nproc)
+# the machine's memory, so that a job asking for some (--mem) fits
+memory_mb=$(awk '/^MemTotal:/ { print int($2 / 1024) }' /proc/meminfo)
 mkdir -p "$cluster/state" "$cluster/spool"
 cat >"$cluster/slurm.conf" <<EOF
 ClusterName=unimouse-test
@@ -93,7 +104,7 @@ SelectTypeParameters=CR_Core
 SlurmdParameters=config_overrides
 ReturnToService=2
 MinJobAge=600
-NodeName=$node NodeAddr=127.0.0.1 CPUs=$cpus State=UNKNOWN
+NodeName=$node NodeAddr=127.0.0.1 CPUs=$cpus RealMemory=$memory_mb State=UNKNOWN
 PartitionName=test Nodes=$node Default=YES MaxTime=INFINITE State=UP
 EOF
 export SLURM_CONF=$cluster/slurm.conf
@@ -120,7 +131,8 @@ if [ $ready != yes ]; then
 fi
 
 status=0
-job=$(cd "$work_dir" && sbatch --parsable --wait "$@" "$script") || status=$?
+job=$(cd "$work_dir" && timeout "${SLURM_ONE_NODE_WAIT_S:-600}" sbatch --parsable --wait "$@" \
+  "$script") || status=$?
 job=${job%%;*}
 if [ -n "$job" ]; then
   # one line per job, or per task of an array: its id, state and exit code
@@ -130,7 +142,10 @@ if [ -n "$job" ]; then
     print substr(line, 2)
   }'
 fi
-if [ $status -ne 0 ]; then
+if [ $status -eq 124 ]; then
+  echo "slurm_one_node: the jobs did not end within ${SLURM_ONE_NODE_WAIT_S:-600} s; the node's log:" >&2
+  tail -n 20 "$cluster/slurmd.log" >&2
+elif [ $status -ne 0 ]; then
   echo "slurm_one_node: sbatch exited with $status; the node's log:" >&2
   tail -n 20 "$cluster/slurmd.log" >&2
 fi

@@ -12,8 +12,7 @@
 
 namespace unimouse::testing {
 
-Outcome Unimouse(const std::string& arguments, const std::string& environment) {
-  const std::string command = environment + UNIMOUSE_BINARY + " " + arguments + " 2>&1";
+Outcome RunShell(const std::string& command) {
   Outcome out;
   FILE* pipe = popen(command.c_str(), "r");
   char buffer[4096];
@@ -22,6 +21,10 @@ Outcome Unimouse(const std::string& arguments, const std::string& environment) {
   const int status = pclose(pipe);
   out.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return out;
+}
+
+Outcome Unimouse(const std::string& arguments, const std::string& environment) {
+  return RunShell(environment + UNIMOUSE_BINARY + " " + arguments + " 2>&1");
 }
 
 RunResult UnimouseRun(const std::string& arguments, const std::string& out_name,

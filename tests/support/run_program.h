@@ -13,6 +13,10 @@ struct Outcome {
   std::string output;  ///< stdout and stderr together
 };
 
+/// Runs a shell command line and captures its standard output (and its standard error when the
+/// command says `2>&1`).
+Outcome RunShell(const std::string& command);
+
 /// Runs `unimouse <arguments>`, after environment assignments ("A=b ") if any.
 Outcome Unimouse(const std::string& arguments, const std::string& environment = "");
 

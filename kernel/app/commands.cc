@@ -8,9 +8,13 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <numbers>
+#include <sstream>
+#include <string_view>
+#include <utility>
 
 #include "install_paths.h"
 #include "kernel.h"
@@ -152,23 +156,23 @@ int RunCommand(const RunOptions& options) {
   }
 }
 
-int CheckCommand(const std::string& robot_name, const std::string& plugin_path) {
+namespace {
+
+// a kernel built as a run would build it, with no component started: no port, program or file
+// is opened, so the scratch directory it is given is never made
+std::unique_ptr<Kernel> CheckedKernel(const RobotSpec& robot, const Maze* maze,
+                                      const PluginRegistry& registry, KernelOptions options) {
+  options.output_dir =
+      (std::filesystem::temp_directory_path() / ("unimouse-check-" + std::to_string(::getpid())))
+          .string();
+  options.start_components = false;
+  return Kernel::Create(robot, maze, registry, options);
+}
+
+void CheckRobot(const std::string& robot_name, const PluginRegistry& registry) {
   const std::string robot_file = ResolveDataFile(robot_name, "robots/", ".yaml");
   const RobotSpec robot = LoadRobotSpec(robot_file);
-  const PluginRegistry registry = LoadRegistry(plugin_path);
-  // components are really created and bound; whatever files they open go somewhere harmless
-  const std::filesystem::path scratch =
-      std::filesystem::temp_directory_path() / ("unimouse-check-" + std::to_string(::getpid()));
-  KernelOptions kernel_options;
-  kernel_options.output_dir = scratch.string();
-  kernel_options.start_components = false;  // no port, program or file is opened
-  std::unique_ptr<Kernel> kernel;
-  try {
-    kernel = Kernel::Create(robot, nullptr, registry, kernel_options);
-  } catch (...) {
-    std::filesystem::remove_all(scratch);
-    throw;
-  }
+  const std::unique_ptr<Kernel> kernel = CheckedKernel(robot, nullptr, registry, {});
   const mjModel& m = kernel->mj_model();
   std::printf("%s: ok: robot '%s', %d bodies, %d joints, %d actuators, %zu components\n",
               robot_file.c_str(), robot.name.c_str(), m.nbody - 1, m.njnt, m.nu,
@@ -181,13 +185,166 @@ int CheckCommand(const std::string& robot_name, const std::string& plugin_path) 
         model.components[e.reader].name.c_str(), model.signal_names[e.signal].c_str(),
         model.components[e.writer].name.c_str());
   }
-  kernel.reset();
-  std::filesystem::remove_all(scratch);
-  return kExitPassed;
+}
+
+// loads the scenario and builds its world around the bundled robot, as a run would before its
+// first step
+void CheckScenario(const std::string& name, const std::map<std::string, std::string>& overrides,
+                   const PluginRegistry& registry) {
+  const std::string file = ResolveDataFile(name, "scenarios/", ".lua");
+  const std::unique_ptr<Scenario> scenario = Scenario::Load(file, overrides, 1);
+  ScenarioWorld world = scenario->BuildWorld();
+  const RobotSpec robot = LoadRobotSpec(ResolveDataFile("unimouse", "robots/", ".yaml"));
+  KernelOptions options;
+  options.spawn = world.spawn;
+  options.boxes = world.boxes;
+  CheckedKernel(robot, world.maze.get(), registry, options);
+  const std::string floor = world.maze ? "maze " + world.maze_file + " (" +
+                                             std::to_string(world.maze->width()) + "x" +
+                                             std::to_string(world.maze->height()) + ")"
+                                       : std::string("an open floor");
+  std::printf("%s: ok: scenario '%s', %zu parameters, world: %s, walls and boxes: %zu\n",
+              file.c_str(), scenario->name().c_str(), scenario->params().size(), floor.c_str(),
+              world.boxes.size());
+}
+
+// what `check` is given, a directory standing for every robot file and scenario inside it
+std::vector<std::string> CheckTargets(const std::vector<std::string>& targets) {
+  std::vector<std::string> files;
+  for (const std::string& target : targets) {
+    if (!std::filesystem::is_directory(target)) {
+      files.push_back(target);
+      continue;
+    }
+    std::vector<std::string> inside;
+    for (const auto& entry : std::filesystem::recursive_directory_iterator(target)) {
+      const std::string extension = entry.path().extension().string();
+      if (entry.is_regular_file() &&
+          (extension == ".yaml" || extension == ".yml" || extension == ".lua")) {
+        inside.push_back(entry.path().string());
+      }
+    }
+    // sorted, so that two checks of one directory report alike
+    std::sort(inside.begin(), inside.end());
+    if (inside.empty())
+      throw InputError(target + ": no robot file (.yaml) or scenario (.lua) in it");
+    files.insert(files.end(), inside.begin(), inside.end());
+  }
+  return files;
+}
+
+// a scenario: a .lua file, or the name of a bundled scenario that no bundled robot shares
+bool IsScenario(const std::string& target) {
+  if (std::filesystem::path(target).extension() == ".lua") return true;
+  const std::filesystem::path data = DataDirectory();
+  return target.find('/') == std::string::npos && !std::filesystem::exists(target) &&
+         !std::filesystem::exists(data / "robots" / (target + ".yaml")) &&
+         std::filesystem::exists(data / "scenarios" / (target + ".lua"));
+}
+
+}  // namespace
+
+int CheckCommand(const CheckOptions& options) {
+  const std::map<std::string, std::string> overrides = Scenario::ParseOverrides(options.sets);
+  const PluginRegistry registry = LoadRegistry(options.plugin_path);
+  int worst = kExitPassed;
+  for (const std::string& target : CheckTargets(options.targets)) {
+    // each is reported, and a problem in one does not hide the others
+    int code = kExitPassed;
+    try {
+      if (IsScenario(target)) {
+        CheckScenario(target, overrides, registry);
+      } else {
+        CheckRobot(target, registry);
+      }
+    } catch (const InputError& e) {
+      std::fprintf(stderr, "unimouse: error: %s\n", e.what());
+      code = kExitBadInput;
+    } catch (const RuntimeFault& e) {
+      // a script error in a file being checked: the file is the bad input
+      std::fprintf(stderr, "unimouse: error: %s\n", e.what());
+      code = kExitBadInput;
+    }
+    worst = std::max(worst, code);
+  }
+  return worst;
 }
 
 int PluginsCommand(const std::string& plugin_path) {
   std::cout << DescribePlugins(LoadRegistry(plugin_path));
+  return kExitPassed;
+}
+
+namespace {
+
+// a table cell: a '|' of its own would end it
+std::string Cell(const std::string& text) {
+  std::string cell;
+  for (char c : text) cell += c == '|' ? std::string("\\|") : std::string(1, c);
+  return cell;
+}
+
+// each part of a robot file as docs/robots.md titles it
+constexpr std::pair<const char*, const char*> kRobotParts[] = {
+    {"robot", "the file's top level"},
+    {"body", "the chassis and every body under it"},
+    {"moving body", "every body but the chassis, besides the body keys"},
+    {"joint", "a body's joint"},
+    {"geom", "an entry of a body's geoms"},
+    {"site", "an entry of a body's sites"},
+    {"actuator", "an entry of actuators"},
+    {"component", "an entry of components"},
+};
+
+std::string RobotSchemaMarkdown(const PluginRegistry& registry) {
+  std::ostringstream out;
+  out << "### The robot file\n\n";
+  for (const auto& [part, title] : kRobotParts) {
+    out << "#### " << part << ": " << title << "\n\n"
+        << "| key | type | unit | default | range | meaning |\n|---|---|---|---|---|---|\n";
+    for (const RobotKey& k : RobotKeys()) {
+      if (std::string_view(k.part) != part) continue;
+      out << "| `" << k.key << "` | " << k.type << " | " << UnitOfName(k.key) << " | "
+          << k.default_text << " | " << Cell(k.range) << " | " << k.meaning << " |\n";
+    }
+    out << "\n";
+  }
+  out << "### Component types\n\nThe `params` of each component type found.\n\n";
+  for (const auto& [name, entry] : registry.entries()) {
+    const unimouse_component_type& t = *entry.type;
+    out << "#### `" << name << "`\n\n"
+        << (t.summary ? t.summary : "") << ". Runs "
+        << (t.default_period_s > 0 ? "every " + ParamNumberText(t.default_period_s) + " s"
+                                   : std::string("every step"))
+        << " unless `period_s` is given.\n\n"
+        << "| parameter | kind | unit | default | range | meaning |\n"
+        << "|---|---|---|---|---|---|\n";
+    for (int i = 0; i < t.nparam; ++i) {
+      const unimouse_param& p = t.params[i];
+      out << "| `" << p.name << "` | " << ParamKindName(p.kind) << " | " << UnitOfName(p.name)
+          << " | " << Cell(ParamDefaultText(p)) << " | " << Cell(ParamRangeText(p)) << " | "
+          << Cell(p.doc ? p.doc : "") << " |\n";
+    }
+    out << "\n";
+  }
+  std::string text = out.str();
+  text.pop_back();  // no blank line before the block's end
+  return text;
+}
+
+}  // namespace
+
+int RobotSchemaCommand(bool markdown, const std::string& plugin_path) {
+  const PluginRegistry registry = LoadRegistry(plugin_path);
+  if (markdown) {
+    std::cout << RobotSchemaMarkdown(registry);
+    return kExitPassed;
+  }
+  for (const RobotKey& k : RobotKeys()) {
+    std::cout << k.part << ": " << k.key << " (" << k.type << "), " << k.default_text
+              << (*k.range ? ", " + std::string(k.range) : "") << ": " << k.meaning << "\n";
+  }
+  std::cout << DescribePlugins(registry);
   return kExitPassed;
 }
 

@@ -42,10 +42,24 @@ struct RunOptions {
 
 /// Runs a simulation headless and writes out_dir/result.json; returns the exit code.
 int RunCommand(const RunOptions& options);
-/// Validates a robot file without running it; returns the exit code.
-int CheckCommand(const std::string& robot, const std::string& plugin_path);
+/// What `unimouse check` is given.
+struct CheckOptions {
+  /// robot files or bundled names, scenario files (.lua) or bundled names, directories (every
+  /// .yaml, .yml and .lua file inside, at any depth)
+  std::vector<std::string> targets;
+  std::vector<std::string> sets;  ///< scenario parameters, "name=value"
+  std::string plugin_path;
+};
+
+/// Validates robot files (their components created and bound) and scenarios (loaded, and their
+/// world built around the bundled robot) without running a step, starting no program and writing
+/// nothing; reports each and returns the worst exit code: 0 all good, 2 any problem.
+int CheckCommand(const CheckOptions& options);
 /// Lists every component type found and its parameters; returns the exit code.
 int PluginsCommand(const std::string& plugin_path);
+/// Lists every key of a robot file and every component type's parameters, as text or as the
+/// Markdown of docs/robots.md; returns the exit code.
+int RobotSchemaCommand(bool markdown, const std::string& plugin_path);
 /// Lists the bundled scenarios and their parameters, as text or as the Markdown table of
 /// docs/scenarios.md; returns the exit code.
 int ScenariosCommand(bool markdown);

@@ -111,12 +111,28 @@ int main(int argc, char** argv) {
   run_cmd->add_option("--view-frames", run.view_frames,
                       "close the window after so many frames, saving the last as view.png");
 
-  std::string check_robot;
-  CLI::App* check_cmd = app.add_subcommand("check", "validate a robot file without running it");
-  check_cmd->add_option("robot", check_robot, "robot YAML file or bundled robot name")->required();
+  CheckOptions check;
+  CLI::App* check_cmd =
+      app.add_subcommand("check", "validate robot files and scenarios without running them");
+  check_cmd
+      ->add_option("files", check.targets,
+                   "robot YAML files, scenario .lua files, bundled robot or scenario names, or "
+                   "directories (every .yaml and .lua inside). A robot's components are created "
+                   "and bound; a scenario is loaded and its world built around the bundled "
+                   "robot. Nothing is started or written. Each is reported; the exit code is the "
+                   "worst")
+      ->required();
+  check_cmd->add_option("--set", check.sets,
+                        "scenario parameter, name=value (repeatable), as `run --set` takes it");
 
   CLI::App* plugins_cmd =
       app.add_subcommand("plugins", "list the component types found and their parameters");
+
+  bool schema_markdown = false;
+  CLI::App* schema_cmd = app.add_subcommand(
+      "robot-schema", "list every key a robot file may give and every component's parameters");
+  schema_cmd->add_flag("--markdown", schema_markdown,
+                       "print the reference of docs/robots.md instead");
 
   CLI::App* api_cmd =
       app.add_subcommand("scenario-api", "list the sim.* functions scenarios can call");
@@ -269,8 +285,12 @@ int main(int argc, char** argv) {
     }
     if (mms_cmd->parsed()) return RunMms(mms);
     if (firmware_build_cmd->parsed()) return FirmwareBuild(firmware);
-    if (check_cmd->parsed()) return CheckCommand(check_robot, plugin_path);
+    if (check_cmd->parsed()) {
+      check.plugin_path = plugin_path;
+      return CheckCommand(check);
+    }
     if (plugins_cmd->parsed()) return PluginsCommand(plugin_path);
+    if (schema_cmd->parsed()) return RobotSchemaCommand(schema_markdown, plugin_path);
     if (scenarios_cmd->parsed()) return ScenariosCommand(scenarios_markdown);
     if (api_cmd->parsed()) {
       std::fputs(DescribeScenarioApi().c_str(), stdout);

@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <iomanip>
 #include <sstream>
+#include <utility>
 
 #include "install_paths.h"
 #include "unimouse/errors.h"
@@ -45,15 +46,11 @@ std::string ParamKindName(int kind) {
   return "?";
 }
 
-namespace {
-
-std::string NumberText(double v) {
+std::string ParamNumberText(double v) {
   std::ostringstream out;
   out << std::setprecision(10) << v;
   return out.str();
 }
-
-}  // namespace
 
 std::string ParamDefaultText(const unimouse_param& p) {
   if (p.required) return "required";
@@ -61,7 +58,47 @@ std::string ParamDefaultText(const unimouse_param& p) {
     return p.default_string && *p.default_string ? std::string("`") + p.default_string + "`" : "";
   }
   if (p.kind == UNIMOUSE_PARAM_BOOL) return p.default_number != 0 ? "true" : "false";
-  return NumberText(p.default_number);
+  return ParamNumberText(p.default_number);
+}
+
+std::string ParamRangeText(const unimouse_param& p) {
+  std::string range;
+  if (std::isfinite(p.min) || std::isfinite(p.max)) {
+    range = (p.min_exclusive ? "(" : "[") + ParamNumberText(p.min) + ", " + ParamNumberText(p.max) +
+            "]";
+  }
+  if (p.choices) range += (range.empty() ? "one of " : ", one of ") + std::string(p.choices);
+  return range;
+}
+
+std::string UnitOfName(std::string_view name) {
+  // longest first: "_nm_per_a" before "_a"
+  static constexpr std::pair<std::string_view, std::string_view> kSuffixes[] = {
+      {"_nm_s_per_rad", "N m s/rad"},
+      {"_rad_per_s", "rad/s"},
+      {"_m_per_s", "m/s"},
+      {"_nm_per_a", "N m/A"},
+      {"_kg_m2", "kg m^2"},
+      {"_nm_s", "N m s"},
+      {"_counts_sd", "counts"},
+      {"_bytes", "bytes"},
+      {"_bits", "bits"},
+      {"_ohm", "ohm"},
+      {"_deg", "deg"},
+      {"_rad", "rad"},
+      {"_hz", "Hz"},
+      {"_kg", "kg"},
+      {"_nm", "N m"},
+      {"_m", "m"},
+      {"_s", "s"},
+      {"_v", "V"},
+      {"_a", "A"},
+      {"_h", "H"},
+  };
+  for (const auto& [suffix, unit] : kSuffixes) {
+    if (name.ends_with(suffix)) return std::string(unit);
+  }
+  return "";
 }
 
 const unimouse_plugin_info* LoadPluginLibrary(const std::string& path) {
@@ -179,18 +216,15 @@ std::string DescribePlugins(const PluginRegistry& registry) {
     const unimouse_component_type& t = *entry.type;
     out << name << "  (" << entry.library << ")\n  " << (t.summary ? t.summary : "") << "\n";
     out << "  period: "
-        << (t.default_period_s > 0 ? NumberText(t.default_period_s) + " s" : "every step")
+        << (t.default_period_s > 0 ? ParamNumberText(t.default_period_s) + " s" : "every step")
         << " unless period_s is given\n";
     for (int i = 0; i < t.nparam; ++i) {
       const unimouse_param& p = t.params[i];
       const std::string default_text = ParamDefaultText(p);
       out << "  - " << p.name << " (" << ParamKindName(p.kind) << ")"
           << (p.required ? ", " : ", default ") << (default_text.empty() ? "''" : default_text);
-      if (std::isfinite(p.min) || std::isfinite(p.max)) {
-        out << ", " << (p.min_exclusive ? "(" : "[") << NumberText(p.min) << ", "
-            << NumberText(p.max) << "]";
-      }
-      if (p.choices) out << ", one of " << p.choices;
+      const std::string range = ParamRangeText(p);
+      if (!range.empty()) out << ", " << range;
       out << ": " << (p.doc ? p.doc : "") << "\n";
     }
   }

@@ -7,6 +7,7 @@
 #include <deque>
 #include <map>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "unimouse/plugin_abi.h"
@@ -60,6 +61,14 @@ std::string ParamKindName(int kind);
 /// Returns a parameter's default as documented: "required", a number, true/false, or the
 /// string in backquotes (empty for an empty string).
 std::string ParamDefaultText(const unimouse_param& p);
+/// Returns a number as the parameter tables show it: up to 10 significant digits.
+std::string ParamNumberText(double value);
+/// Returns the values a parameter allows beyond its kind: "[0, 10]", "(0, inf]", "one of a|b",
+/// or "" for any.
+std::string ParamRangeText(const unimouse_param& p);
+/// Returns the unit a name's suffix says ("m/s" for speed_m_per_s, "ohm" for resistance_ohm), or
+/// "" for a name without one.
+std::string UnitOfName(std::string_view name);
 
 /// Returns the plugin table as text: one block per type with its parameters, for `unimouse
 /// plugins`.

@@ -11,6 +11,77 @@
 namespace unimouse {
 namespace {
 
+constexpr RobotKey kRobotKeys[] = {
+    {"robot", "name", "string", "required", "", "the robot's name, shown in results"},
+    {"robot", "timestep_s", "number", "0.001", "[0.0001, 0.01]",
+     "the physics step; components run every whole number of steps"},
+    {"robot", "integrator", "string", "Euler", "Euler or implicit",
+     "MuJoCo's integrator; only single-stage ones, since components sense between the two halves "
+     "of a step"},
+    {"robot", "chassis", "a body", "required", "",
+     "the body that moves freely in the world; it has no pos_m, euler_deg or joint"},
+    {"robot", "actuators", "a list of actuators", "none", "",
+     "the torque actuators through which motors turn hinge joints"},
+    {"robot", "inputs", "a list of strings", "none", "unique",
+     "signals written from outside the robot (the firmware link, a scenario), which components "
+     "may read though no component writes them"},
+    {"robot", "components", "a list of components", "none", "",
+     "the robot's electronics: battery, H-bridges, motors, encoders, sensors, link"},
+    {"body", "name", "string", "required", "unique among bodies", "the body's name"},
+    {"body", "geoms", "a list of geoms", "required", "at least one; more than 0 kg in all",
+     "the body's shapes, which give it its mass and its contacts"},
+    {"body", "sites", "a list of sites", "none", "", "named frames that sensors are mounted on"},
+    {"body", "bodies", "a list of bodies", "none", "",
+     "the bodies carried by this one, each moving on its own joint"},
+    {"moving body", "pos_m", "3 numbers", "[0, 0, 0]", "",
+     "where the body is in its parent's frame"},
+    {"moving body", "euler_deg", "3 numbers", "[0, 0, 0]", "",
+     "the body's x, y, z rotation in its parent's frame"},
+    {"moving body", "joint", "a joint", "required", "", "how the body moves against its parent"},
+    {"joint", "name", "string", "required", "unique among joints",
+     "the name actuators give to turn it"},
+    {"joint", "type", "string", "required", "hinge or ball",
+     "a hinge turns about its axis; a ball turns every way and takes no actuator"},
+    {"joint", "axis", "3 numbers", "required for a hinge", "not zero; not for a ball",
+     "the hinge's axis in the body's frame"},
+    {"joint", "damping_nm_s", "number", "0", "at least 0", "viscous friction of the joint"},
+    {"joint", "armature_kg_m2", "number", "0", "at least 0",
+     "rotor inertia added to the joint, such as a gearmotor's"},
+    {"geom", "name", "string", "none", "unique among geoms", "the geom's name"},
+    {"geom", "type", "string", "required", "box, sphere, cylinder or capsule", "the shape"},
+    {"geom", "size_m", "3 numbers", "required for a box", "each more than 0; only for a box",
+     "the box's full extents along x, y, z"},
+    {"geom", "radius_m", "number", "required for a sphere, cylinder or capsule",
+     "more than 0; not for a box", "the radius"},
+    {"geom", "length_m", "number", "required for a cylinder or capsule",
+     "more than 0; only for a cylinder or capsule", "the length along the geom's z axis"},
+    {"geom", "pos_m", "3 numbers", "[0, 0, 0]", "", "where the geom is in its body's frame"},
+    {"geom", "euler_deg", "3 numbers", "[0, 0, 0]", "",
+     "the geom's x, y, z rotation in its body's frame"},
+    {"geom", "mass_kg", "number", "0", "at least 0", "the geom's mass"},
+    {"geom", "friction", "number", "0.6", "at least 0", "Coulomb sliding friction coefficient"},
+    {"geom", "contact", "boolean", "true", "", "false: seen and weighed, never touched"},
+    {"geom", "rgba", "4 numbers", "[0.6, 0.6, 0.6, 1]", "each within [0, 1]",
+     "colour and opacity in pictures"},
+    {"site", "name", "string", "required", "unique among sites",
+     "the name a sensor's `site` parameter gives"},
+    {"site", "pos_m", "3 numbers", "[0, 0, 0]", "", "where the site is in its body's frame"},
+    {"site", "euler_deg", "3 numbers", "[0, 0, 0]", "",
+     "the site's x, y, z rotation; its x axis is where a sensor on it points"},
+    {"actuator", "name", "string", "required", "unique among actuators",
+     "the name a motor's `actuator` parameter gives"},
+    {"actuator", "joint", "string", "required", "a hinge joint's name",
+     "the joint it turns; its control is a torque in N m"},
+    {"component", "type", "string", "required", "a component type below",
+     "what the component is; `unimouse plugins` lists the types found"},
+    {"component", "name", "string", "required", "unique among components",
+     "the component's name in messages and signals"},
+    {"component", "period_s", "number", "the type's", "more than 0",
+     "how often it runs, rounded to whole physics steps"},
+    {"component", "params", "a map", "none", "the type's parameters below",
+     "its parameters; those left out take their defaults"},
+};
+
 // names must be unique per kind across the whole robot
 class NameBook {
  public:
@@ -49,9 +120,7 @@ Vec3 Vector(const MapReader& r, std::string_view key, Vec3 fallback) {
 }
 
 GeomSpec ParseGeom(const YamlNode& node, NameBook& names) {
-  const MapReader r(node, "geom",
-                    {"name", "type", "size_m", "radius_m", "length_m", "pos_m", "euler_deg",
-                     "mass_kg", "friction", "contact", "rgba"});
+  const MapReader r(node, "geom", RobotKeysOf("geom"));
   GeomSpec g;
   g.location = node.location;
   g.name = r.String("name", "");
@@ -90,7 +159,7 @@ GeomSpec ParseGeom(const YamlNode& node, NameBook& names) {
 }
 
 SiteSpec ParseSite(const YamlNode& node, NameBook& names) {
-  const MapReader r(node, "site", {"name", "pos_m", "euler_deg"});
+  const MapReader r(node, "site", RobotKeysOf("site"));
   SiteSpec s;
   s.location = node.location;
   s.name = r.Required("name").AsString("name");
@@ -101,7 +170,7 @@ SiteSpec ParseSite(const YamlNode& node, NameBook& names) {
 }
 
 JointSpec ParseJoint(const YamlNode& node, NameBook& names) {
-  const MapReader r(node, "joint", {"name", "type", "axis", "damping_nm_s", "armature_kg_m2"});
+  const MapReader r(node, "joint", RobotKeysOf("joint"));
   JointSpec j;
   j.location = node.location;
   j.name = r.Required("name").AsString("name");
@@ -127,8 +196,11 @@ JointSpec ParseJoint(const YamlNode& node, NameBook& names) {
 }
 
 BodySpec ParseBody(const YamlNode& node, NameBook& names, bool is_chassis) {
-  std::vector<std::string> keys = {"name", "geoms", "sites", "bodies"};
-  if (!is_chassis) keys.insert(keys.end(), {"pos_m", "euler_deg", "joint"});
+  std::vector<std::string> keys = RobotKeysOf("body");
+  if (!is_chassis) {
+    const std::vector<std::string> moving = RobotKeysOf("moving body");
+    keys.insert(keys.end(), moving.begin(), moving.end());
+  }
   const MapReader r(node, is_chassis ? "chassis" : "body", keys);
   BodySpec b;
   b.location = node.location;
@@ -173,11 +245,19 @@ const JointSpec* FindJoint(const BodySpec& body, const std::string& name) {
 
 }  // namespace
 
+std::span<const RobotKey> RobotKeys() { return kRobotKeys; }
+
+std::vector<std::string> RobotKeysOf(std::string_view part) {
+  std::vector<std::string> keys;
+  for (const RobotKey& k : kRobotKeys) {
+    if (part == k.part) keys.emplace_back(k.key);
+  }
+  return keys;
+}
+
 RobotSpec ParseRobotSpec(const std::string& text, const std::string& file) {
   const YamlNode root = ParseYaml(text, file);
-  const MapReader r(
-      root, "robot",
-      {"name", "timestep_s", "integrator", "chassis", "actuators", "inputs", "components"});
+  const MapReader r(root, "robot", RobotKeysOf("robot"));
   RobotSpec robot;
   robot.file = file;
   robot.name = r.Required("name").AsString("name");
@@ -201,7 +281,7 @@ RobotSpec ParseRobotSpec(const std::string& text, const std::string& file) {
   if (const YamlNode* actuators = r.Optional("actuators")) {
     if (!actuators->IsSequence()) actuators->Fail("actuators must be a list");
     for (const auto& node : actuators->items) {
-      const MapReader a(node, "actuator", {"name", "joint"});
+      const MapReader a(node, "actuator", RobotKeysOf("actuator"));
       ActuatorSpec spec;
       spec.location = node.location;
       spec.name = a.Required("name").AsString("name");
@@ -231,7 +311,7 @@ RobotSpec ParseRobotSpec(const std::string& text, const std::string& file) {
     if (components->kind != YamlNode::Kind::kNull) {
       if (!components->IsSequence()) components->Fail("components must be a list");
       for (const auto& node : components->items) {
-        const MapReader c(node, "component", {"type", "name", "period_s", "params"});
+        const MapReader c(node, "component", RobotKeysOf("component"));
         ComponentSpec spec;
         spec.location = node.location;
         spec.type = c.Required("type").AsString("type");

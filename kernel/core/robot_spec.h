@@ -7,7 +7,9 @@
 
 #include <array>
 #include <optional>
+#include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "yaml_doc.h"
@@ -91,6 +93,25 @@ struct RobotSpec {
   std::vector<std::string> inputs;
   std::vector<ComponentSpec> components;
 };
+
+/// One key a robot file may give, as the loader reads it. The loader accepts exactly the keys of
+/// this table, and docs/robots.md is written from it (`unimouse robot-schema --markdown`); a
+/// key's unit is in its name.
+struct RobotKey {
+  const char* part;  ///< robot, body, moving body, joint, geom, site, actuator, component
+  const char* key;
+  const char* type;          ///< string, number, boolean, 3 numbers, a map or a list of them
+  const char* default_text;  ///< "required", or what applies when the key is left out
+  const char* range;         ///< the values allowed beyond the type; "" for any
+  const char* meaning;
+};
+
+/// Every key of a robot file, part by part in the order docs/robots.md shows them. "body" keys
+/// are those of every body, the chassis too; "moving body" ones those of the others.
+std::span<const RobotKey> RobotKeys();
+
+/// Returns the keys of one part of a robot file, in table order.
+std::vector<std::string> RobotKeysOf(std::string_view part);
 
 /// Reads and validates a robot file; throws InputError with file:line:col.
 RobotSpec LoadRobotSpec(const std::string& path);

@@ -142,13 +142,7 @@ void Session::Assemble() {
   ScenarioWorld world;
   duration_s_ = o.duration_s;
   if (!o.scenario.empty()) {
-    std::map<std::string, std::string> overrides;
-    for (const auto& set : o.sets) {
-      const size_t eq = set.find('=');
-      UNIMOUSE_THROW_UNLESS(eq != std::string::npos && eq > 0,
-                            "--set " + set + ": write name=value");
-      overrides[set.substr(0, eq)] = set.substr(eq + 1);
-    }
+    std::map<std::string, std::string> overrides = Scenario::ParseOverrides(o.sets);
     scenario_file_ = ResolveDataFile(o.scenario, "scenarios/", ".lua");
     // a script stuck in C for good: the process ends, and its result says why
     const auto on_hang = [this](const std::string& why) {

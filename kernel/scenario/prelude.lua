@@ -2,11 +2,12 @@
 -- The scenario prelude: the sandbox a scenario runs in, the parts of the sim API written in Lua,
 -- and the host's own steps in Lua. The library carries this file (nothing is read at run time);
 -- each scenario's Lua state runs it once, with the sim table (its C++ functions in place), the
--- empty sandbox and the host's functions, and keeps the table it returns.
+-- empty sandbox, the host's functions and the names of the sim functions that take a table, and
+-- keeps the table it returns.
 --
 -- A helper blames a bad argument on its caller, error(message, 2), so that the message names
 -- the scenario's file:line; errors raised in C++ skip this file's frames the same way.
-local sim, env, host = ...
+local sim, env, host, table_taking = ...
 
 -- scripts share the string and table libraries: keep what this file needs from them
 local format, insert = string.format, table.insert
@@ -294,6 +295,18 @@ local function dispatch()
       end
     end
     last_pose = p
+  end
+end
+
+-- a table argument takes only the keys its function's signature names: a misspelt key stops the
+-- script at its line rather than leaving a default silently in place. Last, so that every
+-- function is there, those of this file too.
+local check_keys = host.check_keys
+for _, name in ipairs(table_taking) do
+  local f = sim[name]
+  sim[name] = function(...)
+    check_keys(name, ...)
+    return f(...)
   end
 end
 

@@ -49,6 +49,16 @@ Scenario::~Scenario() {
   lua_close(L_);
 }
 
+std::map<std::string, std::string> Scenario::ParseOverrides(const std::vector<std::string>& sets) {
+  std::map<std::string, std::string> overrides;
+  for (const auto& set : sets) {
+    const size_t eq = set.find('=');
+    if (eq == std::string::npos || eq == 0) throw InputError("--set " + set + ": write name=value");
+    overrides[set.substr(0, eq)] = set.substr(eq + 1);
+  }
+  return overrides;
+}
+
 std::unique_ptr<Scenario> Scenario::Load(const std::string& path,
                                          const std::map<std::string, std::string>& overrides,
                                          uint64_t seed, Watchdog::Expiry on_hang) {
@@ -68,7 +78,11 @@ std::unique_ptr<Scenario> Scenario::Load(const std::string& path,
   // returns, an error is a message, never a crash
   s->CallStep<OpenSandbox>(0, 0, "");
   s->CallStep<LoadChunk>(0, 1, "");
-  s->Call(0, 1, "");
+  try {
+    s->Call(0, 1, "");
+  } catch (const ScriptFault& fault) {
+    s->RethrowWhileLoading(fault);
+  }
   s->chunk_ = {};
   s->CallStep<KeepStages>(1, 0, "");
 
@@ -120,7 +134,15 @@ int Scenario::OpenSandbox(LuaCall& call) {
     PushLuaFunction(L, e.body, e.name);
     lua_setfield(L, -2, e.name);
   }
-  call.ProtectedCall(3, 1);
+  // and the names of the functions that take a table, whose keys check_keys checks
+  lua_newtable(L);
+  lua_Integer tables = 0;
+  for (const ApiEntry& e : ScenarioApiEntries()) {
+    if (TableArgumentOf(e).position == 0) continue;
+    lua_pushstring(L, e.name);
+    lua_rawseti(L, -2, ++tables);
+  }
+  call.ProtectedCall(4, 1);
   const int internals = lua_gettop(L);
   s.dispatch_ref_ = RefField(L, internals, "dispatch");
   s.inspect_ref_ = RefField(L, internals, "inspect");
@@ -338,15 +360,23 @@ void Scenario::Throw(const std::string& traceback, const char* what) {
                     traceback);
 }
 
+void Scenario::RethrowWhileLoading(const ScriptFault& fault) const {
+  if (!bad_input_.empty()) throw InputError(bad_input_);
+  if (!unknown_key_.empty() &&
+      std::string_view(fault.what()).find(unknown_key_) != std::string_view::npos) {
+    throw InputError(fault.what());
+  }
+  throw;
+}
+
 ScenarioWorld Scenario::BuildWorld() {
   if (world_ref_ != LUA_REFNIL) {
     lua_rawgeti(L_, LUA_REGISTRYINDEX, world_ref_);
     lua_rawgeti(L_, LUA_REGISTRYINDEX, params_ref_);
     try {
       Call(1, 0, "world");
-    } catch (const ScriptFault&) {
-      if (!bad_input_.empty()) throw InputError(bad_input_);
-      throw;
+    } catch (const ScriptFault& fault) {
+      RethrowWhileLoading(fault);
     }
   }
   return std::move(world_);

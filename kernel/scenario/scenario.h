@@ -95,6 +95,9 @@ class Scenario {
   /// Loads a scenario file with parameter overrides ("name" -> "value" from --set). Throws
   /// InputError for a missing file or a bad override (exit 2), RuntimeFault for a script error
   /// (exit 3). `on_hang`, if given, is the watchdog's expiry (see SetWatchdog), from loading on.
+  /// Reads `--set` texts, "name=value" each, as overrides for Load; throws InputError for one
+  /// without a name and an '='.
+  static std::map<std::string, std::string> ParseOverrides(const std::vector<std::string>& sets);
   static std::unique_ptr<Scenario> Load(const std::string& path,
                                         const std::map<std::string, std::string>& overrides,
                                         uint64_t seed, Watchdog::Expiry on_hang = {});
@@ -177,6 +180,9 @@ class Scenario {
   // keeps and logs a Lua error's traceback, then throws it as a ScriptFault whose message is its
   // first line (file:line)
   [[noreturn]] void Throw(const std::string& traceback, const char* what);
+  // rethrows the ScriptFault being handled as an InputError when the input is at fault: a value
+  // from the command line, or an unknown key given to a sim.* function while loading
+  [[noreturn]] void RethrowWhileLoading(const ScriptFault& fault) const;
 
   // the host's steps and hooks, bodies run through the Lua boundary (lua_call.h)
   static int OpenSandbox(LuaCall& call);
@@ -211,7 +217,8 @@ class Scenario {
   ScenarioOutcome outcome_;
   std::map<std::string, std::string> declared_;   // parameter name -> its Lua type
   std::map<std::string, std::string> overrides_;  // --set, checked against declared_
-  std::string bad_input_;  // why a value from the command line could not be used, if it could not
+  std::string bad_input_;    // why a value from the command line could not be used, if it could not
+  std::string unknown_key_;  // the last unknown key a sim.* table argument was given, if one was
   std::map<std::string, std::string> param_text_;
   double time_limit_s_ = 0;
   std::vector<std::string> hud_;

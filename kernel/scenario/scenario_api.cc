@@ -5,6 +5,7 @@
 #include <lua5.4/lua.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstring>
 #include <functional>
@@ -17,9 +18,15 @@
 #include "lua_patterns.h"
 #include "rng.h"
 #include "scenario.h"
+#include "text_file.h"
 #include "unimouse/errors.h"
+#include "yaml_doc.h"
 
 namespace unimouse {
+
+namespace {
+const TableArgument& KnownTableArgument(std::string_view name);
+}  // namespace
 
 // the C++ bodies behind `sim.*`; a struct so that they may reach Scenario's private parts. Each
 // reads its arguments through LuaCall and reports a bad one by throwing (see lua_call.h).
@@ -446,6 +453,75 @@ struct ScenarioApi {
     return 1;
   }
 
+  // check_keys(name, ...): the arguments of sim.<name>, whose table argument may hold only the
+  // keys its signature names; a misspelt optional key would otherwise be a default silently used
+  static int CheckKeys(LuaCall& call) {
+    const std::string name = call.CheckString(1);
+    const TableArgument& table = KnownTableArgument(name);
+    const int arg = table.position + 1;
+    lua_State* L = call.state();
+    if (table.position == 0 || lua_type(L, arg) != LUA_TTABLE) return 0;
+    // the first unknown key in sorted order, so that the message does not depend on hashing
+    std::string unknown;
+    bool found = false;
+    int64_t keys = 0;
+    lua_pushnil(L);
+    while (lua_next(L, arg) != 0) {
+      lua_pop(L, 1);
+      ++keys;
+      const int type = lua_type(L, -1);
+      const std::string key = type == LUA_TSTRING || type == LUA_TNUMBER
+                                  ? ErrorText(L, -1)
+                                  : std::string("of type ") + luaL_typename(L, -1);
+      const bool known = type == LUA_TSTRING &&
+                         std::find(table.keys.begin(), table.keys.end(), key) != table.keys.end();
+      if (!known && (!found || key < unknown)) {
+        unknown = key;
+        found = true;
+      }
+    }
+    // going through the keys is work the instruction count does not see
+    Scenario& s = Self(call);
+    s.Spend(L, 1, keys);
+    if (!found) return 0;
+    const std::string near = NearestWord(unknown, table.keys);
+    std::string known;
+    for (const std::string& k : table.keys) known += (known.empty() ? "" : ", ") + k;
+    s.unknown_key_ = "unknown key " + unknown + " in sim." + name +
+                     (near.empty() ? " (its keys: " + known + ")" : ", did you mean " + near + "?");
+    // a tail call (`return sim.scenario {...}`) leaves no frame to read the caller's line from:
+    // the line is then the one the key is written on
+    if (ScriptLine(L, 1).empty()) {
+      const int line = LineOfKey(s.file_, unknown);
+      if (line > 0) {
+        throw ScriptError(s.file_ + ":" + std::to_string(line) + ": " + s.unknown_key_,
+                          /*located=*/true);
+      }
+    }
+    call.Fail(s.unknown_key_);
+  }
+
+  // the first line of `file` where `key =` is written, or 0
+  static int LineOfKey(const std::string& file, const std::string& key) {
+    const auto word = [](char c) {
+      return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
+    };
+    const std::string text = ReadTextFile(file);
+    int line = 1;
+    for (size_t at = 0; at < text.size(); ++at) {
+      if (text[at] == '\n') ++line;
+      if (text.compare(at, key.size(), key) != 0 || (at > 0 && word(text[at - 1]))) continue;
+      size_t next = at + key.size();
+      if (next < text.size() && word(text[next])) continue;
+      while (next < text.size() && (text[next] == ' ' || text[next] == '\t')) ++next;
+      if (next < text.size() && text[next] == '=' &&
+          (next + 1 == text.size() || text[next + 1] != '=')) {
+        return line;
+      }
+    }
+    return 0;
+  }
+
   // work the prelude's wrappers leave to C (table.move's elements), counted as instructions
   static int Charge(LuaCall& call) {
     const double work = call.CheckNumber(1);
@@ -527,6 +603,8 @@ constexpr ApiEntry kHost[] = {
      "the instruction budget's error once it is spent"},
     {"charge", ScenarioApi::Charge, 0, "charge(instructions)",
      "counts work done in C against the instruction budget"},
+    {"check_keys", ScenarioApi::CheckKeys, 0, "check_keys(name, ...)",
+     "refuses a key the table argument of sim.<name> does not take"},
     {"string.find", ScenarioApi::StringFind, 0, "string.find(s, pattern, init?, plain?)",
      "string.find with its work counted"},
     {"string.match", ScenarioApi::StringMatch, 0, "string.match(s, pattern, init?)",
@@ -536,7 +614,60 @@ constexpr ApiEntry kHost[] = {
      "the next match, its work counted, for string.gmatch and string.gsub"},
 };
 
+// `text` split at its commas outside braces, each part without its surrounding spaces
+std::vector<std::string_view> SplitArguments(std::string_view text) {
+  std::vector<std::string_view> parts;
+  int depth = 0;
+  size_t from = 0;
+  for (size_t i = 0; i <= text.size(); ++i) {
+    if (i < text.size() && (text[i] == '{' || text[i] == '(')) ++depth;
+    if (i < text.size() && (text[i] == '}' || text[i] == ')')) --depth;
+    if (i == text.size() || (text[i] == ',' && depth == 0)) {
+      std::string_view part = text.substr(from, i - from);
+      part.remove_prefix(std::min(part.size(), part.find_first_not_of(' ')));
+      part = part.substr(0, part.find_last_not_of(' ') + 1);
+      if (!part.empty()) parts.push_back(part);
+      from = i + 1;
+    }
+  }
+  return parts;
+}
+
+// the table argument of the function called `name`, worked out once
+const TableArgument& KnownTableArgument(std::string_view name) {
+  static const std::vector<std::pair<std::string_view, TableArgument>> tables = [] {
+    std::vector<std::pair<std::string_view, TableArgument>> all;
+    for (const ApiEntry& e : kApi) all.emplace_back(e.name, TableArgumentOf(e));
+    return all;
+  }();
+  static const TableArgument kNone;
+  for (const auto& [n, table] : tables) {
+    if (n == name) return table;
+  }
+  return kNone;
+}
+
 }  // namespace
+
+TableArgument TableArgumentOf(const ApiEntry& entry) {
+  std::string_view call = entry.signature;
+  call = call.substr(0, call.find(" ->"));
+  const size_t open = call.find_first_of("({");
+  if (open == std::string_view::npos) return {};
+  // "name{...}" takes one table; "name(a, {...})" lists its arguments between parentheses
+  const std::vector<std::string_view> arguments =
+      call[open] == '{' ? std::vector<std::string_view>{call.substr(open)}
+                        : SplitArguments(call.substr(open + 1, call.size() - open - 2));
+  TableArgument table;
+  for (size_t i = 0; i < arguments.size(); ++i) {
+    if (arguments[i].front() != '{') continue;
+    table.position = static_cast<int>(i) + 1;
+    for (std::string_view key : SplitArguments(arguments[i].substr(1, arguments[i].size() - 2))) {
+      table.keys.emplace_back(key.substr(0, key.find_first_of(" =?")));
+    }
+  }
+  return table;
+}
 
 std::span<const ApiEntry> ScenarioApiEntries() { return kApi; }
 

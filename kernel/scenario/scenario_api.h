@@ -7,6 +7,8 @@
 #define UNIMOUSE_SCENARIO_SCENARIO_API_H_
 
 #include <span>
+#include <string>
+#include <vector>
 
 #include "lua_call.h"
 
@@ -24,6 +26,16 @@ struct ApiEntry {
 
 /// Every `sim.*` function, in the order `unimouse scenario-api` lists them.
 std::span<const ApiEntry> ScenarioApiEntries();
+
+/// The table argument of a function as its signature shows it: its position (1 for
+/// "robot_place{x_m, y_m, yaw_deg?}", 2 for "snapshot_save(file, {camera?, ...})", 0 when it takes
+/// none) and the keys it takes, the signature's names without "?" or "= ...". A script that gives
+/// any other key is stopped at its line.
+struct TableArgument {
+  int position = 0;
+  std::vector<std::string> keys;
+};
+TableArgument TableArgumentOf(const ApiEntry& entry);
 
 /// The host's functions the prelude builds the sandbox with: print (to the run's log), random
 /// (math.random, from the run's seed), take_firmware_lines (for the events), budget_spent

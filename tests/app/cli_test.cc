@@ -10,7 +10,9 @@
 #include <iterator>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
+#include "inline_assets.h"
 #include "run_program.h"
 
 namespace {
@@ -158,18 +160,38 @@ TEST_F(CliTest, ANegativeSeedIsRefused) {
   EXPECT_NE(o.output.find("the seed is a whole number, 0 or more"), std::string::npos) << o.output;
 }
 
+// the generated block of a document, between "<!-- unimouse ARGUMENTS -->" and "<!-- end -->",
+// must be what `unimouse ARGUMENTS` prints now; returns that output
+std::string ExpectCurrentBlock(const std::string& doc, const std::string& arguments) {
+  const Outcome o = Unimouse(arguments);
+  EXPECT_EQ(o.exit_code, 0) << o.output;
+  std::ifstream in(fs::path(UNIMOUSE_SOURCE_DIR) / doc);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string begin = "<!-- unimouse " + arguments + " -->\n", end = "<!-- end -->";
+  const size_t from = text.find(begin), to = text.find(end, from);
+  if (from == std::string::npos || to == std::string::npos) {
+    ADD_FAILURE() << doc << " lacks the block " << begin;
+    return o.output;
+  }
+  EXPECT_EQ(text.substr(from + begin.size(), to - from - begin.size()), o.output)
+      << doc << " is stale: paste the output of `unimouse " << arguments << "`";
+  return o.output;
+}
+
 TEST_F(CliTest, TheScenarioParameterTableOfTheDocsIsWhatTheScenariosDeclare) {
-  const Outcome o = Unimouse("scenarios --markdown");
-  ASSERT_EQ(o.exit_code, 0) << o.output;
-  std::ifstream in(UNIMOUSE_SOURCE_DIR "/docs/scenarios.md");
-  const std::string doc((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  const std::string begin = "<!-- unimouse scenarios --markdown -->\n", end = "<!-- end -->";
-  const size_t from = doc.find(begin), to = doc.find(end, from);
-  ASSERT_NE(to, std::string::npos) << "docs/scenarios.md lacks the block " << begin;
-  EXPECT_EQ(doc.substr(from + begin.size(), to - from - begin.size()), o.output)
-      << "docs/scenarios.md is stale: paste the output of `unimouse scenarios --markdown`";
-  EXPECT_NE(o.output.find("| `micromouse` | `maze` | string | `\"japan2018\"` |"),
-            std::string::npos);
+  const std::string table = ExpectCurrentBlock("docs/scenarios.md", "scenarios --markdown");
+  EXPECT_NE(table.find("| `micromouse` | `maze` | string | `\"japan2018\"` |"), std::string::npos);
+}
+
+TEST_F(CliTest, TheRobotFileReferenceOfTheDocsIsTheSchemaTheLoaderEnforces) {
+  const std::string reference = ExpectCurrentBlock("docs/robots.md", "robot-schema --markdown");
+  // by hand, from the loader and the motor's parameters
+  EXPECT_NE(reference.find("| `timestep_s` | number | s | 0.001 | [0.0001, 0.01] |"),
+            std::string::npos)
+      << reference;
+  EXPECT_NE(reference.find("| `resistance_ohm` | number | ohm | 16.66667 |"), std::string::npos)
+      << reference;
+  EXPECT_NE(reference.find("#### `unimouse.link`"), std::string::npos);
 }
 
 TEST_F(CliTest, RunOnAnOpenFloor) {
@@ -189,6 +211,100 @@ TEST_F(CliTest, BadRobotFileExitsWithCode2AndOneLocatedLine) {
   const Outcome o = Unimouse("check " + path);
   EXPECT_EQ(o.exit_code, 2);
   EXPECT_EQ(o.output, "unimouse: error: " + path + ":4:3: chassis: unknown key 'mass'\n");
+}
+
+TEST_F(CliTest, CheckLoadsAScenarioAndBuildsItsWorldWithoutRunningIt) {
+  const Outcome o = Unimouse("check micromouse --set maze=japan2019");
+  EXPECT_EQ(o.exit_code, 0) << o.output;
+  EXPECT_NE(o.output.find("ok: scenario 'micromouse', "), std::string::npos) << o.output;
+  EXPECT_NE(o.output.find("mazes/japan2019.txt (16x16)"), std::string::npos) << o.output;
+}
+
+TEST_F(CliTest, CheckReportsAScenariosMistakeAtItsLineWithExitCode2) {
+  const std::string path =
+      Write("typo.lua",
+            "return sim.scenario { name = 'typo', run = function() end, world = function()\n"
+            "  sim.robot_place { x_m = 0, y_m = 0, yaw = 0 }\n"
+            "end }\n");
+  const Outcome o = Unimouse("check " + path);
+  EXPECT_EQ(o.exit_code, 2) << o.output;
+  EXPECT_NE(o.output.find(":2: unknown key yaw in sim.robot_place, did you mean yaw_deg?"),
+            std::string::npos)
+      << o.output;
+  // a missing maze named by --set is bad input too
+  EXPECT_EQ(Unimouse("check micromouse --set maze=no_such_maze").exit_code, 2);
+}
+
+TEST_F(CliTest, CheckTakesDirectoriesReportingEveryFileAndExitingWithTheWorstCode) {
+  fs::create_directories(dir_ / "class" / "lab2");
+  const std::string robot = Write("class/good.yaml", unimouse::testing::ReadBundledRobot());
+  const std::string bad = Write("class/lab2/bad.yaml", "name: x\nchassis:\n  name: c\n  mass: 1\n");
+  const std::string scenario =
+      Write("class/lab2/open.lua", "return sim.scenario { name = 'open', run = function() end }\n");
+  Write("class/notes.txt", "not checked");
+  const Outcome o = Unimouse("check " + (dir_ / "class").string());
+  EXPECT_EQ(o.exit_code, 2) << o.output;
+  EXPECT_NE(o.output.find(robot + ": ok: robot 'unimouse'"), std::string::npos) << o.output;
+  EXPECT_NE(o.output.find(bad + ":4:3: chassis: unknown key 'mass'"), std::string::npos)
+      << o.output;
+  EXPECT_NE(o.output.find(scenario + ": ok: scenario 'open', 0 parameters, world: an open floor"),
+            std::string::npos)
+      << o.output;
+  EXPECT_EQ(o.output.find("notes.txt"), std::string::npos) << o.output;
+  EXPECT_EQ(Unimouse("check " + robot + " " + scenario).exit_code, 0);
+}
+
+TEST_F(CliTest, CheckStartsNothingAndWritesNothing) {
+  // the test process's own TMPDIR, which the program inherits, and the directory checked
+  const fs::path tmp = fs::temp_directory_path();
+  const auto entries = [](const fs::path& dir) {
+    std::vector<std::string> names;
+    for (const auto& e : fs::recursive_directory_iterator(dir)) names.push_back(e.path().string());
+    std::sort(names.begin(), names.end());
+    return names;
+  };
+  const std::vector<std::string> before = entries(tmp);
+  const Outcome o = Unimouse("check " + std::string(UNIMOUSE_SOURCE_DIR) + "/scenarios " +
+                             std::string(UNIMOUSE_SOURCE_DIR) + "/robots");
+  EXPECT_EQ(o.exit_code, 0) << o.output;
+  EXPECT_EQ(entries(tmp), before);
+}
+
+TEST_F(CliTest, CheckRefusesAMotorOnABallJointAtTheActuatorsLine) {
+  const std::string path =
+      Write("ball.yaml",
+            "name: ball\n"
+            "chassis:\n"
+            "  name: plate\n"
+            "  geoms: [{ type: box, size_m: [0.1, 0.1, 0.02], mass_kg: 0.1 }]\n"
+            "  bodies:\n"
+            "    - name: caster\n"
+            "      joint: { name: caster, type: ball }\n"
+            "      geoms: [{ type: sphere, radius_m: 0.005, mass_kg: 0.01 }]\n"
+            "actuators:\n"
+            "  - { name: motor, joint: caster }\n");
+  const Outcome o = Unimouse("check " + path);
+  EXPECT_EQ(o.exit_code, 2) << o.output;
+  EXPECT_EQ(o.output, "unimouse: error: " + path +
+                          ":10:27: actuator 'motor': joint 'caster' is a ball joint; a motor "
+                          "turns a hinge\n");
+}
+
+TEST_F(CliTest, CheckRefusesAMovingBodyWithoutMassAtItsGeoms) {
+  const std::string path =
+      Write("light.yaml",
+            "name: light\n"
+            "chassis:\n"
+            "  name: plate\n"
+            "  geoms: [{ type: box, size_m: [0.1, 0.1, 0.02], mass_kg: 0.1 }]\n"
+            "  bodies:\n"
+            "    - name: wheel\n"
+            "      joint: { name: axle, type: hinge, axis: [0, 1, 0] }\n"
+            "      geoms: [{ type: sphere, radius_m: 0.016 }]\n");
+  const Outcome o = Unimouse("check " + path);
+  EXPECT_EQ(o.exit_code, 2) << o.output;
+  EXPECT_EQ(o.output, "unimouse: error: " + path +
+                          ":8:14: body 'wheel': its geoms weigh 0 kg in all; give one a mass_kg\n");
 }
 
 TEST_F(CliTest, BadMazeFileExitsWithCode2) {

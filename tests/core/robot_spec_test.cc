@@ -4,7 +4,10 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <string>
+#include <string_view>
+#include <vector>
 
 #include "inline_assets.h"
 #include "unimouse/errors.h"
@@ -90,6 +93,48 @@ TEST(RobotSpecTest, OutOfRangeValuesAreRefused) {
   EXPECT_EQ(ErrorOf(TinyWith("0.02", "-0.02")), "robot.yaml:5:33: radius_m must be greater than 0");
   EXPECT_EQ(ErrorOf(std::string(kTiny) + "integrator: RK4\n"),
             "robot.yaml:6:13: integrator must be Euler or implicit, not 'RK4'");
+}
+
+// the default the schema table documents for a key
+std::string SchemaDefault(std::string_view part, std::string_view key) {
+  for (const RobotKey& k : RobotKeys()) {
+    if (part == k.part && key == k.key) return k.default_text;
+  }
+  return "not in the schema";
+}
+
+TEST(RobotSpecTest, TheSchemaDocumentsTheDefaultsTheLoaderApplies) {
+  const RobotSpec robot =
+      ParseRobotSpec(std::string(kTiny) +
+                         "  bodies:\n"
+                         "    - name: wheel\n"
+                         "      joint: { name: j, type: hinge, axis: [0, 1, 0] }\n"
+                         "      geoms: [{ type: sphere, radius_m: 0.01, "
+                         "mass_kg: 0.01 }]\n",
+                     "robot.yaml");
+  EXPECT_EQ(SchemaDefault("robot", "timestep_s"), "0.001");
+  EXPECT_EQ(robot.timestep_s, 0.001);
+  EXPECT_EQ(SchemaDefault("robot", "integrator"), "Euler");
+  EXPECT_EQ(robot.integrator, "Euler");
+  const GeomSpec& g = robot.chassis.geoms[0];
+  EXPECT_EQ(SchemaDefault("geom", "friction"), "0.6");
+  EXPECT_EQ(g.friction, 0.6);
+  EXPECT_EQ(SchemaDefault("geom", "contact"), "true");
+  EXPECT_TRUE(g.contact);
+  EXPECT_EQ(SchemaDefault("geom", "rgba"), "[0.6, 0.6, 0.6, 1]");
+  EXPECT_EQ(g.rgba, (std::array<double, 4>{0.6, 0.6, 0.6, 1}));
+  const JointSpec& j = *robot.chassis.bodies[0].joint;
+  EXPECT_EQ(SchemaDefault("joint", "damping_nm_s"), "0");
+  EXPECT_EQ(j.damping_nm_s, 0);
+  EXPECT_EQ(SchemaDefault("joint", "armature_kg_m2"), "0");
+  EXPECT_EQ(j.armature_kg_m2, 0);
+}
+
+TEST(RobotSpecTest, TheChassisTakesTheBodyKeysAndOtherBodiesTheMovingOnesToo) {
+  EXPECT_EQ(RobotKeysOf("body"), (std::vector<std::string>{"name", "geoms", "sites", "bodies"}));
+  EXPECT_EQ(RobotKeysOf("moving body"), (std::vector<std::string>{"pos_m", "euler_deg", "joint"}));
+  EXPECT_EQ(ErrorOf(TinyWith("  name: body\n", "  name: body\n  pos_m: [0, 0, 0]\n")),
+            "robot.yaml:4:3: chassis: unknown key 'pos_m'");
 }
 
 TEST(RobotSpecTest, TimestepsOutsideTheDocumentedRangeAreRefused) {

@@ -27,4 +27,6 @@ check "--robot" run --ro
 check "--duration" run --robot unimouse --du
 check "solve" maze so
 check "--strict" maze check --st
+check "--set" check --se
+check "robot-schema" rob
 echo "completion offers subcommands and options"

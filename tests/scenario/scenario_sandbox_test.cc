@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "scenario.h"
+#include "scenario_api.h"
 #include "text_file.h"
 #include "unimouse/errors.h"
 
@@ -436,6 +437,95 @@ TEST(ScenarioPreludeTest, HelperErrorsNameTheScenariosLine) {
         std::to_string(i));
     EXPECT_EQ(WorldError(path), Shown(path) + ":3: " + cases[i].second + " (in world)");
   }
+}
+
+// the bad input loading the file and building its world gives; "" when there is none
+std::string WorldInputError(const std::string& path) {
+  try {
+    Scenario::Load(path, {}, 1)->BuildWorld();
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(ScenarioKeysTest, ATypoInAnOptionalKeyIsNamedWithItsCorrectionAtTheScenariosLine) {
+  // without the check the robot would face north, yaw_deg's default, and nothing would say so
+  const std::string path = WorldScenario("sim.robot_place { x_m = 0, y_m = 0, yaw = 0 }");
+  EXPECT_EQ(WorldInputError(path), Shown(path) +
+                                       ":2: unknown key yaw in sim.robot_place, did you mean "
+                                       "yaw_deg? (in world)");
+}
+
+TEST(ScenarioKeysTest, EveryFunctionThatTakesATableRefusesAnUnknownKey) {
+  // from the API's own list, so that a new function cannot be left out; by hand: scenario,
+  // wait_until, robot_place, wall_add, wall_arc, wall_polyline, box_add, snapshot_save, gate_add
+  int tables = 0;
+  for (const ApiEntry& e : ScenarioApiEntries()) {
+    const TableArgument table = TableArgumentOf(e);
+    if (table.position == 0) continue;
+    ++tables;
+    // the table in its place, the arguments before it nil: the keys are checked first
+    std::string arguments;
+    for (int i = 1; i < table.position; ++i) arguments += "nil, ";
+    const std::string misspelt = table.keys.front() + "_x";
+    const std::string path = WorldScenario(
+        "sim." + std::string(e.name) + "(" + arguments + "{ " + misspelt + " = 1 })", e.name);
+    EXPECT_EQ(WorldInputError(path), Shown(path) + ":2: unknown key " + misspelt + " in sim." +
+                                         e.name + ", did you mean " + table.keys.front() +
+                                         "? (in world)");
+  }
+  EXPECT_EQ(tables, 9);
+}
+
+TEST(ScenarioKeysTest, TheKeysAreTheNamesTheSignatureShows) {
+  const auto entry = [](std::string_view name) {
+    for (const ApiEntry& e : ScenarioApiEntries()) {
+      if (name == e.name) return TableArgumentOf(e);
+    }
+    return TableArgument{-1, {}};
+  };
+  EXPECT_EQ(entry("robot_place").position, 1);
+  EXPECT_EQ(entry("robot_place").keys, (std::vector<std::string>{"x_m", "y_m", "yaw_deg"}));
+  EXPECT_EQ(entry("snapshot_save").position, 2);
+  EXPECT_EQ(entry("snapshot_save").keys, (std::vector<std::string>{"camera", "width", "height"}));
+  EXPECT_EQ(entry("wall_polyline").keys,
+            (std::vector<std::string>{"points", "thickness_m", "height_m"}));
+  EXPECT_EQ(entry("box_add").keys, (std::vector<std::string>{"x_m", "y_m", "size_m", "yaw_deg"}));
+  EXPECT_EQ(entry("hud_set").position, 0);
+  EXPECT_EQ(entry("time").position, 0);
+}
+
+TEST(ScenarioKeysTest, AKeyFarFromEveryNameListsTheNames) {
+  const std::string path = WorldScenario("sim.wall_add { 0, 0, 1, 1 }");
+  EXPECT_EQ(WorldInputError(path),
+            Shown(path) +
+                ":2: unknown key 1 in sim.wall_add (its keys: x1_m, y1_m, x2_m, y2_m, "
+                "thickness_m, height_m) (in world)");
+}
+
+TEST(ScenarioKeysTest, AnUnknownKeyOfTheScenarioTableIsBadInputWhileLoading) {
+  const std::string path = WriteScenario(
+      "return sim.scenario { name = 'typo', run = function() end,\n"
+      "  paramz = { laps = 3 } }\n");
+  try {
+    Scenario::Load(path, {}, 1);
+    ADD_FAILURE() << "loaded";
+  } catch (const InputError& e) {
+    // the tail call leaves no frame with a line: the key's own line is named
+    EXPECT_EQ(std::string(e.what()),
+              path + ":2: unknown key paramz in sim.scenario, did you mean params?");
+  }
+}
+
+TEST(ScenarioKeysTest, TheKeysTheSignatureNamesAreTaken) {
+  const std::string path = WorldScenario(
+      "sim.robot_place { x_m = 0, y_m = 0, yaw_deg = 0 }\n"
+      "sim.wall_arc { cx_m = 0, cy_m = 0, radius_m = 1, from_deg = 0, to_deg = 90, segments = 3,\n"
+      "               thickness_m = 0.01, height_m = 0.05 }\n"
+      "sim.box_add { x_m = 1, y_m = 1, size_m = { 0.1, 0.1, 0.1 }, yaw_deg = 10 }");
+  EXPECT_EQ(WorldInputError(path), "");
+  EXPECT_EQ(WorldError(path), "");
 }
 
 }  // namespace

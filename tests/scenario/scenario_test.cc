@@ -346,6 +346,22 @@ TEST(ScenarioApiTest, EveryListedFunctionExistsInTheSandbox) {
   EXPECT_EQ(r.outcome.exit_code, 0) << r.outcome.output;
 }
 
+TEST(ScenarioApiTest, AnUnknownKeyWhileRunningIsAScriptErrorAtTheScenariosLine) {
+  const std::string path =
+      (std::filesystem::temp_directory_path() / "unimouse_late_typo.lua").string();
+  WriteTextFile(path,
+                "return sim.scenario { name = 'late_typo', run = function()\n"
+                "  sim.wait(0.01)\n"
+                "  sim.robot_place { x_m = 0, y_m = 0, yaw = 0 }\n"
+                "end }\n");
+  const ScenarioRun r = Scenario("--scenario " + path);
+  EXPECT_EQ(r.outcome.exit_code, 3) << r.outcome.output;
+  EXPECT_NE(
+      r.outcome.output.find(path + ":3: unknown key yaw in sim.robot_place, did you mean yaw_deg?"),
+      std::string::npos)
+      << r.outcome.output;
+}
+
 TEST(SlalomScenarioTest, WeavingThroughPasses) {
   const ScenarioRun r =
       Scenario("--scenario slalom --controller " + kTests + "slalom_controller.lua");

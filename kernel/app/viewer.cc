@@ -33,7 +33,6 @@ Viewer::Viewer(const std::string& title, std::string out_dir, int max_frames)
   glfwWindowHint(GLFW_SAMPLES, 4);
   window_ = glfwCreateWindow(1200, 900, title.c_str(), nullptr, nullptr);
   if (window_ == nullptr) {
-    glfwTerminate();
     throw InputError("--view cannot open a window: " + last_glfw_error);
   }
   glfwMakeContextCurrent(window_);
@@ -64,7 +63,10 @@ Viewer::~Viewer() {
   glfwMakeContextCurrent(window_);
   renderer_.reset();  // its GL objects go while the context still exists
   if (window_ != nullptr) glfwDestroyWindow(window_);
-  glfwTerminate();
+
+  // no glfwTerminate: GLFW stays initialised until the process ends, and with it the display
+  // connection and Mesa's driver (closing the display unloads the driver and strands what it
+  // allocated, as eglTerminate would)
 }
 
 void Viewer::OnMouseMove(double x, double y) {

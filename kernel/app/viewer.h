@@ -22,7 +22,8 @@ class SceneRenderer;
 
 class Viewer {
  public:
-  /// Opens the window; throws InputError (exit code 2) when there is no display.
+  /// Opens the window; throws InputError (exit code 2) when there is no display. GLFW, once
+  /// initialised, stays so until the process ends; the window closes with the Viewer.
   /// `max_frames` > 0 closes it after that many frames (for scripts and tests).
   Viewer(const std::string& title, std::string out_dir, int max_frames);
   Viewer(const Viewer&) = delete;

@@ -120,7 +120,10 @@ EglContext::~EglContext() {
   if (display_ == nullptr) return;
   eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
   if (context_ != nullptr) eglDestroyContext(display_, context_);
-  eglTerminate(display_);
+
+  // no eglTerminate: every context of the process shares the one display EGL hands out, so
+  // terminating it here would pull it from under any other; it lasts until the process ends,
+  // and so does the driver it loaded (unloading it would strand what the driver allocated)
 }
 
 }  // namespace unimouse

@@ -26,7 +26,8 @@ class EglContext {
   ~EglContext();
 
   /// Creates a context and leaves it current on this thread. Throws RenderUnavailable saying
-  /// why, in one line, when the machine has no usable EGL display.
+  /// why, in one line, when the machine has no usable EGL display. The display is initialised
+  /// once and stays so until the process ends; a context is destroyed with its EglContext.
   static std::unique_ptr<EglContext> Create();
 
   /// Makes the context current on this thread, or lets go of it. A thread holds one context at

@@ -52,6 +52,27 @@ uint32_t RamStart(const std::string& mcu) {
   return 0x100;
 }
 
+// avr_terminate frees the peripherals but not the MCU that avr_make_mcu_by_name allocated, the
+// lines of its I/O registers, the interrupt lines that live inside it (their names and hooks) or
+// the table of all lines
+void FreeMcu(avr_t* avr) {
+  avr_terminate(avr);
+  for (auto& reg : avr->io) {
+    // avr_iomem_getirq allocates 9 lines a register: one a bit and one for the byte
+    avr_free_irq(reg.irq, 9);
+    reg.irq = nullptr;
+  }
+  avr_irq_pool_t& pool = avr->irq_pool;
+  for (int i = 0; i < pool.count; ++i) {
+    // what is left are lines inside the MCU: allocated ones went with their owners
+    if (pool.irq[i] != nullptr && !(pool.irq[i]->flags & IRQ_FLAG_ALLOC)) {
+      avr_free_irq(pool.irq[i], 1);
+    }
+  }
+  std::free(pool.irq);
+  std::free(avr);
+}
+
 }  // namespace
 
 double AvrBoardStats::LatencyQuantile_s(double q) const {
@@ -125,6 +146,8 @@ AvrBoard::AvrBoard(const std::string& elf_path, const Options& options) : option
     ~Image() {
       std::free(flash);
       std::free(eeprom);
+      std::free(fuse);
+      std::free(lockbits);
       for (uint32_t i = 0; i < symbolcount; ++i) std::free(symbol[i]);
       std::free(symbol);
     }
@@ -139,9 +162,24 @@ AvrBoard::AvrBoard(const std::string& elf_path, const Options& options) : option
   UNIMOUSE_THROW_UNLESS(avr_ != nullptr,
                         elf_path + ": simavr does not know the MCU '" + stats_.mcu + "'");
   Boards().emplace_back(avr_, this);
+  // a constructor that throws runs no destructor
+  struct Undo {
+    AvrBoard* board;
+    ~Undo() {
+      if (board != nullptr) board->Release();
+    }
+  } undo{this};
   avr_init(avr_);
   avr_->log = LOG_ERROR;
   fw.frequency = stats_.f_cpu_hz;
+  // simavr aborts on an image larger than the part's flash, and copies fuses unchecked
+  const uint64_t flash_bytes = uint64_t{avr_->flashend} + 1;
+  UNIMOUSE_THROW_UNLESS(uint64_t{fw.flashbase} + fw.flashsize <= flash_bytes,
+                        elf_path + ": an image of " + std::to_string(fw.flashsize) +
+                            " bytes does not fit the " + std::to_string(flash_bytes) +
+                            " bytes of flash of the " + stats_.mcu);
+  UNIMOUSE_THROW_UNLESS(fw.fusesize <= sizeof(avr_->fuse),
+                        elf_path + ": more fuse bytes than the " + stats_.mcu + " has");
   avr_load_firmware(avr_, &fw);
   avr_->frequency = stats_.f_cpu_hz;
 
@@ -173,12 +211,15 @@ AvrBoard::AvrBoard(const std::string& elf_path, const Options& options) : option
   brkval_ = DataSymbol("__brkval");
   stats_.sram_bytes = ram_end_ + 1 - ram_start_;
   stats_.static_bytes = data_top_ - ram_start_;
+  undo.board = nullptr;
 }
 
-AvrBoard::~AvrBoard() {
-  auto& boards = Boards();
-  std::erase_if(boards, [this](const auto& b) { return b.second == this; });
-  if (avr_ != nullptr) avr_terminate(avr_);
+AvrBoard::~AvrBoard() { Release(); }
+
+void AvrBoard::Release() {
+  std::erase_if(Boards(), [this](const auto& b) { return b.second == this; });
+  if (avr_ != nullptr) FreeMcu(avr_);
+  avr_ = nullptr;
 }
 
 void AvrBoard::ReadSymbols(const std::string& elf_path) {

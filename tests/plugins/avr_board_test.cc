@@ -140,6 +140,33 @@ TEST(AvrBoardTest, NoImageIsAnInputError) {
   EXPECT_THROW(AvrBoard(elf, {.mcu = "atmega9999"}), InputError) << "no such part";
 }
 
+TEST(AvrBoardTest, AnImageLargerThanThePartsFlashIsAnInputError) {
+  FIRMWARE_OR_SKIP(elf, "lockstep_robot");  // a Mega 2560 sketch of more than 4 KiB
+  // the ATtiny25 has 2 KiB of flash (its datasheet); simavr itself would abort the process
+  try {
+    AvrBoard board(elf, {.mcu = "attiny25"});
+    FAIL() << "loaded";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("does not fit the 2048 bytes of flash of the attiny25"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
+// under the sanitizer build, also that the refused MCU is freed and forgotten
+TEST(AvrBoardTest, APartWithoutAUartIsAnInputErrorAndTheNextBoardRuns) {
+  FIRMWARE_OR_SKIP(elf, "rx_overflow");  // 292 bytes: it fits the 8 KiB of an ATtiny85
+  try {
+    AvrBoard board(elf, {.mcu = "attiny85"});
+    FAIL() << "loaded";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("attiny85 has no UART0"), std::string::npos) << e.what();
+  }
+  AvrBoard board(elf, {});
+  EXPECT_EQ(board.RunUntil(kCyclesPerMs), "");
+  EXPECT_TRUE(board.receiver_on());
+}
+
 TEST(AvrBoardTest, TwoRunsOfOneImageAreTheSame) {
   FIRMWARE_OR_SKIP(elf, "millis_clock");
   std::vector<uint8_t> runs[2];

@@ -76,7 +76,7 @@ void BuildAndPass(const std::string& unimouse, const std::string& stem) {
   ASSERT_TRUE(fs::is_regular_file(out + "/my_follower"));
   ASSERT_TRUE(fs::is_regular_file(out + "/my_follower.so"));
 
-  for (const std::string link :
+  for (const std::string& link :
        {"native:" + out + "/my_follower", "inproc:" + out + "/my_follower.so"}) {
     const std::string run_out = work + "/run-" + link.substr(0, link.find(':'));
     const int code = std::system((unimouse + " run --scenario wall_distance --link " + link +

@@ -16,6 +16,8 @@ packages=(
   ffmpeg
   # tests and benchmarks; clang and its libFuzzer runtime for fuzz/run.sh
   libgtest-dev libgmock-dev libbenchmark-dev clang libclang-rt-14-dev
+  # batch runs: a submission's sandbox, and GNU parallel for running a batch's plan
+  bubblewrap parallel
   # firmware: AVR builds and emulation
   gcc-avr avr-libc binutils-avr arduino-core-avr simavr libsimavr-dev libelf-dev
 )

@@ -131,19 +131,8 @@ int RunBatch(const BatchOptions& o) {
       if (pid == 0) {
         // its own process group: a terminal's Ctrl-C reaches this process only, which stops
         // the jobs in order
-        ::setpgid(0, 0);
-        const int null = ::open("/dev/null", O_RDWR);
-        const int err = ::open(log.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
-        ::dup2(null, 0);
-        ::dup2(null, 1);
-        if (err >= 0) ::dup2(err, 2);
-        std::signal(SIGINT, SIG_DFL);
-        std::signal(SIGTERM, SIG_DFL);
-        std::vector<char*> args;
-        for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
-        args.push_back(nullptr);
-        ::execv(args[0], args.data());
-        ::_exit(127);
+        ExecInOwnGroup(argv, -1,
+                       ::open(log.c_str(), O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0644));
       }
       ::setpgid(pid, pid);
       running[pid] = {&job, Clock::now()};

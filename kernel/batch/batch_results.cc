@@ -67,13 +67,6 @@ std::string Text(const json& value) {
   return value.is_string() ? value.get<std::string>() : value.is_null() ? "" : value.dump();
 }
 
-// a file written whole or not at all
-void WriteAtomically(const fs::path& file, const std::string& text) {
-  const fs::path temporary = file.parent_path() / ("." + file.filename().string() + ".tmp");
-  WriteTextFile(temporary.string(), text);
-  fs::rename(temporary, file);
-}
-
 }  // namespace
 
 std::vector<std::string> FindJobDirectories(const std::string& root) {
@@ -180,8 +173,8 @@ void WriteResults(const std::string& out_dir, const json& rows, const std::strin
   const json summary = Summarize(rows);
   const json results = {
       {"unimouse_version", version}, {"manifest", manifest}, {"jobs", rows}, {"summary", summary}};
-  WriteAtomically(out / "results.json",
-                  results.dump(2, ' ', false, json::error_handler_t::replace) + "\n");
+  WriteTextFile((out / "results.json").string(),
+                results.dump(2, ' ', false, json::error_handler_t::replace) + "\n");
 
   // scores flattened: a column for every score any job reports, by name
   std::set<std::string> score_names;
@@ -202,7 +195,7 @@ void WriteResults(const std::string& out_dir, const json& rows, const std::strin
     csv << "," << Number(row["sim_time_s"], "%.3f") << "," << Number(row["wall_time_s"], "%.3f")
         << "," << Text(row["exit_code"]) << "," << Csv(Text(row["dir"])) << "\n";
   }
-  WriteAtomically(out / "results.csv", csv.str());
+  WriteTextFile((out / "results.csv").string(), csv.str());
 
   std::ostringstream sum;
   sum << "submission,jobs";
@@ -217,7 +210,7 @@ void WriteResults(const std::string& out_dir, const json& rows, const std::strin
         << (timed ? Number(best["scores"]["best_run_s"], "%.3f") : "") << ","
         << Number(s["mean_path_cost"], "%.10g") << "\n";
   }
-  WriteAtomically(out / "summary.csv", sum.str());
+  WriteTextFile((out / "summary.csv").string(), sum.str());
 
   // JUnit: failed is a failure, every other status but passed an error
   std::ostringstream xml;
@@ -261,7 +254,7 @@ void WriteResults(const std::string& out_dir, const json& rows, const std::strin
     xml << "  </testsuite>\n";
   }
   xml << "</testsuites>\n";
-  WriteAtomically(out / "junit.xml", xml.str());
+  WriteTextFile((out / "junit.xml").string(), xml.str());
 }
 
 }  // namespace unimouse::batch

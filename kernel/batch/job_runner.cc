@@ -50,9 +50,8 @@ std::string FindProgram(const std::string& name) {
 }
 
 // the run's environment is this one; only the limits and the file system differ
-void LimitAndExec(const std::vector<std::string>& argv, const JobLimits& limits,
-                  const std::string& log_file) {
-  ::setpgid(0, 0);
+[[noreturn]] void LimitAndExec(const std::vector<std::string>& argv, const JobLimits& limits,
+                               const std::string& log_file) {
   const auto limit = [](int resource, rlim_t soft, rlim_t hard) {
     const rlimit r{soft, hard};
     ::setrlimit(resource, &r);
@@ -67,11 +66,18 @@ void LimitAndExec(const std::vector<std::string>& argv, const JobLimits& limits,
   limit(RLIMIT_CPU, cpu_s, cpu_s + 5);
   limit(RLIMIT_CORE, 0, 0);
   const int log = ::open(log_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-  const int null = ::open("/dev/null", O_RDONLY | O_CLOEXEC);
-  if (log < 0 || null < 0) ::_exit(kExitRuntimeFault);
-  ::dup2(null, 0);
-  ::dup2(log, 1);
-  ::dup2(log, 2);
+  if (log < 0) ::_exit(kExitRuntimeFault);
+  ExecInOwnGroup(argv, log, log);
+}
+
+}  // namespace
+
+void ExecInOwnGroup(const std::vector<std::string>& argv, int out_fd, int err_fd) {
+  ::setpgid(0, 0);
+  const int null = ::open("/dev/null", O_RDWR | O_CLOEXEC);
+  if (null >= 0) ::dup2(null, 0);
+  ::dup2(out_fd >= 0 ? out_fd : null, 1);
+  ::dup2(err_fd >= 0 ? err_fd : null, 2);
   // what this process changed for itself goes back to what a program expects
   sigset_t none;
   sigemptyset(&none);
@@ -84,6 +90,8 @@ void LimitAndExec(const std::vector<std::string>& argv, const JobLimits& limits,
   ::execv(args[0], args.data());
   ::_exit(127);
 }
+
+namespace {
 
 // this process is the subreaper of the run: whatever the run started and left behind comes
 // here when its parent ends, and is ended too
@@ -314,11 +322,9 @@ int RunJob(const Manifest& manifest, const Job& job, const std::string& batch_ou
       {"manifest", manifest.file},
       {"unimouse_version", version},
       {"command", command}};
-  // a reader never sees half of it
-  const fs::path temporary = dir / ".job.json.tmp";
-  WriteTextFile(temporary.string(),
+  // written whole: a reader never sees half of it
+  WriteTextFile((dir / "job.json").string(),
                 record.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
-  fs::rename(temporary, dir / "job.json");
   return outcome.status == "passed" ? kExitPassed : kExitFailed;
 }
 

@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "manifest.h"
 
@@ -45,6 +46,11 @@ nlohmann::json JobCommand(const Manifest& manifest, const Job& job, const std::s
 
 /// Whether the job's directory holds a job.json for exactly this job command.
 bool JobIsDone(const Manifest& manifest, const Job& job, const std::string& batch_out);
+
+/// In a child process after fork(): makes it a process group of its own, reading /dev/null,
+/// writing to out_fd and err_fd (/dev/null where -1), with SIGINT and SIGTERM as a program
+/// expects them, and executes argv (argv[0] a path). Never returns.
+[[noreturn]] void ExecInOwnGroup(const std::vector<std::string>& argv, int out_fd, int err_fd);
 
 /// Runs one job and writes its job.json; returns 0 when it passed, 1 otherwise, 3 when it was
 /// interrupted (SIGINT, SIGTERM: the run is stopped and no job.json is written). `program` is

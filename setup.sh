@@ -18,6 +18,8 @@ packages=(
   # the batch report, and Slurm (the tests start its daemons on one node, from their own config)
   libgtest-dev libgmock-dev libbenchmark-dev clang libclang-rt-14-dev
   chromium slurmctld slurmd slurm-client
+  # batch runs: a submission's sandbox, and GNU parallel for running a batch's plan
+  bubblewrap parallel
   # firmware: AVR builds and emulation
   gcc-avr avr-libc binutils-avr arduino-core-avr simavr libsimavr-dev libelf-dev
 )

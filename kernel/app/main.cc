@@ -4,7 +4,9 @@
 #include <csignal>
 #include <cstdio>
 #include <exception>
+#include <filesystem>
 
+#include "batch.h"
 #include "commands.h"
 #include "firmware_command.h"
 #include "install_paths.h"
@@ -258,6 +260,46 @@ int main(int argc, char** argv) {
   firmware_build_cmd->add_option("--name", firmware.name,
                                  "name of the built files (default: the sketch's)");
 
+  batch::BatchOptions batch_run;
+  std::string batch_out, batch_job_id;
+  std::vector<std::string> batch_dirs;
+  CLI::App* batch_cmd = app.add_subcommand(
+      "batch",
+      "many runs from a manifest: submissions x scenarios x mazes x seeds (docs/batch.md)");
+  batch_cmd->require_subcommand(1);
+  CLI::App* batch_run_cmd = batch_cmd->add_subcommand(
+      "run", "run a manifest's jobs here, -j at a time, resuming where an earlier run stopped");
+  batch_run_cmd->add_option("manifest", batch_run.manifest, "the manifest (YAML)")->required();
+  batch_run_cmd->add_option("-j,--jobs", batch_run.workers, "jobs at once (default: one per core)")
+      ->check(CLI::PositiveNumber);
+  batch_run_cmd->add_option("--out", batch_run.out_dir, "directory for the jobs and results")
+      ->capture_default_str();
+  batch_run_cmd->add_flag("--force", batch_run.force, "run again the jobs already done");
+  CLI::App* batch_plan_cmd = batch_cmd->add_subcommand(
+      "plan", "write jobs.txt (a command line per job, for GNU parallel) and slurm-array.sh");
+  batch_plan_cmd->add_option("manifest", batch_run.manifest, "the manifest (YAML)")->required();
+  batch_plan_cmd->add_option("--out", batch_out, "directory for the plan, the jobs and results")
+      ->required();
+  CLI::App* batch_collect_cmd = batch_cmd->add_subcommand(
+      "collect", "merge job directories into results.csv, results.json, summary.csv, junit.xml");
+  batch_collect_cmd->add_option("dirs", batch_dirs, "directories holding job directories")
+      ->required();
+  batch_collect_cmd->add_option("--out", batch_out,
+                                "directory for the results (default: the "
+                                "first directory)");
+  CLI::App* batch_job_cmd = batch_cmd->add_subcommand(
+      "job",
+      "run one job of a manifest under its limits and write its job.json (what every "
+      "line of a plan runs)");
+  batch_job_cmd->add_option("manifest", batch_run.manifest, "the manifest (YAML)")->required();
+  batch_job_cmd->add_option("id", batch_job_id, "the job's id: submission/scenario/maze/seed-N")
+      ->required();
+  batch_job_cmd
+      ->add_option("--out", batch_out,
+                   "the batch's directory (the job's is "
+                   "DIR/jobs/ID)")
+      ->required();
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -282,6 +324,21 @@ int main(int argc, char** argv) {
         run.link = "inproc:" + FirmwareDirectory() + "/micromouse.so";
       }
       return RunCommand(run);
+    }
+    if (batch_cmd->parsed()) {
+      // every job runs this very program
+      const std::string program = std::filesystem::read_symlink("/proc/self/exe").string();
+      batch_run.program = program;
+      batch_run.version = UNIMOUSE_VERSION;
+      if (batch_run_cmd->parsed()) return batch::RunBatch(batch_run);
+      if (batch_plan_cmd->parsed()) return batch::PlanBatch(batch_run.manifest, batch_out, program);
+      if (batch_collect_cmd->parsed()) {
+        return batch::CollectBatch(batch_dirs, batch_out, UNIMOUSE_VERSION);
+      }
+      if (batch_job_cmd->parsed()) {
+        return batch::RunBatchJob(batch_run.manifest, batch_job_id, batch_out, program,
+                                  UNIMOUSE_VERSION);
+      }
     }
     if (mms_cmd->parsed()) return RunMms(mms);
     if (firmware_build_cmd->parsed()) return FirmwareBuild(firmware);

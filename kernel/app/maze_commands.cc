@@ -33,22 +33,9 @@ void PrintJson(const json& value) {
   std::cout << value.dump(2, ' ', false, json::error_handler_t::replace) << "\n";
 }
 
-// every maze file the arguments name: files as given, directories searched for *.txt
+// every maze file the arguments name; none is an error here
 std::vector<std::string> MazeFiles(const std::vector<std::string>& arguments) {
-  std::vector<std::string> files;
-  for (const auto& a : arguments) {
-    if (fs::is_directory(a)) {
-      std::vector<std::string> found;
-      for (const auto& e : fs::recursive_directory_iterator(a)) {
-        if (e.is_regular_file() && e.path().extension() == ".txt")
-          found.push_back(e.path().string());
-      }
-      std::sort(found.begin(), found.end());
-      files.insert(files.end(), found.begin(), found.end());
-    } else {
-      files.push_back(ResolveDataFile(a, "mazes/", ".txt"));
-    }
-  }
+  std::vector<std::string> files = FindMazeFiles(arguments);
   UNIMOUSE_THROW_UNLESS(!files.empty(), "no maze files found in the arguments");
   return files;
 }

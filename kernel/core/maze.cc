@@ -2,9 +2,11 @@
 #include "maze.h"
 
 #include <algorithm>
+#include <filesystem>
 #include <numbers>
 #include <string_view>
 
+#include "install_paths.h"
 #include "text_file.h"
 #include "unimouse/errors.h"
 
@@ -239,6 +241,26 @@ std::string FormatMazeText(const Maze& maze) {
     out += '\n';
   }
   return out;
+}
+
+std::vector<std::string> FindMazeFiles(const std::vector<std::string>& names) {
+  namespace fs = std::filesystem;
+  std::vector<std::string> files;
+  for (const auto& name : names) {
+    if (fs::is_directory(name)) {
+      std::vector<std::string> found;
+      for (const auto& e : fs::recursive_directory_iterator(name)) {
+        if (e.is_regular_file() && e.path().extension() == ".txt") {
+          found.push_back(e.path().string());
+        }
+      }
+      std::sort(found.begin(), found.end());
+      files.insert(files.end(), found.begin(), found.end());
+    } else {
+      files.push_back(ResolveDataFile(name, "mazes/", ".txt"));
+    }
+  }
+  return files;
 }
 
 }  // namespace unimouse

@@ -99,6 +99,11 @@ Maze ParseMazeBinary(const std::string& bytes, const std::string& file, std::str
 /// `format` (optional) receives what was read: "text", "num" or the binary layout.
 Maze LoadMaze(const std::string& path, std::string* format = nullptr);
 
+/// Returns every maze file the names give: a file or a bundled maze's name as ResolveDataFile
+/// finds it, a directory as the *.txt files under it, sorted. Throws InputError for a name that
+/// is neither a file, a directory nor a bundled maze.
+std::vector<std::string> FindMazeFiles(const std::vector<std::string>& names);
+
 /// Writes the text format: 'o' posts, '---' and '|' walls, 'S' on the start, 'G' on every goal
 /// cell; ParseMazeText reads it back to the same maze.
 std::string FormatMazeText(const Maze& maze);

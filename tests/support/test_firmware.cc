@@ -10,6 +10,9 @@
 //   --touch PATH         create the file PATH first, to show that it was started
 //   --flood N            send N zero bytes first, as a firmware gone mad would
 //   --flood-every-step N send N zero bytes before each step's answer
+//   --leave-behind PATH  first start a process of its own session that outlives this one: it
+//                        tries to create PATH, then sleeps 60 s (what a batch must not let live)
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <cstdio>
@@ -88,6 +91,19 @@ int main(int argc, char** argv) {
     }
     if (std::strcmp(argv[i], "--touch") == 0) {
       if (std::FILE* f = std::fopen(argv[i + 1], "w")) std::fclose(f);
+    }
+    if (std::strcmp(argv[i], "--leave-behind") == 0) {
+      // two forks and a new session: no process group or parent of the firmware holds it
+      const pid_t middle = ::fork();
+      if (middle == 0) {
+        ::setsid();
+        if (::fork() == 0) {
+          if (std::FILE* f = std::fopen(argv[i + 1], "w")) std::fclose(f);
+          ::sleep(60);
+        }
+        ::_exit(0);
+      }
+      ::waitpid(middle, nullptr, 0);
     }
     if (std::strcmp(argv[i], "--flood") == 0) {
       Send(std::vector<uint8_t>(static_cast<size_t>(std::atol(argv[i + 1])), 0));

@@ -1,0 +1,260 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "batch_results.h"
+
+#include <algorithm>
+#include <filesystem>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include "text_file.h"
+#include "unimouse/errors.h"
+
+namespace unimouse::batch {
+namespace {
+
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+
+// a CSV field, quoted when it must be
+std::string Csv(const std::string& text) {
+  if (text.find_first_of(",\"\n\r") == std::string::npos) return text;
+  std::string out = "\"";
+  for (char c : text) {
+    if (c == '"') out += '"';
+    out += c;
+  }
+  return out + "\"";
+}
+
+// a number as CSV shows it: fixed decimals for times, enough digits for scores
+std::string Number(const json& value, const char* format) {
+  if (!value.is_number()) return "";
+  char text[64];
+  std::snprintf(text, sizeof(text), format, value.get<double>());
+  return text;
+}
+
+std::string Xml(const std::string& text) {
+  std::string out;
+  for (char c : text) {
+    switch (c) {
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      default:
+        // control characters other than tab and newline are not allowed in XML 1.0
+        if (static_cast<unsigned char>(c) < 0x20 && c != '\t' && c != '\n') {
+          out += ' ';
+        } else {
+          out += c;
+        }
+    }
+  }
+  return out;
+}
+
+std::string Text(const json& value) {
+  return value.is_string() ? value.get<std::string>() : value.is_null() ? "" : value.dump();
+}
+
+}  // namespace
+
+std::vector<std::string> FindJobDirectories(const std::string& root) {
+  std::vector<std::string> dirs;
+  UNIMOUSE_THROW_UNLESS(fs::is_directory(root), root + ": no such directory");
+  if (fs::exists(fs::path(root) / "job.json")) dirs.push_back(root);
+  for (const auto& e : fs::recursive_directory_iterator(root)) {
+    if (e.is_directory() && fs::exists(e.path() / "job.json")) dirs.push_back(e.path().string());
+  }
+  std::sort(dirs.begin(), dirs.end());
+  return dirs;
+}
+
+json JobRows(const std::vector<std::string>& job_dirs, const std::string& out_dir) {
+  std::map<std::string, json> rows;  // by id, so sorted
+  std::map<std::string, std::string> where;
+  const fs::path out = fs::absolute(out_dir);
+  for (const auto& d : job_dirs) {
+    const fs::path dir = fs::absolute(d);
+    json job;
+    try {
+      job = json::parse(ReadTextFile((dir / "job.json").string()));
+    } catch (const json::exception& e) {
+      throw InputError((dir / "job.json").string() + ": not a job record: " + e.what());
+    }
+    const std::string id = job.value("id", "");
+    UNIMOUSE_THROW_UNLESS(!id.empty(), (dir / "job.json").string() + ": no job id");
+    UNIMOUSE_THROW_UNLESS(!where.contains(id), "job " + id + " is in both " + where[id] + " and " +
+                                                   dir.string() + ": collect one");
+    where[id] = dir.string();
+    const std::string relative = dir.lexically_relative(out).generic_string();
+    std::vector<std::string> pictures;
+    for (const auto& e : fs::directory_iterator(dir)) {
+      if (e.path().extension() == ".png") {
+        pictures.push_back((fs::path(relative) / e.path().filename()).generic_string());
+      }
+    }
+    std::sort(pictures.begin(), pictures.end());
+    json row;
+    for (const char* key : {"id", "submission", "scenario", "maze", "seed", "status", "reason",
+                            "scores", "sim_time_s", "wall_time_s", "exit_code", "signal"}) {
+      row[key] = job.contains(key) ? job[key] : json(nullptr);
+    }
+    if (!row["scores"].is_object()) row["scores"] = json::object();
+    row["dir"] = relative;
+    row["pictures"] = pictures;
+    rows[id] = std::move(row);
+  }
+  json list = json::array();
+  for (auto& [id, row] : rows) list.push_back(std::move(row));
+  return list;
+}
+
+json Summarize(const json& rows) {
+  std::map<std::string, json> by_submission;
+  for (const auto& row : rows) {
+    json& s = by_submission[Text(row["submission"])];
+    if (s.is_null()) {
+      s = {{"submission", row["submission"]}, {"jobs", 0}};
+      for (const auto& status : kStatuses) s[status] = 0;
+      s["best"] = nullptr;
+      s["path_costs"] = json::array();
+    }
+    s["jobs"] = s["jobs"].get<int>() + 1;
+    const std::string status = Text(row["status"]);
+    if (s.contains(status)) s[status] = s[status].get<int>() + 1;
+    const json& scores = row["scores"];
+    if (scores.contains("best_run_path_cost") && scores["best_run_path_cost"].is_number()) {
+      s["path_costs"].push_back(scores["best_run_path_cost"]);
+    }
+    if (status != "passed") continue;
+    // the best passed job: its fastest run where the scenario times runs, else its sim time
+    const auto key = [](const json& r) {
+      const json& sc = r["scores"];
+      const bool timed = sc.contains("best_run_s") && sc["best_run_s"].is_number();
+      return std::make_pair(timed ? sc["best_run_s"].get<double>() : 1e300,
+                            r["sim_time_s"].is_number() ? r["sim_time_s"].get<double>() : 1e300);
+    };
+    if (s["best"].is_null() || key(row) < key(s["best"])) {
+      s["best"] = {{"id", row["id"]},
+                   {"maze", row["maze"]},
+                   {"seed", row["seed"]},
+                   {"scores", row["scores"]},
+                   {"sim_time_s", row["sim_time_s"]}};
+    }
+  }
+  json summary = json::array();
+  for (auto& [name, s] : by_submission) {
+    const json& costs = s["path_costs"];
+    double sum = 0;
+    for (const auto& c : costs) sum += c.get<double>();
+    s["mean_path_cost"] =
+        costs.empty() ? json(nullptr) : json(sum / static_cast<double>(costs.size()));
+    s.erase("path_costs");
+    summary.push_back(std::move(s));
+  }
+  return summary;
+}
+
+void WriteResults(const std::string& out_dir, const json& rows, const std::string& manifest,
+                  const std::string& version) {
+  const fs::path out(out_dir);
+  fs::create_directories(out);
+  const json summary = Summarize(rows);
+  const json results = {
+      {"unimouse_version", version}, {"manifest", manifest}, {"jobs", rows}, {"summary", summary}};
+  WriteTextFile((out / "results.json").string(),
+                results.dump(2, ' ', false, json::error_handler_t::replace) + "\n");
+
+  // scores flattened: a column for every score any job reports, by name
+  std::set<std::string> score_names;
+  for (const auto& row : rows) {
+    for (const auto& [name, value] : row["scores"].items()) score_names.insert(name);
+  }
+  std::ostringstream csv;
+  csv << "submission,scenario,maze,seed,status,reason";
+  for (const auto& name : score_names) csv << "," << Csv("score." + name);
+  csv << ",sim_time_s,wall_time_s,exit_code,dir\n";
+  for (const auto& row : rows) {
+    csv << Csv(Text(row["submission"])) << "," << Csv(Text(row["scenario"])) << ","
+        << Csv(Text(row["maze"])) << "," << Text(row["seed"]) << "," << Csv(Text(row["status"]))
+        << "," << Csv(Text(row["reason"]));
+    for (const auto& name : score_names) {
+      csv << "," << (row["scores"].contains(name) ? Number(row["scores"][name], "%.10g") : "");
+    }
+    csv << "," << Number(row["sim_time_s"], "%.3f") << "," << Number(row["wall_time_s"], "%.3f")
+        << "," << Text(row["exit_code"]) << "," << Csv(Text(row["dir"])) << "\n";
+  }
+  WriteTextFile((out / "results.csv").string(), csv.str());
+
+  std::ostringstream sum;
+  sum << "submission,jobs";
+  for (const auto& status : kStatuses) sum << "," << status;
+  sum << ",best_job,best_run_s,mean_path_cost\n";
+  for (const auto& s : summary) {
+    sum << Csv(Text(s["submission"])) << "," << s["jobs"].get<int>();
+    for (const auto& status : kStatuses) sum << "," << s[status].get<int>();
+    const json& best = s["best"];
+    const bool timed = !best.is_null() && best["scores"].contains("best_run_s");
+    sum << "," << (best.is_null() ? "" : Csv(Text(best["id"]))) << ","
+        << (timed ? Number(best["scores"]["best_run_s"], "%.3f") : "") << ","
+        << Number(s["mean_path_cost"], "%.10g") << "\n";
+  }
+  WriteTextFile((out / "summary.csv").string(), sum.str());
+
+  // JUnit: failed is a failure, every other status but passed an error
+  std::ostringstream xml;
+  int failures = 0, errors = 0;
+  for (const auto& row : rows) {
+    const std::string status = Text(row["status"]);
+    failures += status == "failed";
+    errors += status != "failed" && status != "passed";
+  }
+  xml << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<testsuites name=\"unimouse batch\" tests=\""
+      << rows.size() << "\" failures=\"" << failures << "\" errors=\"" << errors << "\">\n";
+  for (const auto& s : summary) {
+    const std::string name = Text(s["submission"]);
+    double time_s = 0;
+    for (const auto& row : rows) {
+      if (Text(row["submission"]) == name && row["wall_time_s"].is_number()) {
+        time_s += row["wall_time_s"].get<double>();
+      }
+    }
+    const int not_failed_errors =
+        s["jobs"].get<int>() - s["passed"].get<int>() - s["failed"].get<int>();
+    xml << "  <testsuite name=\"" << Xml(name) << "\" tests=\"" << s["jobs"].get<int>()
+        << "\" failures=\"" << s["failed"].get<int>() << "\" errors=\"" << not_failed_errors
+        << "\" time=\"" << Number(time_s, "%.3f") << "\">\n";
+    for (const auto& row : rows) {
+      if (Text(row["submission"]) != name) continue;
+      const std::string id = Text(row["id"]);
+      const std::string status = Text(row["status"]);
+      xml << "    <testcase classname=\"" << Xml(name + "." + Text(row["scenario"])) << "\" name=\""
+          << Xml(id.substr(id.find('/') + 1)) << "\" time=\"" << Number(row["wall_time_s"], "%.3f")
+          << "\"";
+      if (status == "passed") {
+        xml << "/>\n";
+        continue;
+      }
+      const char* element = status == "failed" ? "failure" : "error";
+      xml << ">\n      <" << element << " type=\"" << Xml(status) << "\" message=\""
+          << Xml(Text(row["reason"])) << "\">" << Xml(Text(row["dir"])) << "</" << element
+          << ">\n    </testcase>\n";
+    }
+    xml << "  </testsuite>\n";
+  }
+  xml << "</testsuites>\n";
+  WriteTextFile((out / "junit.xml").string(), xml.str());
+}
+
+}  // namespace unimouse::batch

@@ -1,0 +1,331 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "job_runner.h"
+
+#include <fcntl.h>
+#include <signal.h>
+#include <string.h>
+#include <sys/prctl.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <csignal>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <optional>
+#include <thread>
+
+#include "text_file.h"
+#include "unimouse/errors.h"
+
+namespace unimouse::batch {
+namespace {
+
+namespace fs = std::filesystem;
+
+volatile std::sig_atomic_t stop_signal = 0;
+
+void OnStop(int signal) { stop_signal = signal; }
+
+std::string Seconds(double seconds) {
+  char text[32];
+  std::snprintf(text, sizeof(text), "%g", seconds);
+  return text;
+}
+
+// the program's full path from PATH, or ""
+std::string FindProgram(const std::string& name) {
+  const char* path = std::getenv("PATH");
+  std::string list = path != nullptr ? path : "/usr/bin:/bin";
+  for (size_t at = 0; at <= list.size();) {
+    const size_t end = std::min(list.find(':', at), list.size());
+    const fs::path candidate = fs::path(list.substr(at, end - at)) / name;
+    if (end > at && ::access(candidate.c_str(), X_OK) == 0) return candidate.string();
+    at = end + 1;
+  }
+  return "";
+}
+
+// the run's environment is this one; only the limits and the file system differ
+[[noreturn]] void LimitAndExec(const std::vector<std::string>& argv, const JobLimits& limits,
+                               const std::string& log_file) {
+  const auto limit = [](int resource, rlim_t soft, rlim_t hard) {
+    const rlimit r{soft, hard};
+    ::setrlimit(resource, &r);
+  };
+  const rlim_t mb = rlim_t{1} << 20;
+  limit(RLIMIT_AS, static_cast<rlim_t>(limits.memory_mb) * mb,
+        static_cast<rlim_t>(limits.memory_mb) * mb);
+  limit(RLIMIT_FSIZE, static_cast<rlim_t>(limits.file_size_mb) * mb,
+        static_cast<rlim_t>(limits.file_size_mb) * mb);
+  // SIGXCPU at the limit, SIGKILL a little later for a program that ignores it
+  const rlim_t cpu_s = static_cast<rlim_t>(std::ceil(limits.cpu_time_s));
+  limit(RLIMIT_CPU, cpu_s, cpu_s + 5);
+  limit(RLIMIT_CORE, 0, 0);
+  const int log = ::open(log_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (log < 0) ::_exit(kExitRuntimeFault);
+  ExecInOwnGroup(argv, log, log);
+}
+
+}  // namespace
+
+void ExecInOwnGroup(const std::vector<std::string>& argv, int out_fd, int err_fd) {
+  ::setpgid(0, 0);
+  const int null = ::open("/dev/null", O_RDWR | O_CLOEXEC);
+  if (null >= 0) ::dup2(null, 0);
+  ::dup2(out_fd >= 0 ? out_fd : null, 1);
+  ::dup2(err_fd >= 0 ? err_fd : null, 2);
+  // what this process changed for itself goes back to what a program expects
+  sigset_t none;
+  sigemptyset(&none);
+  ::sigprocmask(SIG_SETMASK, &none, nullptr);
+  std::signal(SIGINT, SIG_DFL);
+  std::signal(SIGTERM, SIG_DFL);
+  std::vector<char*> args;
+  for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
+  args.push_back(nullptr);
+  ::execv(args[0], args.data());
+  ::_exit(127);
+}
+
+namespace {
+
+// this process is the subreaper of the run: whatever the run started and left behind comes
+// here when its parent ends, and is ended too
+void EndOrphans() {
+  const pid_t self = ::getpid();
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+  while (std::chrono::steady_clock::now() < deadline) {
+    bool found = false;
+    for (const auto& entry :
+         fs::directory_iterator("/proc", fs::directory_options::skip_permission_denied)) {
+      const std::string name = entry.path().filename().string();
+      if (name.find_first_not_of("0123456789") != std::string::npos) continue;
+      std::ifstream stat(entry.path() / "stat");
+      std::string text;
+      std::getline(stat, text);
+      // "pid (comm) state ppid ...": the name may hold spaces and parentheses
+      const size_t close = text.rfind(')');
+      if (close == std::string::npos) continue;
+      char state = 0;
+      int ppid = 0;
+      if (std::sscanf(text.c_str() + close + 1, " %c %d", &state, &ppid) == 2 && ppid == self) {
+        found = true;
+        ::kill(std::atoi(name.c_str()), SIGKILL);
+      }
+    }
+    while (::waitpid(-1, nullptr, WNOHANG) > 0) {
+    }
+    if (!found) return;
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  }
+}
+
+nlohmann::json ReadResult(const fs::path& file) {
+  try {
+    if (fs::exists(file)) return nlohmann::json::parse(ReadTextFile(file.string()));
+  } catch (const std::exception&) {
+    // a half-written or garbled file is no result
+  }
+  return nullptr;
+}
+
+template <typename T>
+T Get(const nlohmann::json& j, const nlohmann::json::json_pointer& at, T fallback) {
+  try {
+    if (j.is_object() && j.contains(at)) return j.at(at).get<T>();
+  } catch (const std::exception&) {
+  }
+  return fallback;
+}
+
+nlohmann::json LimitsJson(const JobLimits& l) {
+  return {{"wall_time_s", l.wall_time_s},
+          {"cpu_time_s", l.cpu_time_s},
+          {"memory_mb", l.memory_mb},
+          {"file_size_mb", l.file_size_mb},
+          {"sandbox", l.sandbox}};
+}
+
+}  // namespace
+
+std::string SignalName(int signal) {
+  const char* abbrev = ::sigabbrev_np(signal);
+  return abbrev != nullptr ? std::string("SIG") + abbrev : "signal " + std::to_string(signal);
+}
+
+JobOutcome ClassifyJob(const ProcessEnd& end, const nlohmann::json& result,
+                       const JobLimits& limits) {
+  using P = nlohmann::json::json_pointer;
+  if (end.timed_out) {
+    return {"timeout",
+            "still running after the wall-time limit of " + Seconds(limits.wall_time_s) + " s"};
+  }
+  if (end.signal != 0) {
+    std::string why = "killed by " + SignalName(end.signal);
+    if (end.signal == SIGXCPU || end.signal == SIGKILL) {
+      why += " (the CPU time limit is " + Seconds(limits.cpu_time_s) + " s, memory " +
+             std::to_string(limits.memory_mb) + " MB)";
+    }
+    if (end.signal == SIGXFSZ) {
+      why += " (wrote past the file size limit of " + std::to_string(limits.file_size_mb) + " MB)";
+    }
+    return {"crashed", why};
+  }
+  const std::string error = Get<std::string>(result, P("/error"), "");
+  const std::string reason = Get<std::string>(result, P("/scenario/reason"), "");
+  if (result.is_null()) {
+    return {"crashed", "the run ended with exit code " + std::to_string(end.exit_code) +
+                           " and wrote no result.json"};
+  }
+  switch (end.exit_code) {
+    case kExitPassed:
+      return {"passed", reason};
+    case kExitFailed:
+      return {"failed", reason};
+    case kExitBadInput:
+      return {"bad_input", error};
+    case kExitRuntimeFault: {
+      // a firmware ended by a fatal signal is named by the link ("the firmware crashed: SIGSEGV")
+      if (error.find("firmware crashed: SIG") != std::string::npos) return {"crashed", error};
+      // a component's failure is the firmware's (its link) or the robot's; else the script's
+      if (error.find("component '") != std::string::npos) return {"firmware_error", error};
+      return {"script_error", error.empty() ? reason : error};
+    }
+    default:
+      return {"crashed", "the run ended with exit code " + std::to_string(end.exit_code)};
+  }
+}
+
+std::string JobDirectory(const std::string& batch_out, const Job& job) {
+  return (fs::path(batch_out) / "jobs" / job.id).string();
+}
+
+nlohmann::json JobCommand(const Manifest& manifest, const Job& job, const std::string& batch_out) {
+  const Submission& sub = manifest.submissions[static_cast<size_t>(job.submission)];
+  return {{"run", RunArguments(manifest, job, JobDirectory(batch_out, job))},
+          {"limits", LimitsJson(sub.limits)}};
+}
+
+bool JobIsDone(const Manifest& manifest, const Job& job, const std::string& batch_out) {
+  const nlohmann::json record = ReadResult(fs::path(JobDirectory(batch_out, job)) / "job.json");
+  return record.is_object() && record.contains("command") &&
+         record["command"] == JobCommand(manifest, job, batch_out);
+}
+
+int RunJob(const Manifest& manifest, const Job& job, const std::string& batch_out,
+           const std::string& program, const std::string& version) {
+  const Submission& sub = manifest.submissions[static_cast<size_t>(job.submission)];
+  const JobLimits& limits = sub.limits;
+  const fs::path dir = fs::absolute(JobDirectory(batch_out, job));
+  fs::create_directories(dir);
+  fs::remove(dir / "job.json");
+  fs::remove(dir / "result.json");
+
+  // bubblewrap: the file system read-only but for the job's directory, no network, its own
+  // process ids (everything in it ends with it)
+  std::vector<std::string> argv;
+  const std::string bwrap = limits.sandbox == "none" ? "" : FindProgram("bwrap");
+  UNIMOUSE_THROW_UNLESS(
+      limits.sandbox != "bwrap" || !bwrap.empty(),
+      "submission '" + sub.name + "': sandbox: bwrap, but bwrap is not installed");
+  if (!bwrap.empty()) {
+    argv = {bwrap,
+            "--ro-bind",
+            "/",
+            "/",
+            "--dev",
+            "/dev",
+            "--dev-bind-try",
+            "/dev/dri",
+            "/dev/dri",
+            "--proc",
+            "/proc",
+            "--bind",
+            dir.string(),
+            dir.string(),
+            "--unshare-net",
+            "--unshare-pid",
+            "--unshare-ipc",
+            "--die-with-parent",
+            "--new-session",
+            "--"};
+  }
+  argv.push_back(program);
+  const nlohmann::json command = JobCommand(manifest, job, batch_out);
+  for (const auto& a : command["run"]) argv.push_back(a.get<std::string>());
+
+  struct sigaction action = {};
+  action.sa_handler = OnStop;
+  sigemptyset(&action.sa_mask);
+  sigaction(SIGINT, &action, nullptr);
+  sigaction(SIGTERM, &action, nullptr);
+  ::prctl(PR_SET_CHILD_SUBREAPER, 1);
+  const auto start = std::chrono::steady_clock::now();
+  const pid_t child = ::fork();
+  UNIMOUSE_THROW_UNLESS(child >= 0, "cannot start a process for job " + job.id);
+  if (child == 0) LimitAndExec(argv, limits, (dir / "run.log").string());
+  ::setpgid(child, child);
+
+  ProcessEnd end;
+  int status = 0;
+  const auto limit = std::chrono::duration<double>(limits.wall_time_s);
+  std::optional<std::chrono::steady_clock::time_point> asked;  // when a stop was asked for
+  while (::waitpid(child, &status, WNOHANG) == 0) {
+    const auto now = std::chrono::steady_clock::now();
+    if (!end.timed_out && now - start > limit) {
+      end.timed_out = true;
+      ::kill(-child, SIGKILL);
+    }
+    if (stop_signal != 0 && !asked) {
+      // the run ends as at Ctrl-C, and for good two seconds later
+      asked = now;
+      ::kill(-child, SIGTERM);
+    }
+    if (asked && now - *asked > std::chrono::seconds(2)) ::kill(-child, SIGKILL);
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  const double wall_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  ::kill(-child, SIGKILL);
+  EndOrphans();
+  if (asked) return kExitRuntimeFault;
+
+  if (WIFSIGNALED(status)) end.signal = WTERMSIG(status);
+  if (WIFEXITED(status)) end.exit_code = WEXITSTATUS(status);
+  // bubblewrap reports its program's fatal signal N as exit code 128 + N
+  if (!bwrap.empty() && end.exit_code > 128 && end.exit_code < 128 + NSIG) {
+    end.signal = end.exit_code - 128;
+    end.exit_code = -1;
+  }
+  const nlohmann::json result = ReadResult(dir / "result.json");
+  const JobOutcome outcome = ClassifyJob(end, result, limits);
+  using P = nlohmann::json::json_pointer;
+  nlohmann::json record = {
+      {"id", job.id},
+      {"submission", sub.name},
+      {"scenario", manifest.scenarios[static_cast<size_t>(job.scenario)].name},
+      {"maze", job.maze.empty() ? nlohmann::json(nullptr) : nlohmann::json(job.maze)},
+      {"seed", job.seed},
+      {"status", outcome.status},
+      {"reason", outcome.reason},
+      {"exit_code", end.exit_code >= 0 ? nlohmann::json(end.exit_code) : nlohmann::json(nullptr)},
+      {"signal",
+       end.signal != 0 ? nlohmann::json(SignalName(end.signal)) : nlohmann::json(nullptr)},
+      {"scores", Get<nlohmann::json>(result, P("/scenario/scores"), nlohmann::json::object())},
+      {"sim_time_s", Get<nlohmann::json>(result, P("/sim_time_s"), nullptr)},
+      {"wall_time_s", wall_s},
+      {"sandbox", bwrap.empty() ? "none" : "bwrap"},
+      {"manifest", manifest.file},
+      {"unimouse_version", version},
+      {"command", command}};
+  // written whole: a reader never sees half of it
+  WriteTextFile((dir / "job.json").string(),
+                record.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
+  return outcome.status == "passed" ? kExitPassed : kExitFailed;
+}
+
+}  // namespace unimouse::batch

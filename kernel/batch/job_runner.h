@@ -1,0 +1,63 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// One job of a batch (`unimouse batch job`): the run as a child process in a process group of
+// its own, under the job's limits (wall and CPU time, memory, file size, no core dumps) and,
+// where bubblewrap is installed, with a read-only file system but for its job directory and no
+// network. This process is the subreaper of whatever the run starts, so that nothing a
+// submission forks outlives the job. The ending is classified and written to job.json.
+#ifndef UNIMOUSE_BATCH_JOB_RUNNER_H_
+#define UNIMOUSE_BATCH_JOB_RUNNER_H_
+
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "manifest.h"
+
+namespace unimouse::batch {
+
+/// What the job saw of its run process.
+struct ProcessEnd {
+  bool timed_out = false;  ///< killed for running past the wall-time limit
+  int exit_code = -1;      ///< -1 when ended by a signal
+  int signal = 0;          ///< the signal that ended it, or 0
+};
+
+/// A job's status and why.
+struct JobOutcome {
+  std::string
+      status;  ///< passed, failed, firmware_error, script_error, bad_input, timeout, crashed
+  std::string reason;
+};
+
+/// Classifies a run's ending from what the job saw, the run's result.json (null when it wrote
+/// none) and the limits it ran under.
+JobOutcome ClassifyJob(const ProcessEnd& end, const nlohmann::json& result,
+                       const JobLimits& limits);
+
+/// Returns "SIGSEGV" for SIGSEGV, or "signal N".
+std::string SignalName(int signal);
+
+/// Returns the job's directory: batch_out/jobs/<id>.
+std::string JobDirectory(const std::string& batch_out, const Job& job);
+
+/// Returns what job.json records of how the job runs: the run's arguments and the limits.
+/// A job whose job.json records the same is done (a batch resumes without it).
+nlohmann::json JobCommand(const Manifest& manifest, const Job& job, const std::string& batch_out);
+
+/// Whether the job's directory holds a job.json for exactly this job command.
+bool JobIsDone(const Manifest& manifest, const Job& job, const std::string& batch_out);
+
+/// In a child process after fork(): makes it a process group of its own, reading /dev/null,
+/// writing to out_fd and err_fd (/dev/null where -1), with SIGINT and SIGTERM as a program
+/// expects them, and executes argv (argv[0] a path). Never returns.
+[[noreturn]] void ExecInOwnGroup(const std::vector<std::string>& argv, int out_fd, int err_fd);
+
+/// Runs one job and writes its job.json; returns 0 when it passed, 1 otherwise, 3 when it was
+/// interrupted (SIGINT, SIGTERM: the run is stopped and no job.json is written). `program` is
+/// the unimouse executable that runs `run`.
+int RunJob(const Manifest& manifest, const Job& job, const std::string& batch_out,
+           const std::string& program, const std::string& version);
+
+}  // namespace unimouse::batch
+
+#endif  // UNIMOUSE_BATCH_JOB_RUNNER_H_

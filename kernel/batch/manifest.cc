@@ -1,0 +1,385 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "manifest.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <memory>
+#include <set>
+
+#include "install_paths.h"
+#include "maze.h"
+#include "scenario.h"
+#include "unimouse/errors.h"
+
+namespace unimouse::batch {
+namespace {
+
+namespace fs = std::filesystem;
+
+// a path as the manifest gives it: relative to the manifest's directory
+std::string FromManifest(const fs::path& dir, const std::string& path) {
+  if (path.empty() || fs::path(path).is_absolute()) return path;
+  return (dir / path).lexically_normal().string();
+}
+
+// a bundled name or a file beside the manifest; errors at the node that named it
+std::string DataFile(const YamlNode& node, const fs::path& dir, const std::string& folder,
+                     const std::string& extension) {
+  const std::string& name = node.AsString(folder.substr(0, folder.size() - 2));
+  const std::string beside = FromManifest(dir, name);
+  if (fs::exists(beside)) return beside;
+  try {
+    return fs::absolute(ResolveDataFile(name, folder, extension)).string();
+  } catch (const InputError& e) {
+    node.Fail(e.what());
+  }
+}
+
+double Bounded(const YamlNode& node, const std::string& what, double low, double high) {
+  const double value = node.AsNumber(what);
+  if (value < low || value > high) {
+    char range[96];
+    std::snprintf(range, sizeof(range), " must be from %g to %g, not %s", low, high,
+                  node.scalar.c_str());
+    node.Fail(what + range);
+  }
+  return value;
+}
+
+JobLimits ReadLimits(const YamlNode& node, JobLimits limits) {
+  const MapReader r(node, "limits",
+                    {"wall_time_s", "cpu_time_s", "memory_mb", "file_size_mb", "sandbox"});
+  const bool cpu_follows = limits.cpu_time_s == limits.wall_time_s;
+  if (const YamlNode* v = r.Optional("wall_time_s")) {
+    limits.wall_time_s = Bounded(*v, "wall_time_s", 1, 86400);
+    // the CPU limit follows the wall-time limit unless given
+    if (cpu_follows) limits.cpu_time_s = limits.wall_time_s;
+  }
+  if (const YamlNode* v = r.Optional("cpu_time_s")) {
+    limits.cpu_time_s = Bounded(*v, "cpu_time_s", 1, 86400);
+  }
+  if (const YamlNode* v = r.Optional("memory_mb")) {
+    limits.memory_mb = static_cast<int>(Bounded(*v, "memory_mb", 256, 262144));
+    if (limits.memory_mb != v->AsNumber("memory_mb")) v->Fail("memory_mb must be whole");
+  }
+  if (const YamlNode* v = r.Optional("file_size_mb")) {
+    limits.file_size_mb = static_cast<int>(Bounded(*v, "file_size_mb", 1, 65536));
+    if (limits.file_size_mb != v->AsNumber("file_size_mb")) v->Fail("file_size_mb must be whole");
+  }
+  if (const YamlNode* v = r.Optional("sandbox")) {
+    limits.sandbox = v->AsString("sandbox");
+    if (limits.sandbox != "auto" && limits.sandbox != "bwrap" && limits.sandbox != "none") {
+      v->Fail("sandbox must be auto, bwrap or none, not '" + limits.sandbox + "'");
+    }
+  }
+  return limits;
+}
+
+const YamlNode& ListOf(const YamlNode& node, const std::string& what) {
+  if (!node.IsSequence() || node.items.empty()) node.Fail(what + " must be a list of one or more");
+  return node;
+}
+
+// "native:fw/alice --fast" with the program made absolute; transports without a file as given
+std::string LinkSpec(const YamlNode& node, const fs::path& dir) {
+  const std::string& spec = node.AsString("link");
+  const size_t colon = spec.find(':');
+  const std::string kind = spec.substr(0, colon);
+  if (colon == std::string::npos || (kind != "native" && kind != "avr" && kind != "inproc")) {
+    return spec;
+  }
+  const std::string rest = spec.substr(colon + 1);
+  const size_t space = kind == "native" ? rest.find(' ') : std::string::npos;
+  const std::string file = rest.substr(0, space);
+  if (file.empty()) node.Fail("link " + spec + ": name the file, like " + kind + ":PATH");
+  return kind + ":" + FromManifest(dir, file) +
+         (space == std::string::npos ? "" : rest.substr(space));
+}
+
+Submission ReadSubmission(const YamlNode& node, const fs::path& dir, const JobLimits& limits) {
+  const MapReader r(node, "submission",
+                    {"name", "link", "controller", "link_set", "firmware_profile", "limits"});
+  Submission s;
+  s.location = node.location;
+  s.name = r.Required("name").AsString("name");
+  if (s.name.empty()) r.Required("name").Fail("a submission's name must not be empty");
+  const YamlNode* link = r.Optional("link");
+  const YamlNode* controller = r.Optional("controller");
+  if ((link == nullptr) == (controller == nullptr)) {
+    node.Fail("submission '" + s.name + "': give exactly one of link or controller");
+  }
+  if (link != nullptr) s.link = LinkSpec(*link, dir);
+  if (controller != nullptr) s.controller = FromManifest(dir, controller->AsString("controller"));
+  if (const YamlNode* sets = r.Optional("link_set")) {
+    if (controller != nullptr) sets->Fail("link_set goes with link, not with controller");
+    if (!sets->IsMap()) sets->Fail("link_set must be a map of parameter: value lines");
+    for (const auto& [k, v] : sets->entries) {
+      s.link_sets.push_back(k.scalar + "=" + v.AsString(k.scalar));
+    }
+  }
+  s.firmware_profile = r.String("firmware_profile", "");
+  if (!s.firmware_profile.empty() && controller != nullptr) {
+    r.Required("firmware_profile").Fail("firmware_profile goes with link, not with controller");
+  }
+  s.limits = limits;
+  if (const YamlNode* own = r.Optional("limits")) s.limits = ReadLimits(*own, limits);
+  return s;
+}
+
+ScenarioEntry ReadScenario(const YamlNode& node, const fs::path& dir) {
+  ScenarioEntry e;
+  e.location = node.location;
+  const YamlNode* file_node = &node;
+  const YamlNode* sets = nullptr;
+  const YamlNode* name = nullptr;
+  std::unique_ptr<MapReader> r;
+  if (node.IsMap()) {
+    r = std::make_unique<MapReader>(node, "scenario",
+                                    std::vector<std::string>{"scenario", "name", "set"});
+    file_node = &r->Required("scenario");
+    sets = r->Optional("set");
+    name = r->Optional("name");
+  }
+  e.file = DataFile(*file_node, dir, "scenarios/", ".lua");
+  std::unique_ptr<Scenario> scenario;
+  try {
+    // the top level only: it declares the name and parameters, and builds nothing
+    scenario = Scenario::Load(e.file, {}, 1);
+  } catch (const std::exception& error) {
+    file_node->Fail(error.what());
+  }
+  std::map<std::string, std::string> overrides;
+  if (sets != nullptr) {
+    if (!sets->IsMap()) sets->Fail("set must be a map of parameter: value lines");
+    std::vector<std::string> known;
+    for (const auto& [k, v] : scenario->params()) known.push_back(k);
+    for (const auto& [k, v] : sets->entries) {
+      if (!scenario->params().contains(k.scalar)) {
+        const std::string near = NearestWord(k.scalar, known);
+        k.Fail("scenario '" + scenario->name() + "' has no parameter '" + k.scalar + "'" +
+               (near.empty() ? "" : " (did you mean '" + near + "'?)"));
+      }
+      overrides[k.scalar] = v.AsString(k.scalar);
+      e.sets.push_back(k.scalar + "=" + overrides[k.scalar]);
+    }
+    try {
+      // the values' types, as the run will check them
+      Scenario::Load(e.file, overrides, 1);
+    } catch (const std::exception& error) {
+      sets->Fail(error.what());
+    }
+  }
+  e.has_maze = scenario->params().contains("maze");
+  if (e.has_maze) e.default_maze = scenario->params().at("maze");
+  e.name = name != nullptr ? name->AsString("name") : scenario->name();
+  return e;
+}
+
+// every maze a `mazes` item names: a file, a bundled name, or a directory's *.txt files
+std::vector<MazeEntry> ReadMazes(const YamlNode& node, const fs::path& dir) {
+  const std::string& text = node.AsString("maze");
+  const std::string beside = FromManifest(dir, text);
+  std::vector<std::string> files;
+  try {
+    files = FindMazeFiles({fs::exists(beside) ? beside : text});
+  } catch (const InputError& e) {
+    node.Fail(e.what());
+  }
+  if (files.empty()) node.Fail(text + ": no maze files (*.txt) in this directory");
+  std::vector<MazeEntry> mazes;
+  for (const auto& f : files) {
+    mazes.push_back({SanitizeName(fs::path(f).stem().string()), fs::absolute(f).string()});
+  }
+  return mazes;
+}
+
+uint64_t ReadSeed(const YamlNode& node) {
+  const int seed = node.AsInteger("seed");
+  if (seed < 0) node.Fail("a seed is a whole number, 0 or more");
+  return static_cast<uint64_t>(seed);
+}
+
+template <typename T>
+int IndexByName(const std::vector<T>& list, const YamlNode& node, const std::string& what) {
+  const std::string& name = node.AsString(what);
+  std::vector<std::string> names;
+  for (size_t i = 0; i < list.size(); ++i) {
+    if (list[i].name == name) return static_cast<int>(i);
+    names.push_back(list[i].name);
+  }
+  const std::string near = NearestWord(name, names);
+  node.Fail("no " + what + " named '" + name + "'" +
+            (near.empty() ? "" : " (did you mean '" + near + "'?)"));
+}
+
+}  // namespace
+
+std::string SanitizeName(const std::string& text) {
+  std::string out = text;
+  for (char& c : out) {
+    const bool plain = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
+                       c == '.' || c == '_' || c == '-';
+    if (!plain) c = '_';
+  }
+  if (out.empty() || out == "." || out == "..") out = "_";
+  return out;
+}
+
+Manifest LoadManifest(const std::string& path) {
+  Manifest m;
+  m.file = fs::absolute(path).lexically_normal().string();
+  const fs::path dir = fs::path(m.file).parent_path();
+  const YamlNode root = LoadYamlFile(path);
+  const MapReader r(root, "manifest",
+                    {"robot", "submissions", "scenarios", "mazes", "seeds", "limits", "jobs"});
+  if (const YamlNode* robot = r.Optional("robot")) {
+    m.robot = DataFile(*robot, dir, "robots/", ".yaml");
+  }
+  const JobLimits limits =
+      r.Optional("limits") ? ReadLimits(*r.Optional("limits"), {}) : JobLimits{};
+
+  std::set<std::string> names;
+  for (const auto& item : ListOf(r.Required("submissions"), "submissions").items) {
+    m.submissions.push_back(ReadSubmission(item, dir, limits));
+    if (!names.insert(SanitizeName(m.submissions.back().name)).second) {
+      item.Fail("a second submission named '" + m.submissions.back().name +
+                "' (names must differ, also once made safe for a directory)");
+    }
+  }
+  names.clear();
+  for (const auto& item : ListOf(r.Required("scenarios"), "scenarios").items) {
+    m.scenarios.push_back(ReadScenario(item, dir));
+    if (!names.insert(SanitizeName(m.scenarios.back().name)).second) {
+      item.Fail("a second scenario named '" + m.scenarios.back().name +
+                "': give one of them a name of its own (name: ...)");
+    }
+  }
+
+  // what a job runs in: a maze from the list, or the scenario's own
+  const auto add = [&](int submission, int scenario, const MazeEntry* maze, uint64_t seed,
+                       const YamlNode& where) {
+    const ScenarioEntry& s = m.scenarios[static_cast<size_t>(scenario)];
+    Job job;
+    job.submission = submission;
+    job.scenario = scenario;
+    job.seed = seed;
+    if (maze != nullptr) {
+      job.maze = maze->name;
+      job.maze_file = maze->file;
+    } else if (s.has_maze) {
+      job.maze = SanitizeName(fs::path(s.default_maze).stem().string());
+    }
+    job.id = SanitizeName(m.submissions[static_cast<size_t>(submission)].name) + "/" +
+             SanitizeName(s.name) + "/" + (job.maze.empty() ? "no-maze" : job.maze) + "/seed-" +
+             std::to_string(seed);
+    if (m.jobs.size() >= kMaxJobs) {
+      where.Fail("more than " + std::to_string(kMaxJobs) + " jobs; split the batch");
+    }
+    m.jobs.push_back(std::move(job));
+  };
+
+  if (const YamlNode* jobs = r.Optional("jobs")) {
+    r.Forbid("mazes", "goes with the product of everything; with jobs: each job names its maze");
+    r.Forbid("seeds", "goes with the product of everything; with jobs: each job names its seed");
+    for (const auto& item : ListOf(*jobs, "jobs").items) {
+      const MapReader j(item, "job", {"submission", "scenario", "maze", "seed"});
+      const int submission = IndexByName(m.submissions, j.Required("submission"), "submission");
+      const int scenario = IndexByName(m.scenarios, j.Required("scenario"), "scenario");
+      std::vector<MazeEntry> maze;
+      if (const YamlNode* node = j.Optional("maze")) {
+        if (!m.scenarios[static_cast<size_t>(scenario)].has_maze) {
+          node->Fail("scenario '" + m.scenarios[static_cast<size_t>(scenario)].name +
+                     "' has no maze parameter");
+        }
+        maze = ReadMazes(*node, dir);
+        if (maze.size() != 1) node->Fail("a job runs in one maze, not a directory of them");
+      }
+      const uint64_t seed = j.Optional("seed") ? ReadSeed(*j.Optional("seed")) : 1;
+      add(submission, scenario, maze.empty() ? nullptr : &maze[0], seed, item);
+    }
+  } else {
+    std::vector<MazeEntry> mazes;
+    if (const YamlNode* list = r.Optional("mazes")) {
+      for (const auto& item : ListOf(*list, "mazes").items) {
+        for (auto& maze : ReadMazes(item, dir)) {
+          for (const auto& seen : mazes) {
+            if (seen.name == maze.name) {
+              item.Fail("two mazes named '" + maze.name + "': " + seen.file + " and " + maze.file);
+            }
+          }
+          mazes.push_back(std::move(maze));
+        }
+      }
+      for (const auto& s : m.scenarios) {
+        if (!s.has_maze) {
+          list->Fail("scenario '" + s.name + "' (" + s.location.ToString() +
+                     ") has no maze parameter: mazes go with scenarios that run in a maze");
+        }
+        for (const auto& set : s.sets) {
+          if (set.starts_with("maze=")) {
+            list->Fail("scenario '" + s.name + "' (" + s.location.ToString() +
+                       ") sets its maze already: give the maze in one place");
+          }
+        }
+      }
+    }
+    std::vector<uint64_t> seeds;
+    if (const YamlNode* list = r.Optional("seeds")) {
+      for (const auto& item : ListOf(*list, "seeds").items) {
+        const uint64_t seed = ReadSeed(item);
+        if (std::find(seeds.begin(), seeds.end(), seed) != seeds.end()) {
+          item.Fail("seed " + std::to_string(seed) + " is listed twice");
+        }
+        seeds.push_back(seed);
+      }
+    } else {
+      seeds.push_back(1);
+    }
+    for (int sub = 0; sub < static_cast<int>(m.submissions.size()); ++sub) {
+      for (int sc = 0; sc < static_cast<int>(m.scenarios.size()); ++sc) {
+        for (size_t mz = 0; mz < std::max<size_t>(1, mazes.size()); ++mz) {
+          for (const uint64_t seed : seeds) {
+            add(sub, sc, mazes.empty() ? nullptr : &mazes[mz], seed, root);
+          }
+        }
+      }
+    }
+  }
+  std::sort(m.jobs.begin(), m.jobs.end(), [](const Job& a, const Job& b) { return a.id < b.id; });
+  for (size_t i = 1; i < m.jobs.size(); ++i) {
+    if (m.jobs[i].id == m.jobs[i - 1].id) {
+      root.Fail("job " + m.jobs[i].id + " is asked for twice");
+    }
+  }
+  return m;
+}
+
+const Job& FindJob(const Manifest& manifest, const std::string& id) {
+  const auto it =
+      std::lower_bound(manifest.jobs.begin(), manifest.jobs.end(), id,
+                       [](const Job& job, const std::string& key) { return job.id < key; });
+  UNIMOUSE_THROW_UNLESS(it != manifest.jobs.end() && it->id == id,
+                        manifest.file + ": no job " + id + " in this manifest");
+  return *it;
+}
+
+std::vector<std::string> RunArguments(const Manifest& manifest, const Job& job,
+                                      const std::string& out_dir) {
+  const Submission& sub = manifest.submissions[static_cast<size_t>(job.submission)];
+  const ScenarioEntry& scenario = manifest.scenarios[static_cast<size_t>(job.scenario)];
+  std::vector<std::string> args = {
+      "run",     "--out",        out_dir,      "--seed",     std::to_string(job.seed),
+      "--robot", manifest.robot, "--scenario", scenario.file};
+  for (const auto& set : scenario.sets) args.insert(args.end(), {"--set", set});
+  if (!job.maze_file.empty()) args.insert(args.end(), {"--maze", job.maze_file});
+  if (!sub.controller.empty()) args.insert(args.end(), {"--controller", sub.controller});
+  if (!sub.link.empty()) args.insert(args.end(), {"--link", sub.link});
+  for (const auto& set : sub.link_sets) args.insert(args.end(), {"--link-set", set});
+  if (!sub.firmware_profile.empty()) {
+    args.insert(args.end(), {"--firmware-profile", sub.firmware_profile});
+  }
+  return args;
+}
+
+}  // namespace unimouse::batch

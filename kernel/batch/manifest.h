@@ -1,0 +1,104 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// A batch manifest: the submissions, scenarios, mazes and seeds of a grading or comparison run,
+// read strictly from YAML (docs/batch.md). Reading one starts no program and writes nothing: a
+// scenario is loaded only as far as its top level, to learn its parameters.
+//
+//   submissions:
+//     - name: alice
+//       link: native:alice/firmware        # or controller: alice.lua; avr:FILE.elf; inproc:FILE.so
+//   scenarios:
+//     - scenario: micromouse
+//       set: {contest_s: 120}
+//   mazes: [japan2018, contest/]           # bundled names, files, directories
+//   seeds: [1, 2]
+//   limits: {wall_time_s: 120, memory_mb: 2048}
+#ifndef UNIMOUSE_BATCH_MANIFEST_H_
+#define UNIMOUSE_BATCH_MANIFEST_H_
+
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "yaml_doc.h"
+
+namespace unimouse::batch {
+
+/// What one job may use; every value bounded (docs/batch.md, docs/limits.md).
+struct JobLimits {
+  double wall_time_s = 900;      ///< the job's processes are killed after this
+  double cpu_time_s = 900;       ///< RLIMIT_CPU of the run (and what it starts)
+  int memory_mb = 4096;          ///< RLIMIT_AS of each process
+  int file_size_mb = 256;        ///< RLIMIT_FSIZE: the largest file a run may write
+  std::string sandbox = "auto";  ///< auto (bwrap when installed), bwrap, or none
+
+  bool operator==(const JobLimits&) const = default;
+};
+
+/// One student's or strategy's entry: exactly one way to drive the robot.
+struct Submission {
+  std::string name;                    ///< as written; its sanitised form names directories
+  std::string link;                    ///< --link spec with absolute paths; "" with a controller
+  std::string controller;              ///< absolute path of a Lua controller; "" with a link
+  std::vector<std::string> link_sets;  ///< --link-set name=value
+  std::string firmware_profile;        ///< --firmware-profile; "" for the default
+  JobLimits limits;                    ///< the manifest's limits, with this entry's overrides
+  SourceLocation location;
+};
+
+/// A scenario with its parameters.
+struct ScenarioEntry {
+  std::string name;               ///< names directories: the scenario's own name unless given
+  std::string file;               ///< scenario file (absolute) or bundled name
+  std::vector<std::string> sets;  ///< --set name=value, in the manifest's order
+  bool has_maze = false;          ///< whether the scenario has a `maze` parameter
+  std::string default_maze;       ///< that parameter's default
+  SourceLocation location;
+};
+
+/// One maze of the batch.
+struct MazeEntry {
+  std::string name;  ///< names directories: the file's stem
+  std::string file;  ///< absolute path, or a bundled maze's file
+};
+
+/// One run of the batch: a submission in a scenario, maze and seed.
+struct Job {
+  std::string id;         ///< submission/scenario/maze/seed-N, sanitised
+  int submission = 0;     ///< index into Manifest::submissions
+  int scenario = 0;       ///< index into Manifest::scenarios
+  std::string maze;       ///< maze name; "" for a scenario without a maze parameter
+  std::string maze_file;  ///< what --maze gets; "" for the scenario's own
+  uint64_t seed = 1;
+};
+
+/// A manifest, read and checked, with every path absolute.
+struct Manifest {
+  std::string file;  ///< absolute path of the manifest
+  std::string robot = "unimouse";
+  std::vector<Submission> submissions;
+  std::vector<ScenarioEntry> scenarios;
+  std::vector<Job> jobs;  ///< the product, or the explicit `jobs:` list; sorted by id
+};
+
+/// Most jobs one manifest may ask for.
+inline constexpr size_t kMaxJobs = 100000;
+
+/// Reads a manifest file; a mistake throws InputError with file:line:col.
+Manifest LoadManifest(const std::string& path);
+
+/// Returns `text` with every character outside [A-Za-z0-9._-] replaced by '_' (and "." or ".."
+/// made "_"), for a directory name.
+std::string SanitizeName(const std::string& text);
+
+/// Returns the job with this id, or throws InputError.
+const Job& FindJob(const Manifest& manifest, const std::string& id);
+
+/// Returns the arguments of the `unimouse run` that is the job (without the program name),
+/// writing into out_dir.
+std::vector<std::string> RunArguments(const Manifest& manifest, const Job& job,
+                                      const std::string& out_dir);
+
+}  // namespace unimouse::batch
+
+#endif  // UNIMOUSE_BATCH_MANIFEST_H_

@@ -1,0 +1,326 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// `unimouse batch` as a teacher runs it: a class of submissions, one correct, one that fails the
+// challenge, one that crashes and one that hangs, on two mazes with two seeds; the same results
+// again on a second run, through GNU parallel and through the Slurm array script; untrusted
+// submissions kept to their own jobs; Ctrl-C and resume.
+#include <fcntl.h>
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <thread>
+
+#include "run_program.h"
+#include "text_file.h"
+
+extern char** environ;
+
+namespace {
+
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+using unimouse::ReadTextFile;
+using unimouse::testing::FreshDirectory;
+using unimouse::testing::Outcome;
+using unimouse::testing::Unimouse;
+
+const std::string kSource = UNIMOUSE_SOURCE_DIR;
+
+// the class: four submissions in a contest of 3 s that ends at the first run to the goal
+std::string ClassManifest() {
+  return std::string(R"(
+submissions:
+  - name: good
+    controller: )") +
+         kSource + R"(/tests/batch/walking_mouse.lua
+  - name: lost
+    controller: )" +
+         kSource + R"(/tests/scenarios/wandering_mouse.lua
+  - name: segfault
+    link: inproc:)" +
+         UNIMOUSE_TEST_BINARY_DIR + R"(/null_pointer_firmware.so
+  - name: stuck
+    link: native:)" +
+         UNIMOUSE_TEST_FIRMWARE + R"( --hang-at 50
+    link_set: {lockstep_timeout_s: 60}
+    limits: {wall_time_s: 2}
+scenarios:
+  - scenario: micromouse
+    set: {contest_s: 3, max_runs: 1}
+mazes: [japan2018, japan2019]
+seeds: [1, 2]
+limits: {wall_time_s: 60}
+)";
+}
+
+std::string WriteFile(const std::string& dir, const std::string& name, const std::string& text) {
+  const std::string path = dir + "/" + name;
+  std::ofstream(path) << text;
+  return path;
+}
+
+// the CSV's lines with one column left out (by header name)
+std::vector<std::string> CsvWithout(const std::string& file, const std::string& column) {
+  std::istringstream in(ReadTextFile(file));
+  std::vector<std::string> lines;
+  int skip = -1;
+  for (std::string line; std::getline(in, line);) {
+    std::vector<std::string> fields;
+    std::string field;
+    bool quoted = false;
+    for (char c : line) {
+      if (c == '"') quoted = !quoted;
+      if (c == ',' && !quoted) {
+        fields.push_back(field);
+        field.clear();
+      } else {
+        field += c;
+      }
+    }
+    fields.push_back(field);
+    if (skip < 0) {
+      for (size_t i = 0; i < fields.size(); ++i) {
+        if (fields[i] == column) skip = static_cast<int>(i);
+      }
+    }
+    std::string kept;
+    for (size_t i = 0; i < fields.size(); ++i) {
+      if (static_cast<int>(i) != skip) kept += fields[i] + ",";
+    }
+    lines.push_back(kept);
+  }
+  return lines;
+}
+
+json Results(const std::string& out) { return json::parse(ReadTextFile(out + "/results.json")); }
+
+std::map<std::string, fs::file_time_type> JobRecordTimes(const std::string& out) {
+  std::map<std::string, fs::file_time_type> times;
+  for (const auto& e : fs::recursive_directory_iterator(out + "/jobs")) {
+    if (e.path().filename() == "job.json") times[e.path().string()] = fs::last_write_time(e);
+  }
+  return times;
+}
+
+TEST(BatchCommandTest, AClassGetsTheRightStatusForEveryJobTheSameOnResumeAndThroughParallel) {
+  const std::string dir = FreshDirectory("batch_class");
+  const std::string manifest = WriteFile(dir, "class.yaml", ClassManifest());
+  const std::string out = dir + "/out";
+  const Outcome run = Unimouse("batch run " + manifest + " -j 2 --out " + out);
+  ASSERT_EQ(run.exit_code, 1) << run.output;  // not every job passed
+
+  const json results = Results(out);
+  ASSERT_EQ(results["jobs"].size(), 16u) << results.dump(1);
+  const std::map<std::string, std::string> expected = {
+      {"good", "passed"}, {"lost", "failed"}, {"segfault", "crashed"}, {"stuck", "timeout"}};
+  for (const auto& job : results["jobs"]) {
+    const std::string submission = job["submission"];
+    EXPECT_EQ(job["status"], expected.at(submission)) << job.dump();
+    EXPECT_TRUE(fs::exists(out + "/" + job["dir"].get<std::string>() + "/job.json"));
+    if (submission == "good") {
+      // walking_mouse.lua's path by hand: 7 cells north, a quarter turn, 7 cells east
+      EXPECT_EQ(job["scores"]["best_run_path_cost"], 15) << job.dump();
+      EXPECT_EQ(job["pictures"].size(), 1u) << job.dump();  // final.png
+    }
+    if (submission == "lost") {
+      EXPECT_EQ(
+          job["reason"],
+          "no run reached the goal in 3.0 s (0 wall contacts); the time ran out during run 1");
+    }
+    if (submission == "segfault") {
+      EXPECT_NE(job["reason"].get<std::string>().find("SIGSEGV"), std::string::npos);
+    }
+    if (submission == "stuck") {
+      EXPECT_EQ(job["reason"], "still running after the wall-time limit of 2 s");
+      EXPECT_LT(job["wall_time_s"].get<double>(), 10);
+    }
+  }
+  EXPECT_EQ(results["jobs"][0]["id"], "good/micromouse/japan2018/seed-1");
+  EXPECT_EQ(results["summary"][0]["passed"], 4);
+  EXPECT_DOUBLE_EQ(results["summary"][0]["mean_path_cost"].get<double>(), 15);
+  EXPECT_EQ(results["summary"][3]["timeout"], 4);
+  const std::string csv = ReadTextFile(out + "/results.csv");
+
+  // a second run keeps every job: no job.json is written again, and the CSV is the same
+  const auto times = JobRecordTimes(out);
+  const Outcome again = Unimouse("batch run " + manifest + " -j 2 --out " + out);
+  EXPECT_EQ(again.exit_code, 1) << again.output;
+  EXPECT_NE(again.output.find("16 jobs, 0 to run"), std::string::npos) << again.output;
+  EXPECT_EQ(JobRecordTimes(out), times);
+  EXPECT_EQ(ReadTextFile(out + "/results.csv"), csv);
+
+  // the plan's lines through GNU parallel, then collect: the same CSV but for wall time
+  const std::string planned = dir + "/planned";
+  const Outcome plan = Unimouse("batch plan " + manifest + " --out " + planned);
+  ASSERT_EQ(plan.exit_code, 0) << plan.output;
+  const std::string jobs_txt = ReadTextFile(planned + "/jobs.txt");
+  EXPECT_EQ(std::count(jobs_txt.begin(), jobs_txt.end(), '\n'), 16);
+  EXPECT_EQ(jobs_txt.substr(0, jobs_txt.find('\n')),
+            std::string(UNIMOUSE_BINARY) + " batch job " + manifest +
+                " good/micromouse/japan2018/seed-1 --out " + planned);
+  if (std::system("parallel --version >/dev/null 2>&1") != 0) {
+    GTEST_SKIP() << "GNU parallel is not installed (setup.sh installs it)";
+  }
+  EXPECT_EQ(std::system(("parallel -j 2 < " + planned + "/jobs.txt >/dev/null 2>&1").c_str()) >> 8,
+            12);  // parallel's exit code: how many lines failed
+  const Outcome collect = Unimouse("batch collect " + planned);
+  EXPECT_EQ(collect.exit_code, 1) << collect.output;
+  EXPECT_EQ(CsvWithout(planned + "/results.csv", "wall_time_s"),
+            CsvWithout(out + "/results.csv", "wall_time_s"));
+}
+
+TEST(BatchCommandTest, TheSlurmArrayScriptRunsTheLinesOfThePlan) {
+  const std::string dir = FreshDirectory("batch_slurm");
+  const std::string manifest = WriteFile(dir, "class.yaml", ClassManifest());
+  const std::string planned = dir + "/planned";
+  ASSERT_EQ(Unimouse("batch plan " + manifest + " --out " + planned).exit_code, 0);
+  const std::string script = planned + "/slurm-array.sh";
+  EXPECT_EQ(std::system(("bash -n " + script).c_str()), 0);
+  const std::string text = ReadTextFile(script);
+  EXPECT_NE(text.find("\n#SBATCH --array=1-16\n"), std::string::npos) << text;
+
+  // task 16 is the last line, the stuck submission's seed 2 in japan2019: it runs that job
+  ASSERT_EQ(
+      std::system(("SLURM_ARRAY_TASK_ID=16 bash " + script + " >/dev/null 2>&1").c_str()) >> 8, 1);
+  const json job =
+      json::parse(ReadTextFile(planned + "/jobs/stuck/micromouse/japan2019/seed-2/job.json"));
+  EXPECT_EQ(job["status"], "timeout");
+  EXPECT_EQ(std::system(("SLURM_ARRAY_TASK_ID=17 bash " + script + " 2>/dev/null").c_str()) >> 8,
+            2);
+}
+
+TEST(BatchCommandTest, AManifestWithAMistakeIsBadInputWithFileLineAndColumn) {
+  const std::string dir = FreshDirectory("batch_bad");
+  const std::string manifest = WriteFile(dir, "bad.yaml", R"(submissions:
+  - name: amy
+    controler: amy.lua
+scenarios: [micromouse]
+)");
+  for (const std::string command : {"run", "plan"}) {
+    const Outcome o = Unimouse("batch " + command + " " + manifest + " --out " + dir + "/out");
+    EXPECT_EQ(o.exit_code, 2) << o.output;
+    EXPECT_NE(o.output.find(manifest + ":3:5: submission: unknown key 'controler' (did you mean "
+                                       "'controller'?)"),
+              std::string::npos)
+        << o.output;
+  }
+  EXPECT_FALSE(fs::exists(dir + "/out/jobs"));
+}
+
+// whether any process's command line holds this text
+bool ProcessWith(const std::string& text) {
+  for (const auto& e : fs::directory_iterator("/proc")) {
+    std::ifstream in(e.path() / "cmdline");
+    const std::string cmdline((std::istreambuf_iterator<char>(in)), {});
+    if (cmdline.find(text) != std::string::npos) return true;
+  }
+  return false;
+}
+
+TEST(BatchCommandTest, ASubmissionThatForksOrFloodsHarmsNoOtherJob) {
+  for (const std::string sandbox : {"none", "auto"}) {
+    const std::string dir = FreshDirectory("batch_untrusted_" + sandbox);
+    const std::string marker = dir + "/left-behind";
+    const std::string manifest = WriteFile(dir, "m.yaml",
+                                           R"(
+submissions:
+  - name: good
+    controller: )" + kSource + R"(/tests/batch/walking_mouse.lua
+  - name: forker
+    link: native:)" + UNIMOUSE_TEST_FIRMWARE + " --leave-behind " +
+                                               marker + R"(
+  - name: flooder
+    controller: )" + kSource + R"(/tests/batch/chatty_controller.lua
+scenarios:
+  - scenario: micromouse
+    set: {contest_s: 3, max_runs: 1}
+limits: {wall_time_s: 60, file_size_mb: 1, sandbox: )" +
+                                               sandbox + "}\n");
+    const std::string out = dir + "/out";
+    const Outcome o = Unimouse("batch run " + manifest + " -j 3 --out " + out);
+    EXPECT_EQ(o.exit_code, 1) << o.output;
+    const json jobs = Results(out)["jobs"];
+    ASSERT_EQ(jobs.size(), 3u) << o.output;
+    EXPECT_EQ(jobs[0]["submission"], "flooder");
+    EXPECT_EQ(jobs[0]["status"], "crashed") << jobs[0].dump();
+    EXPECT_EQ(jobs[0]["signal"], "SIGXFSZ");
+    EXPECT_EQ(jobs[1]["submission"], "forker");
+    EXPECT_EQ(jobs[1]["status"], "failed") << jobs[1].dump();  // it never reaches the goal
+    EXPECT_EQ(jobs[2]["submission"], "good");
+    EXPECT_EQ(jobs[2]["status"], "passed") << jobs[2].dump();
+    // the process the forker left behind is gone with its job
+    EXPECT_FALSE(ProcessWith(marker)) << sandbox;
+    const bool sandboxed = jobs[1].contains("dir") &&
+                           json::parse(ReadTextFile(out + "/" + jobs[1]["dir"].get<std::string>() +
+                                                    "/job.json"))["sandbox"] == "bwrap";
+    // in the sandbox nothing is written outside the job's directory
+    if (sandboxed) {
+      EXPECT_FALSE(fs::exists(marker));
+    }
+    for (const auto& e : fs::recursive_directory_iterator(out)) {
+      if (e.is_regular_file()) {
+        EXPECT_LE(e.file_size(), 1u << 20) << e.path();
+      }
+    }
+  }
+}
+
+TEST(BatchCommandTest, AnInterruptedBatchWritesWhatItHasAndAResumeFinishesIt) {
+  const std::string dir = FreshDirectory("batch_interrupt");
+  const std::string manifest = WriteFile(dir, "m.yaml", R"(
+submissions:
+  - name: good
+    controller: )" + kSource + R"(/tests/batch/walking_mouse.lua
+scenarios:
+  - scenario: micromouse
+    set: {contest_s: 3, max_runs: 1}
+mazes: [japan2018, japan2019]
+seeds: [1, 2, 3]
+)");
+  const std::string out = dir + "/out";
+  const std::string log = dir + "/batch.txt";
+  const std::vector<std::string> words = {UNIMOUSE_BINARY, "batch", "run", manifest, "-j", "1",
+                                          "--out",         out};
+  std::vector<char*> argv;
+  for (const auto& w : words) argv.push_back(const_cast<char*>(w.c_str()));
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  pid_t pid = 0;
+  ASSERT_EQ(posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ), 0);
+  posix_spawn_file_actions_destroy(&actions);
+  // Ctrl-C once the first job is done
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while (!fs::exists(out + "/jobs/good/micromouse/japan2018/seed-1/job.json") &&
+         std::chrono::steady_clock::now() < deadline) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  ::kill(pid, SIGINT);
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  ASSERT_TRUE(WIFEXITED(status)) << ReadTextFile(log);
+  EXPECT_EQ(WEXITSTATUS(status), 3) << ReadTextFile(log);
+  const size_t done = Results(out)["jobs"].size();
+  EXPECT_GE(done, 1u);
+  EXPECT_LT(done, 6u);
+  EXPECT_EQ(JobRecordTimes(out).size(), done);  // the stopped job left no record
+
+  const auto times = JobRecordTimes(out);
+  const Outcome resumed = Unimouse("batch run " + manifest + " -j 1 --out " + out);
+  EXPECT_EQ(resumed.exit_code, 0) << resumed.output;
+  EXPECT_NE(resumed.output.find(std::to_string(done) + " already done"), std::string::npos)
+      << resumed.output;
+  EXPECT_EQ(Results(out)["jobs"].size(), 6u);
+  for (const auto& [file, time] : times) EXPECT_EQ(fs::last_write_time(file), time) << file;
+}
+
+}  // namespace

@@ -285,19 +285,15 @@ int main(int argc, char** argv) {
   batch_collect_cmd->add_option("dirs", batch_dirs, "directories holding job directories")
       ->required();
   batch_collect_cmd->add_option("--out", batch_out,
-                                "directory for the results (default: the "
-                                "first directory)");
+                                "directory for the results (default: the first directory)");
   CLI::App* batch_job_cmd = batch_cmd->add_subcommand(
       "job",
-      "run one job of a manifest under its limits and write its job.json (what every "
-      "line of a plan runs)");
+      "run one job of a manifest under its limits and write its job.json (what every line of a "
+      "plan runs)");
   batch_job_cmd->add_option("manifest", batch_run.manifest, "the manifest (YAML)")->required();
   batch_job_cmd->add_option("id", batch_job_id, "the job's id: submission/scenario/maze/seed-N")
       ->required();
-  batch_job_cmd
-      ->add_option("--out", batch_out,
-                   "the batch's directory (the job's is "
-                   "DIR/jobs/ID)")
+  batch_job_cmd->add_option("--out", batch_out, "the batch's directory (the job's is DIR/jobs/ID)")
       ->required();
 
   try {

@@ -38,7 +38,8 @@ std::string JobLine(const std::string& program, const Manifest& m, const Job& jo
          " --out " + ShellQuote(out);
 }
 
-std::string Clock_mmss(double seconds) {
+// "m:ss" for a time left
+std::string MinutesSeconds(double seconds) {
   const long s = std::lround(std::max(0.0, seconds));
   char text[32];
   std::snprintf(text, sizeof(text), "%ld:%02ld", s / 60, s % 60);
@@ -174,7 +175,7 @@ int RunBatch(const BatchOptions& o) {
     const double eta_s = finished_wall_s / finished * left / workers;
     if (terminal) {
       std::printf("\r\033[K[%d/%d] %d passed, %d not passed, %zu running, ETA %s", done, total,
-                  passed, done - passed, running.size(), Clock_mmss(eta_s).c_str());
+                  passed, done - passed, running.size(), MinutesSeconds(eta_s).c_str());
     } else {
       std::printf("[%d/%d] %s: %s (%.1f s)\n", done, total, r.job->id.c_str(), what.c_str(),
                   wall_s);

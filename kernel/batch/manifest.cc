@@ -81,7 +81,8 @@ const YamlNode& ListOf(const YamlNode& node, const std::string& what) {
   return node;
 }
 
-// "native:fw/alice --fast" with the program made absolute; transports without a file as given
+// "native:fw/alice --fast" with the program found beside the manifest; transports without a
+// file as given
 std::string LinkSpec(const YamlNode& node, const fs::path& dir) {
   const std::string& spec = node.AsString("link");
   const size_t colon = spec.find(':');
@@ -93,7 +94,9 @@ std::string LinkSpec(const YamlNode& node, const fs::path& dir) {
   const size_t space = kind == "native" ? rest.find(' ') : std::string::npos;
   const std::string file = rest.substr(0, space);
   if (file.empty()) node.Fail("link " + spec + ": name the file, like " + kind + ":PATH");
-  return kind + ":" + FromManifest(dir, file) +
+  // a file beside the manifest, else as given (a bundled firmware's name)
+  const std::string beside = FromManifest(dir, file);
+  return kind + ":" + (fs::exists(beside) ? beside : file) +
          (space == std::string::npos ? "" : rest.substr(space));
 }
 

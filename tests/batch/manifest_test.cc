@@ -41,6 +41,7 @@ class ManifestTest : public ::testing::Test {
 };
 
 TEST_F(ManifestTest, TheBatchIsTheProductOfSubmissionsScenariosMazesAndSeedsSortedById) {
+  Write("fw/amy", "");
   const Manifest m = LoadManifest(Write("m.yaml", R"(
 submissions:
   - name: zed
@@ -64,6 +65,7 @@ seeds: [2, 1]
 }
 
 TEST_F(ManifestTest, AJobIsTheRunCommandOfItsSubmissionScenarioMazeAndSeed) {
+  Write("amy.elf", "");
   const Manifest m = LoadManifest(Write("m.yaml", R"(
 submissions:
   - name: amy
@@ -98,6 +100,16 @@ seeds: [7]
                                              "--firmware-profile",
                                              "unimousesim-0.1"};
   EXPECT_EQ(args, expected);
+}
+
+TEST_F(ManifestTest, AFirmwareNotBesideTheManifestIsNamedAsGiven) {
+  // the link finds it then: a bundled firmware's name, or an error of that one job
+  const Manifest m = LoadManifest(Write("m.yaml", R"(
+submissions: [{name: amy, link: "native:micromouse --fast"}, {name: bo, link: pty}]
+scenarios: [micromouse]
+)"));
+  EXPECT_EQ(m.submissions[0].link, "native:micromouse --fast");
+  EXPECT_EQ(m.submissions[1].link, "pty");
 }
 
 TEST_F(ManifestTest, ADirectoryOfMazesIsEveryMazeFileInItSorted) {

@@ -2,7 +2,7 @@
 // `unimouse batch`: many runs from a manifest (docs/batch.md). Every job is one `unimouse batch
 // job MANIFEST ID --out DIR` command line, whoever starts it: `batch run` (a local pool of
 // workers), GNU parallel or a Slurm array over the lines `batch plan` writes. `batch collect`
-// turns job directories into results.csv, results.json, summary.csv and junit.xml.
+// turns job directories into results.csv, results.json, summary.csv, junit.xml and report.html.
 //
 // Exit codes of run and collect: 0 every job passed, 1 some job did not pass, 2 a bad manifest
 // or option, 3 interrupted (SIGINT, SIGTERM) or an internal error.

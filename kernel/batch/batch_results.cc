@@ -7,6 +7,7 @@
 #include <set>
 #include <sstream>
 
+#include "batch_report.h"
 #include "text_file.h"
 #include "unimouse/errors.h"
 
@@ -175,6 +176,7 @@ void WriteResults(const std::string& out_dir, const json& rows, const std::strin
       {"unimouse_version", version}, {"manifest", manifest}, {"jobs", rows}, {"summary", summary}};
   WriteTextFile((out / "results.json").string(),
                 results.dump(2, ' ', false, json::error_handler_t::replace) + "\n");
+  WriteBatchReport(results, out / "report.html");
 
   // scores flattened: a column for every score any job reports, by name
   std::set<std::string> score_names;

@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // A batch's results from its job directories (each job.json): results.json and results.csv
-// (a row per job, sorted by job id), summary.csv (a row per submission) and junit.xml (a
-// testsuite per submission, a testcase per job). The same files however the jobs ran: `batch
-// run`, GNU parallel or a Slurm array, merged by `batch collect`.
+// (a row per job, sorted by job id), summary.csv (a row per submission), junit.xml (a
+// testsuite per submission, a testcase per job) and report.html (the page a teacher opens). The
+// same files however the jobs ran: `batch run`, GNU parallel or a Slurm array, merged by `batch
+// collect`.
 #ifndef UNIMOUSE_BATCH_BATCH_RESULTS_H_
 #define UNIMOUSE_BATCH_BATCH_RESULTS_H_
 
@@ -29,7 +30,7 @@ std::vector<std::string> FindJobDirectories(const std::string& root);
 /// best_run_path_cost scores (null when no job reports one).
 nlohmann::json Summarize(const nlohmann::json& rows);
 
-/// Writes results.json, results.csv, summary.csv and junit.xml into out_dir.
+/// Writes results.json, results.csv, summary.csv, junit.xml and report.html into out_dir.
 void WriteResults(const std::string& out_dir, const nlohmann::json& rows,
                   const std::string& manifest, const std::string& version);
 

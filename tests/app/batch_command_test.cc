@@ -148,6 +148,11 @@ TEST(BatchCommandTest, AClassGetsTheRightStatusForEveryJobTheSameOnResumeAndThro
   EXPECT_DOUBLE_EQ(results["summary"][0]["mean_path_cost"].get<double>(), 15);
   EXPECT_EQ(results["summary"][3]["timeout"], 4);
   const std::string csv = ReadTextFile(out + "/results.csv");
+  // the teacher's page has every job (its rendering: tests/report)
+  const std::string page = ReadTextFile(out + "/report.html");
+  for (const auto& job : results["jobs"]) {
+    EXPECT_NE(page.find(job["id"].get<std::string>()), std::string::npos) << job["id"];
+  }
 
   // a second run keeps every job: no job.json is written again, and the CSV is the same
   const auto times = JobRecordTimes(out);
@@ -195,6 +200,23 @@ TEST(BatchCommandTest, TheSlurmArrayScriptRunsTheLinesOfThePlan) {
   EXPECT_EQ(job["status"], "timeout");
   EXPECT_EQ(std::system(("SLURM_ARRAY_TASK_ID=17 bash " + script + " 2>/dev/null").c_str()) >> 8,
             2);
+
+  // the whole array on a real Slurm of one node, then collect: every job's status
+  const int slurm = std::system((UNIMOUSE_SOURCE_DIR "/tests/support/slurm_one_node.sh " + script +
+                                 " " + planned + " > " + planned + "/slurm.log 2>&1")
+                                    .c_str()) >>
+                    8;
+  if (slurm == 77)
+    GTEST_SKIP() << "no one-node Slurm here: " << ReadTextFile(planned + "/slurm.log");
+  EXPECT_EQ(slurm, 1) << ReadTextFile(planned + "/slurm.log");  // the highest task's exit code
+  EXPECT_EQ(Unimouse("batch collect " + planned).exit_code, 1);
+  const std::map<std::string, std::string> expected = {
+      {"good", "passed"}, {"lost", "failed"}, {"segfault", "crashed"}, {"stuck", "timeout"}};
+  const json results = Results(planned);
+  ASSERT_EQ(results["jobs"].size(), 16u);
+  for (const auto& row : results["jobs"]) {
+    EXPECT_EQ(row["status"], expected.at(row["submission"].get<std::string>())) << row.dump();
+  }
 }
 
 TEST(BatchCommandTest, AManifestWithAMistakeIsBadInputWithFileLineAndColumn) {

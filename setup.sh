@@ -14,8 +14,9 @@ packages=(
   libegl-dev libgl-dev libopengl-dev libegl-mesa0 libgl1-mesa-dri libglfw3-dev xvfb xauth
   # video export of a run (optional at run time: without it, --video says so)
   ffmpeg
-  # tests and benchmarks; clang and its libFuzzer runtime for fuzz/run.sh
-  libgtest-dev libgmock-dev libbenchmark-dev clang libclang-rt-14-dev
+  # tests and benchmarks; clang and its libFuzzer runtime for fuzz/run.sh; the result.json schema
+  # check (docs/result.schema.json)
+  libgtest-dev libgmock-dev libbenchmark-dev clang libclang-rt-14-dev python3-jsonschema
   # firmware: AVR builds and emulation
   gcc-avr avr-libc binutils-avr arduino-core-avr simavr libsimavr-dev libelf-dev
 )

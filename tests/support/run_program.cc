@@ -8,19 +8,26 @@
 #include <filesystem>
 #include <stdexcept>
 
+#include "result_records.h"
 #include "text_file.h"
 
 namespace unimouse::testing {
 
-Outcome Unimouse(const std::string& arguments, const std::string& environment) {
-  const std::string command = environment + UNIMOUSE_BINARY + " " + arguments + " 2>&1";
+Outcome Shell(const std::string& command) {
   Outcome out;
-  FILE* pipe = popen(command.c_str(), "r");
+  FILE* pipe = popen((command + " 2>&1").c_str(), "r");
   char buffer[4096];
   size_t n;
   while ((n = fread(buffer, 1, sizeof(buffer), pipe)) > 0) out.output.append(buffer, n);
   const int status = pclose(pipe);
   out.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return out;
+}
+
+Outcome Unimouse(const std::string& arguments, const std::string& environment) {
+  const Outcome out = Shell(environment + UNIMOUSE_BINARY + " " + arguments);
+  // whatever result.json it wrote is checked against the schema, even if the test removes it
+  CollectResultRecords(std::filesystem::temp_directory_path().string());
   return out;
 }
 

@@ -314,6 +314,7 @@ struct ScenarioApi {
     lua_State* L = call.state();
     ScenarioRecord record;
     std::map<std::string, int>& types = s.record_fields_[list];
+    std::map<std::string, int> field_types;
     lua_settop(L, 2);
     lua_pushnil(L);
     while (lua_next(L, 2) != 0) {
@@ -340,15 +341,18 @@ struct ScenarioApi {
         call.Fail("sim.record_add: field '" + field + "' is longer than " +
                   std::to_string(kMaxScenarioRecordText_bytes) + " bytes");
       }
-      const auto [known, added] = types.emplace(field, type);
-      if (known->second != type) {
+      const auto known = types.find(field);
+      if (known != types.end() && known->second != type) {
         call.Fail("sim.record_add: field '" + field + "' of list '" + list + "' is a " +
                   lua_typename(L, known->second) + " in earlier records, not a " +
                   lua_typename(L, type));
       }
       record.emplace(field, std::move(*value));
+      field_types.emplace(field, type);
       lua_pop(L, 1);
     }
+    // only a record that is added sets its fields' types
+    for (const auto& [field, type] : field_types) types.emplace(field, type);
     s.outcome_.records[list].push_back(std::move(record));
     ++s.record_count_;
     return 0;

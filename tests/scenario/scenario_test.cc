@@ -426,6 +426,16 @@ TEST(ScenarioRecordTest, AFieldThatChangesTypeFromRecordToRecordIsRefusedAtItsLi
             "not a string");
 }
 
+TEST(ScenarioRecordTest, ARecordRefusedUnderPcallLeavesNoTrace) {
+  // 33 fields: refused at the last one read, after the others (time_s among them) were
+  const auto s = ReportingScenario(
+      "local r = { time_s = 'slow' } for i = 1, 32 do r['f' .. i] = i end\n"
+      "assert(not pcall(sim.record_add, 'runs', r))\n"
+      "sim.record_add('runs', { time_s = 1.5 })");
+  ASSERT_EQ(s->outcome().records.at("runs").size(), 1u);
+  EXPECT_EQ(std::get<double>(s->outcome().records.at("runs")[0].at("time_s")), 1.5);
+}
+
 TEST(ScenarioRecordTest, AFieldIsANumberABooleanOrAString) {
   EXPECT_EQ(ReportingError("sim.record_add('runs', { cells = { 1, 2 } })"),
             "2: sim.record_add: field 'cells' is a table; a field is a number, a boolean or a "

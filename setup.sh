@@ -14,9 +14,10 @@ packages=(
   libegl-dev libgl-dev libopengl-dev libegl-mesa0 libgl1-mesa-dri libglfw3-dev xvfb xauth
   # video export of a run (optional at run time: without it, --video says so)
   ffmpeg
-  # tests and benchmarks; clang and its libFuzzer runtime for fuzz/run.sh; a headless browser for
-  # the batch report, and Slurm (the tests start its daemons on one node, from their own config)
-  libgtest-dev libgmock-dev libbenchmark-dev clang libclang-rt-14-dev
+  # tests and benchmarks; clang and its libFuzzer runtime for fuzz/run.sh; the result.json schema
+  # check (docs/result.schema.json); a headless browser for the batch report, and Slurm (the
+  # tests start its daemons on one node, from their own config)
+  libgtest-dev libgmock-dev libbenchmark-dev clang libclang-rt-14-dev python3-jsonschema
   chromium slurmctld slurmd slurm-client
   # batch runs: a submission's sandbox, and GNU parallel for running a batch's plan
   bubblewrap parallel

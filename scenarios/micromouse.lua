@@ -2,7 +2,10 @@
 -- The micromouse contest (dissertation section 5.1.4, with the rules the original did not
 -- implement): a maze, 10 minutes in total from the moment the robot first leaves the start
 -- cell; a run starts when it leaves the start cell and ends when it enters a goal cell; back in
--- the start cell, the next run may begin; the best run counts. Wall contacts are counted.
+-- the start cell, the next run may begin; the best run counts. Wall contacts are counted. Every
+-- completed run is a record of the list `runs` in result.json: its number, when it started on
+-- the contest clock, its time, its path cost (left out when the robot skipped a cell) and the
+-- wall contacts during it.
 return sim.scenario {
   name = "micromouse",
   params = {
@@ -36,7 +39,7 @@ return sim.scenario {
     local runs, best_s, best_cost = {}, nil, nil
     local cells  -- of the current run, the start cell first
     local contest_from, run_from, may_start = nil, nil, false
-    local touching, contacts = false, 0
+    local touching, contacts, run_contacts = false, 0, 0
     local hud_tenth, hud_run  -- what the HUD shows
     local ended_mid_run, firmware_done = false, false
     sim.on("firmware_log", function(line)
@@ -46,12 +49,15 @@ return sim.scenario {
     while true do
       local now, cell = sim.time(), sim.robot_get_cell()
       local touch = sim.robot_is_touching_wall()
-      if touch and not touching then contacts = contacts + 1 end
+      if touch and not touching then
+        contacts = contacts + 1
+        if run_from then run_contacts = run_contacts + 1 end
+      end
       touching = touch
 
       if not contest_from then
         if not at_start(cell) then
-          contest_from, run_from = now, now
+          contest_from, run_from, run_contacts = now, now, 0
           cells = { start }
           print("the contest starts: run 1")
         elseif now >= p.start_within_s then
@@ -64,12 +70,14 @@ return sim.scenario {
         local cost = path_cost(cells)
         if not best_s or runs[#runs] < best_s then best_s, best_cost = runs[#runs], cost end
         print(string.format("run %d: %.3f s, path cost %s", #runs, runs[#runs], cost or "unknown"))
+        sim.record_add("runs", { run = #runs, start_s = run_from - contest_from, time_s = runs[#runs],
+                                 path_cost = cost, wall_contacts = run_contacts })
         run_from = nil
         if p.max_runs > 0 and #runs >= p.max_runs then break end
       elseif not run_from and at_start(cell) then
         may_start = true
       elseif not run_from and may_start and not at_start(cell) then
-        run_from, may_start = now, false
+        run_from, may_start, run_contacts = now, false, 0
         cells = { start }
         print(string.format("run %d starts", #runs + 1))
       end
@@ -99,7 +107,8 @@ return sim.scenario {
       sim.next_tick()
     end
 
-    local used_s = math.min(sim.time() - contest_from, p.contest_s)
+    -- a time, so a float even when it is the whole contest (an integer parameter)
+    local used_s = math.min(sim.time() - contest_from, p.contest_s) + 0.0
     sim.score_set("runs", #runs)
     sim.score_set("time_used_s", used_s)
     sim.score_set("wall_contacts", contacts)

@@ -86,9 +86,15 @@ int RunOnce(const RunOptions& options, Viewer* viewer) {
   o.scenario = options.scenario;
   o.sets = options.sets;
   o.controller = options.controller;
-  o.pictures = PicturesFor(options);
   o.snapshot_on = options.snapshot_on;
   o.only_asked_pictures = options.no_pictures;
+  try {
+    o.pictures = PicturesFor(options);
+  } catch (const InputError& e) {
+    // a run that could not start says so where its result would be
+    WriteErrorResult(o, e.what(), kExitBadInput);
+    throw;
+  }
   std::unique_ptr<Session> session = Session::Open(o);
 
   nlohmann::json extra;

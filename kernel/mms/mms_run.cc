@@ -18,7 +18,7 @@
 #include <thread>
 
 #include "install_paths.h"
-#include "text_file.h"
+#include "result_record.h"
 #include "transport.h"
 #include "unimouse/errors.h"
 
@@ -370,7 +370,9 @@ void CheckOptions(const MmsRunOptions& o) {
 }  // namespace
 
 int RunMms(const MmsRunOptions& options) {
-  nlohmann::json record = {{"mode", "mms-logic"}, {"program", options.program}};
+  nlohmann::json record = NewResultRecord("mms");
+  record["mode"] = "mms-logic";
+  record["program"] = options.program;
   if (!options.port.empty()) record["port"] = options.port;
   std::error_code ec;
   fs::remove(fs::path(options.out_dir) / "result.json", ec);
@@ -379,8 +381,7 @@ int RunMms(const MmsRunOptions& options) {
     CheckOptions(options);
     const std::string maze_file = ResolveDataFile(options.maze, "mazes/", ".txt");
     const Maze maze = LoadMaze(maze_file);
-    record["maze"] = maze_file;
-    record["maze_size"] = {maze.width(), maze.height()};
+    SetMazeIdentity(record, maze_file, &maze);
     fs::create_directories(options.out_dir);
     signal(SIGPIPE, SIG_IGN);
     MmsWorld world(maze, options.timing);
@@ -412,9 +413,7 @@ int RunMms(const MmsRunOptions& options) {
   record["exit_code"] = ending.exit_code;
   const std::string result = (fs::path(options.out_dir) / "result.json").string();
   try {
-    fs::create_directories(options.out_dir);
-    WriteTextFile(result,
-                  record.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
+    WriteResultRecord(options.out_dir, record);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "unimouse: error: %s\n", e.what());
     return ending.exit_code == kExitPassed ? kExitRuntimeFault : ending.exit_code;

@@ -6,11 +6,13 @@
 #include <cmath>
 #include <csignal>
 #include <filesystem>
+#include <variant>
 
 #include "install_paths.h"
 #include "maze_explorer.h"
 #include "maze_plot.h"
-#include "text_file.h"
+#include "result_record.h"
+#include "sha256.h"
 #include "unimouse/errors.h"
 #include "unimouse/plugin_abi.h"
 
@@ -63,27 +65,62 @@ std::string Seconds3(double seconds) {
   return text;
 }
 
-// the record goes to a temporary file first, so a reader never sees half of it
-void WriteRecord(const std::string& out_dir, const nlohmann::json& record) {
-  fs::create_directories(out_dir);
-  const fs::path path = fs::path(out_dir) / "result.json";
-  const fs::path temporary = fs::path(out_dir) / ".result.json.tmp";
-  WriteTextFile(temporary.string(),
-                record.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
-  fs::rename(temporary, path);
+// a scenario's value in the result, with its Lua type
+nlohmann::json ValueJson(const ScenarioValue& value) {
+  return std::visit([](const auto& v) { return nlohmann::json(v); }, value);
 }
 
-// the record of a run that could not start or go on: why, and the traceback of a script error
-void WriteErrorRecord(const SessionOptions& options, const std::string& error, int exit_code,
-                      const std::string& traceback) {
-  nlohmann::json record = {
-      {"status", "error"}, {"error", error}, {"exit_code", exit_code}, {"seed", options.seed}};
-  if (!traceback.empty()) record["traceback"] = traceback;
-  try {
-    WriteRecord(options.out_dir, record);
-  } catch (const std::exception&) {
-    // an output directory that cannot be written: the error itself is the one to report
+template <class Map>
+nlohmann::json ValuesJson(const Map& values) {
+  nlohmann::json out = nlohmann::json::object();
+  for (const auto& [name, value] : values) out[name] = ValueJson(value);
+  return out;
+}
+
+// the value a map of YAML scalars gives `key` last (a --link-set wins over --link), or ""
+std::string LastScalar(const YamlNode& map, const std::string& key) {
+  std::string value;
+  for (const YamlEntry& entry : map.entries) {
+    if (entry.first.scalar == key) value = entry.second.scalar;
   }
+  return value;
+}
+
+// the default of a component type's string parameter, as its plugin declares it
+std::string DefaultOf(const PluginRegistry& registry, const std::string& type,
+                      const std::string& param) {
+  const PluginRegistry::Entry* entry = registry.Find(type);
+  for (int i = 0; entry != nullptr && i < entry->type->nparam; ++i) {
+    const unimouse_param& p = entry->type->params[i];
+    if (param == p.name && p.default_string != nullptr) return p.default_string;
+  }
+  return "";
+}
+
+// who drives the robot: a controller file, a firmware over a link (from --link or the robot
+// file), both, or neither; each file the run started with its SHA-256
+nlohmann::json DriverJson(const SessionOptions& options, const RobotSpec& robot,
+                          const PluginRegistry& registry) {
+  nlohmann::json driver = {{"controller", nullptr}, {"link", nullptr}};
+  if (!options.controller.empty()) driver["controller"] = FileIdentity(options.controller);
+  for (const ComponentSpec& c : robot.components) {
+    if (c.type != "unimouse.link") continue;
+    const std::string spec = LastScalar(c.params, "transport");
+    const std::string profile = LastScalar(c.params, "profile");
+    const size_t colon = spec.find(':');
+    const std::string transport = spec.substr(0, colon);
+    const std::string rest = colon == std::string::npos ? "" : spec.substr(colon + 1);
+    // the program is the first word of a native command; a board's firmware is not on this PC
+    const std::string firmware = transport == "native" ? rest.substr(0, rest.find(' '))
+                                 : transport == "avr" || transport == "inproc" ? rest
+                                                                               : "";
+    driver["link"] = {
+        {"transport", transport},
+        {"spec", spec},
+        {"profile", profile.empty() ? DefaultOf(registry, c.type, "profile") : profile},
+        {"firmware", firmware.empty() ? nlohmann::json(nullptr) : FileIdentity(firmware)}};
+  }
+  return driver;
 }
 
 volatile std::sig_atomic_t interrupt_signal = 0;
@@ -106,6 +143,19 @@ void InstallInterruptHandlers() {
 
 int InterruptSignal() { return interrupt_signal; }
 
+void WriteErrorResult(const SessionOptions& options, const std::string& error, int exit_code,
+                      const std::string& traceback) {
+  nlohmann::json record = NewResultRecord("run");
+  record.update(
+      {{"status", "error"}, {"error", error}, {"exit_code", exit_code}, {"seed", options.seed}});
+  if (!traceback.empty()) record["traceback"] = traceback;
+  try {
+    WriteResultRecord(options.out_dir, record);
+  } catch (const std::exception&) {
+    // an output directory that cannot be written: the error itself is the one to report
+  }
+}
+
 std::unique_ptr<Session> Session::Open(const SessionOptions& options) {
   std::unique_ptr<Session> session(new Session(options));
   std::error_code ec;
@@ -116,7 +166,7 @@ std::unique_ptr<Session> Session::Open(const SessionOptions& options) {
     // a run that could not start says so where its result would be
     const bool bad_input = dynamic_cast<const InputError*>(&e) != nullptr;
     const auto* script = dynamic_cast<const ScriptFault*>(&e);
-    WriteErrorRecord(options, e.what(), bad_input ? kExitBadInput : kExitRuntimeFault,
+    WriteErrorResult(options, e.what(), bad_input ? kExitBadInput : kExitRuntimeFault,
                      script != nullptr ? script->traceback() : "");
     throw;
   }
@@ -131,6 +181,9 @@ void Session::Assemble() {
                         "--duration must be a positive number of seconds");
   robot_file_ = ResolveDataFile(o.robot, "robots/", ".yaml");
   robot_ = LoadRobotSpec(robot_file_);
+  identity_["robot"] = robot_file_;
+  identity_["robot_name"] = robot_.name;
+  identity_["robot_sha256"] = FileSha256(robot_file_);
   UNIMOUSE_THROW_UNLESS((o.link_sets.empty() && o.firmware_profile.empty()) || !o.link.empty(),
                         "--link-set and --firmware-profile go with --link");
   if (!o.link.empty()) {
@@ -146,7 +199,7 @@ void Session::Assemble() {
     scenario_file_ = ResolveDataFile(o.scenario, "scenarios/", ".lua");
     // a script stuck in C for good: the process ends, and its result says why
     const auto on_hang = [this](const std::string& why) {
-      WriteErrorRecord(options_, why, kExitRuntimeFault, "");
+      WriteErrorResult(options_, why, kExitRuntimeFault, "");
     };
     scenario_ = Scenario::Load(scenario_file_, overrides, o.seed, on_hang);
     if (o.maze_given) {
@@ -160,6 +213,7 @@ void Session::Assemble() {
       overrides["maze"] = o.maze;
       scenario_ = Scenario::Load(scenario_file_, overrides, o.seed, on_hang);
     }
+    scenario_sha256_ = FileSha256(scenario_file_);
     world = scenario_->BuildWorld();
     maze_ = std::move(world.maze);
     maze_file_ = world.maze_file;
@@ -175,6 +229,7 @@ void Session::Assemble() {
       maze_ = std::make_unique<Maze>(LoadMaze(maze_file_));
     }
   }
+  SetMazeIdentity(identity_, maze_file_, maze_.get());
   UNIMOUSE_THROW_UNLESS(o.snapshot_on.empty() || scenario_,
                         "--snapshot-on watches a scenario's events: give --scenario");
   const PluginRegistry* registry = o.registry;
@@ -215,6 +270,7 @@ void Session::Assemble() {
     }
   });
   if (scenario_) scenario_->Attach(*kernel_, o.controller);
+  identity_["driver"] = DriverJson(o, robot_, *registry);
   // said at once, so that a run meant to test something does not pass quietly doing nothing
   if (!scenario_ && o.link.empty()) {
     kernel_->Log(UNIMOUSE_LOG_WARNING, "run",
@@ -343,9 +399,8 @@ SessionResult Session::Finish(const nlohmann::json& extra) {
   // the run's record is written whatever happened to the run
   const mjData& d = kernel_->state().data();
   const Pose2D pose = kernel_->world().RobotPose(d);
-  nlohmann::json r;
-  r["robot"] = robot_file_;
-  r["maze"] = maze_file_.empty() ? nlohmann::json(nullptr) : nlohmann::json(maze_file_);
+  nlohmann::json r = NewResultRecord("run");
+  r.update(identity_);
   r["seed"] = options_.seed;
   r["duration_s"] = duration_s_;
   r["status"] = !fault_.empty() ? "fault" : !interrupted_.empty() ? "interrupted" : "completed";
@@ -375,9 +430,18 @@ SessionResult Session::Finish(const nlohmann::json& extra) {
                            ? interrupted_
                            : "not decided when the run ended at " + Seconds3(d.time) + " s";
     }
-    r["scenario"] = {{"name", scenario_->name()},     {"file", scenario_file_},
-                     {"params", scenario_->params()}, {"status", outcome.status},
-                     {"reason", outcome.reason},      {"scores", outcome.scores},
+    nlohmann::json records = nlohmann::json::object();
+    for (const auto& [list, rows] : outcome.records) {
+      for (const ScenarioRecord& row : rows) records[list].push_back(ValuesJson(row));
+    }
+    r["scenario"] = {{"name", scenario_->name()},
+                     {"file", scenario_file_},
+                     {"sha256", scenario_sha256_},
+                     {"params", ValuesJson(scenario_->param_values())},
+                     {"status", outcome.status},
+                     {"reason", outcome.reason},
+                     {"scores", ValuesJson(outcome.scores)},
+                     {"records", records},
                      {"hud", scenario_->hud()}};
     if (!scenario_->traceback().empty()) r["scenario"]["traceback"] = scenario_->traceback();
     if (ended) result.exit_code = outcome.status == "passed" ? kExitPassed : kExitFailed;
@@ -392,7 +456,7 @@ SessionResult Session::Finish(const nlohmann::json& extra) {
   if (!measurements_.empty()) r["measurements"] = measurements_;
   r["exit_code"] = result.exit_code;
   if (extra.is_object()) r.update(extra);
-  WriteRecord(options_.out_dir, r);
+  WriteResultRecord(options_.out_dir, r);
   result.record = std::move(r);
   return result;
 }

@@ -64,6 +64,12 @@ struct SessionOptions {
   bool console = true;  ///< every log line also to stderr, with its sim time
 };
 
+/// Writes the result.json of a run that could not start (status "error"): why, the exit code,
+/// and the traceback of a script error. An output directory that cannot be written is left
+/// alone: the error itself is the one to report.
+void WriteErrorResult(const SessionOptions& options, const std::string& error, int exit_code,
+                      const std::string& traceback = "");
+
 /// How a run ended.
 struct SessionResult {
   int exit_code = 0;      ///< kExitPassed, kExitFailed or kExitRuntimeFault
@@ -111,6 +117,9 @@ class Session {
   RobotSpec robot_;
   std::unique_ptr<Scenario> scenario_;
   std::string scenario_file_;
+  std::string scenario_sha256_;
+  // what ran, for the result: robot and maze with their hashes, the driver
+  nlohmann::json identity_ = nlohmann::json::object();
   std::unique_ptr<Maze> maze_;
   std::string maze_file_;
   double duration_s_ = 0;

@@ -208,7 +208,10 @@ int Scenario::ApplyOverrides(LuaCall& call) {
     lua_rawseti(L, -2, 1);
     const std::string& type = s.declared_.at(name);
     if (type == "number") {
-      lua_pushnumber(L, std::strtod(value.c_str(), nullptr));
+      // as Lua reads a numeral: "12" is an integer, as 12 in the file is, and "12.0" a float
+      if (lua_stringtonumber(L, value.c_str()) == 0) {
+        lua_pushnumber(L, std::strtod(value.c_str(), nullptr));
+      }
     } else if (type == "boolean") {
       lua_pushboolean(L, value == "true");
     } else {
@@ -219,6 +222,15 @@ int Scenario::ApplyOverrides(LuaCall& call) {
   }
   call.ProtectedCall(2, 1);
   s.time_limit_s_ = lua_tonumber(L, -1);
+
+  // the values the run sees, with their types, for the result
+  lua_rawgeti(L, LUA_REGISTRYINDEX, s.params_ref_);
+  for (const auto& [name, text] : s.param_text_) {
+    lua_pushstring(L, name.c_str());
+    lua_rawget(L, -2);
+    s.param_values_[name] = ScalarAt(L, -1).value_or(text);
+    lua_pop(L, 1);
+  }
   return 0;
 }
 

@@ -27,6 +27,7 @@
 #include <optional>
 #include <string>
 #include <utility>
+#include <variant>
 #include <vector>
 
 #include "kernel.h"
@@ -58,7 +59,16 @@ inline constexpr double kScenarioInstructionsPerSecond = 100e6;
 inline constexpr double kScenarioCallWallTimeS = 10;
 
 /// The scenario API's level: new functions carry the level they came with.
-inline constexpr int kScenarioApiLevel = 2;
+inline constexpr int kScenarioApiLevel = 3;
+
+/// The most records (sim.record_add) a scenario reports in a run, all lists together.
+inline constexpr size_t kMaxScenarioRecords = 10'000;
+/// The most fields one record has.
+inline constexpr size_t kMaxScenarioRecordFields = 32;
+/// The longest text a record's field holds.
+inline constexpr size_t kMaxScenarioRecordText_bytes = 1'000;
+/// The most distinct scores (sim.score_set) a scenario reports in a run.
+inline constexpr size_t kMaxScenarioScores = 1'000;
 
 /// Returns every `sim.*` function with its signature, meaning and level, a line each.
 std::string DescribeScenarioApi();
@@ -83,11 +93,20 @@ struct ScenarioWorld {
   std::optional<Pose2D> spawn;
 };
 
+/// A value as a scenario gave it, with its Lua type: a boolean, an integer, a float (a number
+/// that is not an integer subtype, 1.0 included) or a string.
+using ScenarioValue = std::variant<bool, int64_t, double, std::string>;
+
+/// One record of a list a scenario reports (sim.record_add): field name -> value.
+using ScenarioRecord = std::map<std::string, ScenarioValue>;
+
 /// How a scenario ended.
 struct ScenarioOutcome {
   std::string status = "running";  ///< passed, failed, or running (not decided)
   std::string reason;
-  std::map<std::string, double> scores;
+  std::map<std::string, ScenarioValue> scores;  ///< each an integer or a float, as set
+  /// The lists of records the scenario reported, by list name, each in the order added.
+  std::map<std::string, std::vector<ScenarioRecord>> records;
 };
 
 class Scenario {
@@ -113,8 +132,11 @@ class Scenario {
   void Attach(Kernel& kernel, const std::string& controller = "");
   bool finished() const { return outcome_.status != "running"; }
   const ScenarioOutcome& outcome() const { return outcome_; }
-  /// Parameters after overrides, as text, for the result.
+  /// Parameters after overrides, as text.
   const std::map<std::string, std::string>& params() const { return param_text_; }
+  /// Parameters after overrides, with their Lua types, for the result; a parameter of another
+  /// type (a table) as its text.
+  const std::map<std::string, ScenarioValue>& param_values() const { return param_values_; }
   /// The Lua type of each parameter's default: number, string or boolean.
   const std::map<std::string, std::string>& param_types() const { return declared_; }
   /// The scenario's time limit (parameter time_limit_s), or 0 for none.
@@ -220,6 +242,10 @@ class Scenario {
   std::string bad_input_;    // why a value from the command line could not be used, if it could not
   std::string unknown_key_;  // the last unknown key a sim.* table argument was given, if one was
   std::map<std::string, std::string> param_text_;
+  std::map<std::string, ScenarioValue> param_values_;
+  size_t record_count_ = 0;  // all lists together
+  // each list's field types (LUA_TNUMBER...), which every record of the list keeps
+  std::map<std::string, std::map<std::string, int>> record_fields_;
   double time_limit_s_ = 0;
   std::vector<std::string> hud_;
   RngStream rng_;                 // math.random

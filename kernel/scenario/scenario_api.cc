@@ -10,6 +10,7 @@
 #include <cstring>
 #include <functional>
 #include <iterator>
+#include <map>
 #include <numbers>
 #include <optional>
 #include <string_view>
@@ -290,10 +291,89 @@ struct ScenarioApi {
   static int Pass(LuaCall& call) { return Decide(call, "passed"); }
   static int Fail(LuaCall& call) { return Decide(call, "failed"); }
 
+  // a score keeps its Lua type: an integer (a count) is an integer in the result
   static int ScoreSet(LuaCall& call) {
     const std::string name = call.CheckString(1);
-    Self(call).outcome_.scores[name] = call.CheckNumber(2);
+    const double number = call.CheckNumber(2);
+    if (!std::isfinite(number)) call.Fail("sim.score_set: score '" + name + "' is not finite");
+    auto& scores = Self(call).outcome_.scores;
+    if (!scores.contains(name) && scores.size() >= kMaxScenarioScores) {
+      call.Fail("sim.score_set: more than " + std::to_string(kMaxScenarioScores) +
+                " scores in a run (docs/limits.md)");
+    }
+    lua_State* L = call.state();
+    scores[name] =
+        lua_isinteger(L, 2) ? ScenarioValue(int64_t{lua_tointeger(L, 2)}) : ScenarioValue(number);
     return 0;
+  }
+
+  // a row of a table the result holds: fields of a list keep their types from row to row
+  static int RecordAdd(LuaCall& call) {
+    const std::string list = call.CheckString(1);
+    call.CheckTable(2);
+    Scenario& s = Self(call);
+    CheckRecordName(call, "list", list);
+    if (s.record_count_ >= kMaxScenarioRecords) {
+      call.Fail("sim.record_add: more than " + std::to_string(kMaxScenarioRecords) +
+                " records in a run (docs/limits.md)");
+    }
+    lua_State* L = call.state();
+    ScenarioRecord record;
+    std::map<std::string, int>& types = s.record_fields_[list];
+    std::map<std::string, int> field_types;
+    lua_settop(L, 2);
+    lua_pushnil(L);
+    while (lua_next(L, 2) != 0) {
+      if (lua_type(L, -2) != LUA_TSTRING) {
+        call.Fail(std::string("sim.record_add: a field name is a string, not a ") +
+                  lua_typename(L, lua_type(L, -2)));
+      }
+      if (record.size() == kMaxScenarioRecordFields) {
+        call.Fail("sim.record_add: a record has at most " +
+                  std::to_string(kMaxScenarioRecordFields) + " fields");
+      }
+      const std::string field = lua_tostring(L, -2);
+      CheckRecordName(call, "field", field);
+      std::optional<ScenarioValue> value = ScalarAt(L, -1);
+      const int type = lua_type(L, -1);
+      if (!value) {
+        call.Fail("sim.record_add: field '" + field + "' is a " + lua_typename(L, type) +
+                  "; a field is a number, a boolean or a string");
+      }
+      if (type == LUA_TNUMBER && !std::isfinite(lua_tonumber(L, -1))) {
+        call.Fail("sim.record_add: field '" + field + "' is not finite");
+      }
+      if (type == LUA_TSTRING && lua_rawlen(L, -1) > kMaxScenarioRecordText_bytes) {
+        call.Fail("sim.record_add: field '" + field + "' is longer than " +
+                  std::to_string(kMaxScenarioRecordText_bytes) + " bytes");
+      }
+      const auto known = types.find(field);
+      if (known != types.end() && known->second != type) {
+        call.Fail("sim.record_add: field '" + field + "' of list '" + list + "' is a " +
+                  lua_typename(L, known->second) + " in earlier records, not a " +
+                  lua_typename(L, type));
+      }
+      record.emplace(field, std::move(*value));
+      field_types.emplace(field, type);
+      lua_pop(L, 1);
+    }
+    // only a record that is added sets its fields' types
+    for (const auto& [field, type] : field_types) types.emplace(field, type);
+    s.outcome_.records[list].push_back(std::move(record));
+    ++s.record_count_;
+    return 0;
+  }
+
+  // list and field names are words, so that a table or a CSV file can use them as they are
+  static void CheckRecordName(const LuaCall& call, const char* what, const std::string& name) {
+    const bool word =
+        !name.empty() && name.size() <= 64 && !std::isdigit(static_cast<unsigned char>(name[0])) &&
+        std::all_of(name.begin(), name.end(),
+                    [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; });
+    if (!word) {
+      call.Fail(std::string("sim.record_add: ") + what + " name '" + name.substr(0, 64) +
+                "' is not a word of letters, digits and _ (at most 64, not starting with a digit)");
+    }
   }
 
   // the sandbox's print: to the run's log, each value as tostring gives it
@@ -536,7 +616,7 @@ namespace {
 // the list of the scenario API: every function with the API level it appeared in, its
 // signature and what it does. Removing one or changing a signature breaks scenarios: the golden
 // test (tests/golden/scenario_api.txt) makes that a deliberate change. Verbs: get, set, add,
-// place, load, is, save; nouns: robot, maze, signal, hud, score, wall, box, snapshot.
+// place, load, is, save; nouns: robot, maze, signal, hud, score, record, wall, box, snapshot.
 constexpr ApiEntry kApi[] = {
     {"scenario", ScenarioApi::ScenarioTable, 1,
      "scenario{name, params?, world?, run, finish?} -> table",
@@ -582,7 +662,11 @@ constexpr ApiEntry kApi[] = {
     {"snapshot_save", ScenarioApi::SnapshotSave, 2,
      "snapshot_save(file, {camera?, width?, height?}) -> ok, reason?",
      "a PNG of the scene now, in the run's output directory; cameras top, chase, free"},
-    {"score_set", ScenarioApi::ScoreSet, 1, "score_set(name, value)", "a number for the result"},
+    {"score_set", ScenarioApi::ScoreSet, 1, "score_set(name, value)",
+     "a number for the result; an integer stays an integer"},
+    {"record_add", ScenarioApi::RecordAdd, 3, "record_add(list, {field = value, ...})",
+     "a row of the list `list` in the result (each run of a contest); fields are numbers, "
+     "booleans or strings, each keeping its type from row to row"},
     {"on", nullptr, 1, "on(kind, handler)",
      "calls handler(event) on cell_entered {x, y}, wall_contact, gate_crossed {name, direction}, "
      "firmware_log {text}"},
@@ -672,6 +756,23 @@ TableArgument TableArgumentOf(const ApiEntry& entry) {
 std::span<const ApiEntry> ScenarioApiEntries() { return kApi; }
 
 std::span<const ApiEntry> ScenarioHostEntries() { return kHost; }
+
+std::optional<ScenarioValue> ScalarAt(lua_State* L, int index) {
+  switch (lua_type(L, index)) {
+    case LUA_TBOOLEAN:
+      return ScenarioValue(lua_toboolean(L, index) != 0);
+    case LUA_TNUMBER:
+      if (lua_isinteger(L, index)) return ScenarioValue(int64_t{lua_tointeger(L, index)});
+      return ScenarioValue(double{lua_tonumber(L, index)});
+    case LUA_TSTRING: {
+      size_t length = 0;
+      const char* text = lua_tolstring(L, index, &length);
+      return ScenarioValue(std::string(text, length));
+    }
+    default:
+      return std::nullopt;
+  }
+}
 
 std::string DescribeScenarioApi() {
   std::string out = "scenario API level " + std::to_string(kScenarioApiLevel) + "\n";

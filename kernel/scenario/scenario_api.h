@@ -6,11 +6,13 @@
 #ifndef UNIMOUSE_SCENARIO_SCENARIO_API_H_
 #define UNIMOUSE_SCENARIO_SCENARIO_API_H_
 
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
 
 #include "lua_call.h"
+#include "scenario.h"
 
 namespace unimouse {
 
@@ -42,6 +44,10 @@ TableArgument TableArgumentOf(const ApiEntry& entry);
 /// (the instruction budget's error once it is spent, else nil) and charge (work done in C,
 /// counted against the budget).
 std::span<const ApiEntry> ScenarioHostEntries();
+
+/// Returns the value at `index` with its Lua type when it is a boolean, a number or a string
+/// (read as it is: a numeric string stays a string); nothing for any other type.
+std::optional<ScenarioValue> ScalarAt(lua_State* L, int index);
 
 }  // namespace unimouse
 

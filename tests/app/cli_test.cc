@@ -24,6 +24,8 @@ using unimouse::testing::Unimouse;
 
 class CliTest : public ::testing::Test {
  protected:
+  // no TearDown: the process's temporary directory goes at its end, once every result.json
+  // in it has been collected for the schema check (result_records.h)
   void SetUp() override {
     dir_ = fs::temp_directory_path() /
            ("unimouse_cli_" +
@@ -31,7 +33,6 @@ class CliTest : public ::testing::Test {
     fs::remove_all(dir_);
     fs::create_directories(dir_);
   }
-  void TearDown() override { fs::remove_all(dir_); }
 
   std::string Write(const std::string& name, const std::string& text) {
     const fs::path path = dir_ / name;

@@ -93,13 +93,16 @@ TEST(PicturesTest, WithoutEglAskedPicturesStopWithOneLineAndTheRestRuns) {
             std::string::npos);
 }
 
-TEST(PicturesTest, BadPictureOptionsAreBadInput) {
+TEST(PicturesTest, BadPictureOptionsAreBadInputWithAResultSayingSo) {
   for (const char* options :
        {"--snapshot-every fast", "--snapshot-at -1", "--snapshot-size 640", "--snapshot-size 9x9",
         "--camera side --snapshot-end", "--snapshot-on wall_contact"}) {
-    const auto o = Unimouse(std::string("run --maze none --duration 0.1 --out ") +
-                            Out("pictures_bad") + " " + options);
-    EXPECT_EQ(o.exit_code, 2) << options << "\n" << o.output;
+    const auto o =
+        UnimouseRun(std::string("--maze none --duration 0.1 ") + options, "pictures_bad");
+    EXPECT_EQ(o.outcome.exit_code, 2) << options << "\n" << o.outcome.output;
+    ASSERT_TRUE(o.result.is_object()) << options;
+    EXPECT_EQ(o.result["status"], "error") << options;
+    EXPECT_EQ(o.result["exit_code"], 2) << options;
   }
   SkipWithoutEgl();
   const auto o = Unimouse("run --out " + Out("pictures_bad") + " --scenario " + kTests +

@@ -62,7 +62,7 @@ class BatchReportBrowserTest : public ::testing::Test {
     // --no-sandbox: the sandbox cannot start as root, and this page is our own file; the
     // profile and its caches stay in this test's directory
     const fs::path profile = dir_ / "chromium-profile";
-    const testing::Outcome chromium = testing::RunShell(
+    const testing::Outcome chromium = testing::Shell(
         "XDG_CONFIG_HOME=" + profile.string() + " XDG_CACHE_HOME=" + profile.string() + " " +
         chromium_ + " --headless --no-sandbox --disable-gpu --no-first-run --user-data-dir=" +
         profile.string() + " --dump-dom 'file://" + (dir_ / "report.html").string() + "#" +

@@ -4,7 +4,9 @@
 # that result.json says the same.
 #
 #   cmake -DPROGRAM=unimouse -DSCENARIO=name -DCONTROLLER=file.lua -DOUT=dir -DEXPECT=0|1
-#         [-DSETS=name=value,...] -P run_scenario.cmake
+#         [-DSETS=name=value,...] [-DRESULT_RECORDS=dir] -P run_scenario.cmake
+#
+# The result.json is copied into RESULT_RECORDS, for the schema check (tests/CMakeLists.txt).
 set(command "${PROGRAM}" run --out "${OUT}" --scenario "${SCENARIO}" --controller "${CONTROLLER}")
 if(SETS)
   string(REPLACE "," ";" sets "${SETS}")
@@ -16,6 +18,11 @@ file(REMOVE_RECURSE "${OUT}")
 execute_process(COMMAND ${command} RESULT_VARIABLE code OUTPUT_VARIABLE output
   ERROR_VARIABLE output)
 list(JOIN command " " shown)
+if(RESULT_RECORDS AND EXISTS "${OUT}/result.json")
+  get_filename_component(run_name "${OUT}" NAME)
+  file(MAKE_DIRECTORY "${RESULT_RECORDS}")
+  file(COPY_FILE "${OUT}/result.json" "${RESULT_RECORDS}/BundledScenario.${run_name}__result.json")
+endif()
 if(NOT code STREQUAL "${EXPECT}")
   message(FATAL_ERROR "${shown}\nexited with '${code}', not ${EXPECT}:\n${output}")
 endif()

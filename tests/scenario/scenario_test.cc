@@ -1,7 +1,10 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Scenarios as users run them: the speed-control challenge passes a correct controller and
 // fails wrong ones with the right reason; the sandbox holds; script errors and bad parameters
-// give their location and exit code; the same seed gives the same result.
+// give their location and exit code; the same seed gives the same result; what a scenario
+// reports keeps its Lua types.
+#include "scenario.h"
+
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -33,7 +36,7 @@ TEST(SpeedControlScenarioTest, ACorrectControllerPasses) {
   EXPECT_EQ(r.outcome.exit_code, 0) << r.outcome.output;
   EXPECT_EQ(r.result["scenario"]["status"], "passed");
   EXPECT_GE(r.result["scenario"]["scores"]["held_s"].get<double>(), 5.0);
-  EXPECT_EQ(r.result["scenario"]["params"]["speed_m_per_s"], "1.0");
+  EXPECT_EQ(r.result["scenario"]["params"]["speed_m_per_s"], 1.0);
 }
 
 TEST(SpeedControlScenarioTest, ASlowControllerFailsAsTooSlow) {
@@ -337,7 +340,7 @@ TEST(ScenarioApiTest, EveryListedFunctionExistsInTheSandbox) {
               listing.substr(begin, end - begin) + "')\n";
     ++count;
   }
-  EXPECT_EQ(count, 27);
+  EXPECT_EQ(count, 28);
   const std::string path =
       (std::filesystem::temp_directory_path() / "unimouse_api_complete.lua").string();
   WriteTextFile(path, "return sim.scenario { name = 'api_complete', run = function()\n" + checks +
@@ -387,6 +390,99 @@ TEST(SlalomScenarioTest, PassingAPostOnTheWrongSideFailsOnTheGateEvent) {
   const ScenarioRun r = Scenario("--scenario slalom --controller " + path);
   EXPECT_EQ(r.outcome.exit_code, 1) << r.outcome.output;
   EXPECT_EQ(r.result["scenario"]["reason"], "passed post 1 on the wrong side");
+}
+
+// a scenario whose world runs `body` from line 2, loaded and built in this process
+std::unique_ptr<unimouse::Scenario> ReportingScenario(const std::string& body) {
+  const std::string file = testing::FreshDirectory("reporting") + "/reporting.lua";
+  WriteTextFile(file,
+                "return sim.scenario { name = 'reporting', run = function() end, world = "
+                "function()\n" +
+                    body + "\nend }\n");
+  auto scenario = unimouse::Scenario::Load(file, {}, 1);
+  scenario->BuildWorld();
+  return scenario;
+}
+
+// the script error of a world that runs `body`, from its line on
+std::string ReportingError(const std::string& body) {
+  try {
+    ReportingScenario(body);
+  } catch (const RuntimeFault& e) {
+    const std::string message = e.what();
+    const size_t from = message.find(".lua:") + 5;
+    return message.substr(from, message.rfind(" (in world)") - from);
+  }
+  return "";
+}
+
+TEST(ScenarioRecordTest, RecordsKeepTheirFieldsTypesAndOrder) {
+  const auto s = ReportingScenario(
+      "sim.record_add('runs', { run = 1, time_s = 2.5, done = true, note = 'first' })\n"
+      "sim.record_add('laps', { lap = 1 })\n"
+      "sim.record_add('runs', { run = 2, time_s = 3.0 })");
+  const auto& records = s->outcome().records;
+  ASSERT_EQ(records.at("runs").size(), 2u);
+  const ScenarioRecord& first = records.at("runs")[0];
+  EXPECT_EQ(std::get<int64_t>(first.at("run")), 1);
+  EXPECT_EQ(std::get<double>(first.at("time_s")), 2.5);
+  EXPECT_EQ(std::get<bool>(first.at("done")), true);
+  EXPECT_EQ(std::get<std::string>(first.at("note")), "first");
+  // 3.0 is a float in Lua, and stays one; a field left out is absent
+  const ScenarioRecord& second = records.at("runs")[1];
+  EXPECT_EQ(std::get<double>(second.at("time_s")), 3.0);
+  EXPECT_FALSE(second.contains("note"));
+  EXPECT_EQ(records.at("laps").size(), 1u);
+}
+
+TEST(ScenarioRecordTest, AFieldThatChangesTypeFromRecordToRecordIsRefusedAtItsLine) {
+  EXPECT_EQ(ReportingError("sim.record_add('runs', { time_s = 1.5 })\n"
+                           "sim.record_add('runs', { time_s = 'slow' })"),
+            "3: sim.record_add: field 'time_s' of list 'runs' is a number in earlier records, "
+            "not a string");
+}
+
+TEST(ScenarioRecordTest, ARecordRefusedUnderPcallLeavesNoTrace) {
+  // 33 fields: refused at the last one read, after the others (time_s among them) were
+  const auto s = ReportingScenario(
+      "local r = { time_s = 'slow' } for i = 1, 32 do r['f' .. i] = i end\n"
+      "assert(not pcall(sim.record_add, 'runs', r))\n"
+      "sim.record_add('runs', { time_s = 1.5 })");
+  ASSERT_EQ(s->outcome().records.at("runs").size(), 1u);
+  EXPECT_EQ(std::get<double>(s->outcome().records.at("runs")[0].at("time_s")), 1.5);
+}
+
+TEST(ScenarioRecordTest, AFieldIsANumberABooleanOrAString) {
+  EXPECT_EQ(ReportingError("sim.record_add('runs', { cells = { 1, 2 } })"),
+            "2: sim.record_add: field 'cells' is a table; a field is a number, a boolean or a "
+            "string");
+  EXPECT_EQ(ReportingError("sim.record_add('runs', { time_s = 1 / 0 })"),
+            "2: sim.record_add: field 'time_s' is not finite");
+  EXPECT_EQ(ReportingError("sim.record_add('runs', { [1] = 5 })"),
+            "2: sim.record_add: a field name is a string, not a number");
+}
+
+TEST(ScenarioRecordTest, ListAndFieldNamesAreWords) {
+  EXPECT_EQ(ReportingError("sim.record_add('my runs', { n = 1 })"),
+            "2: sim.record_add: list name 'my runs' is not a word of letters, digits and _ (at "
+            "most 64, not starting with a digit)");
+  EXPECT_EQ(ReportingError("sim.record_add('runs', { ['2nd'] = 1 })"),
+            "2: sim.record_add: field name '2nd' is not a word of letters, digits and _ (at most "
+            "64, not starting with a digit)");
+}
+
+TEST(ScenarioRecordTest, ARunHoldsAtMostTenThousandRecords) {
+  EXPECT_EQ(ReportingError("for i = 1, 10000 do sim.record_add('runs', { n = i }) end\n"
+                           "sim.record_add('laps', { n = 1 })"),
+            "3: sim.record_add: more than 10000 records in a run (docs/limits.md)");
+}
+
+TEST(ScenarioRecordTest, AScoreSetToAnIntegerIsAnIntegerAndAFloatAFloat) {
+  const auto s = ReportingScenario("sim.score_set('runs', 3)\nsim.score_set('time_s', 3.0)");
+  EXPECT_EQ(std::get<int64_t>(s->outcome().scores.at("runs")), 3);
+  EXPECT_EQ(std::get<double>(s->outcome().scores.at("time_s")), 3.0);
+  EXPECT_EQ(ReportingError("sim.score_set('time_s', 0 / 0)"),
+            "2: sim.score_set: score 'time_s' is not finite");
 }
 
 }  // namespace

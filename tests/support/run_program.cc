@@ -8,13 +8,14 @@
 #include <filesystem>
 #include <stdexcept>
 
+#include "result_records.h"
 #include "text_file.h"
 
 namespace unimouse::testing {
 
-Outcome RunShell(const std::string& command) {
+Outcome Shell(const std::string& command) {
   Outcome out;
-  FILE* pipe = popen(command.c_str(), "r");
+  FILE* pipe = popen((command + " 2>&1").c_str(), "r");
   char buffer[4096];
   size_t n;
   while ((n = fread(buffer, 1, sizeof(buffer), pipe)) > 0) out.output.append(buffer, n);
@@ -24,7 +25,10 @@ Outcome RunShell(const std::string& command) {
 }
 
 Outcome Unimouse(const std::string& arguments, const std::string& environment) {
-  return RunShell(environment + UNIMOUSE_BINARY + " " + arguments + " 2>&1");
+  const Outcome out = Shell(environment + UNIMOUSE_BINARY + " " + arguments);
+  // whatever result.json it wrote is checked against the schema, even if the test removes it
+  CollectResultRecords(std::filesystem::temp_directory_path().string());
+  return out;
 }
 
 RunResult UnimouseRun(const std::string& arguments, const std::string& out_name,

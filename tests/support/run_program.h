@@ -13,11 +13,12 @@ struct Outcome {
   std::string output;  ///< stdout and stderr together
 };
 
-/// Runs a shell command line and captures its standard output (and its standard error when the
-/// command says `2>&1`).
-Outcome RunShell(const std::string& command);
+/// Runs a shell command, capturing its output and exit code.
+Outcome Shell(const std::string& command);
 
-/// Runs `unimouse <arguments>`, after environment assignments ("A=b ") if any.
+/// Runs `unimouse <arguments>`, after environment assignments ("A=b ") if any. Every
+/// result.json in the temporary directory is then collected for the schema check
+/// (result_records.h).
 Outcome Unimouse(const std::string& arguments, const std::string& environment = "");
 
 struct RunResult {

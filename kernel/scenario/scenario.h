@@ -58,7 +58,7 @@ inline constexpr double kScenarioInstructionsPerSecond = 100e6;
 inline constexpr double kScenarioCallWallTimeS = 10;
 
 /// The scenario API's level: new functions carry the level they came with.
-inline constexpr int kScenarioApiLevel = 2;
+inline constexpr int kScenarioApiLevel = 3;
 
 /// Returns every `sim.*` function with its signature, meaning and level, a line each.
 std::string DescribeScenarioApi();

@@ -10,6 +10,7 @@ return sim.scenario {
   name = "micromouse",
   params = {
     maze = "japan2018",
+    maze_class = "auto",   -- classic (180 mm cells), half (90 mm), or auto: half above 16 x 16
     contest_s = 600,       -- the whole contest, from the first departure
     start_within_s = 60,   -- a robot that has not left the start cell by then is out
     max_runs = 0,          -- stop after this many completed runs; 0: use the whole time
@@ -18,7 +19,7 @@ return sim.scenario {
   },
 
   world = function(p)
-    sim.maze_load(p.maze)
+    sim.maze_load(p.maze, { class = p.maze_class })
   end,
 
   run = function(p)

@@ -1,9 +1,11 @@
 // SPDX-License-Identifier: MIT
 // A micromouse maze as the robot knows it (dissertation section 3.5.3): one byte per cell, the
-// size fixed at compile time so that nothing is allocated. The low nibble holds the walls and the
-// high nibble which sides the robot has seen, with the UNIMOUSE_SIDE_* bits of the protocol, so
-// that a cell goes to the simulator's debug channel as it is. (The dissertation's class ordered
-// the wall bits up, right, left, down and left the high nibble unused.)
+// room fixed at compile time so that nothing is allocated: a Maze<W, H> holds any maze up to
+// W x H cells, its size set at run time (resize), as the simulator tells it (maze info frame). The
+// low nibble holds the walls and the high nibble which sides the robot has seen, with the
+// UNIMOUSE_SIDE_* bits of the protocol, so that a cell goes to the simulator's debug channel as it
+// is. (The dissertation's class ordered the wall bits up, right, left, down and left the high
+// nibble unused.)
 #ifndef UNIMOUSE_SIM_MAZE_H_
 #define UNIMOUSE_SIM_MAZE_H_
 
@@ -39,17 +41,29 @@ class Maze {
   static const uint8_t kWidth = W;
   static const uint8_t kHeight = H;
 
-  /// A maze with only its outer walls, which every contest maze has.
+  /// A W x H maze with only its outer walls, which every contest maze has.
   Maze() { clear(); }
+
+  /// Makes it a `width` x `height` maze (at most W x H) with only its outer walls; false, and
+  /// unchanged, when it does not fit.
+  bool resize(uint8_t width, uint8_t height) {
+    if (width < 1 || height < 1 || width > W || height > H) return false;
+    width_ = width;
+    height_ = height;
+    clear();
+    return true;
+  }
+  uint8_t width() const { return width_; }
+  uint8_t height() const { return height_; }
 
   /// Forgets every inner wall; the outer walls stay.
   void clear() {
     for (uint8_t x = 0; x < W; ++x) {
       for (uint8_t y = 0; y < H; ++y) {
-        // an outer wall: there, and known
-        uint8_t walls = 0;
-        if (y == H - 1) walls |= sideBit(Direction::North);
-        if (x == W - 1) walls |= sideBit(Direction::East);
+        // an outer wall: there, and known; cells beyond the size are walled in on every side
+        uint8_t walls = static_cast<uint8_t>(x < width_ && y < height_ ? 0 : 0x0F);
+        if (y == height_ - 1) walls |= sideBit(Direction::North);
+        if (x == width_ - 1) walls |= sideBit(Direction::East);
         if (y == 0) walls |= sideBit(Direction::South);
         if (x == 0) walls |= sideBit(Direction::West);
         cells_[x][y] = static_cast<uint8_t>(walls | walls << 4);
@@ -57,7 +71,7 @@ class Maze {
     }
   }
 
-  bool contains(int x, int y) const { return x >= 0 && y >= 0 && x < W && y < H; }
+  bool contains(int x, int y) const { return x >= 0 && y >= 0 && x < width_ && y < height_; }
 
   /// Puts a wall on side d of cell (x, y), and on the matching side of the neighbour.
   void placeWall(uint8_t x, uint8_t y, Direction d) { set(x, y, d, true); }
@@ -84,6 +98,8 @@ class Maze {
     c = static_cast<uint8_t>((c & ~sideBit(d)) | (wall ? sideBit(d) : 0) | sideBit(d) << 4);
   }
 
+  uint8_t width_ = W;
+  uint8_t height_ = H;
   uint8_t cells_[W][H];
 };
 

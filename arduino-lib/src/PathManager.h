@@ -52,6 +52,15 @@ class PathManager {
     return Action::None;
   }
 
+  /// Moves the goal to the rectangle from (x0, y0) to (x1, y1), as the simulator tells it;
+  /// before the first trip.
+  void setGoal(uint8_t x0, uint8_t y0, uint8_t x1, uint8_t y1) {
+    goalX0_ = x0;
+    goalY0_ = y0;
+    goalX1_ = x1;
+    goalY1_ = y1;
+  }
+
   Phase phase() const { return phase_; }
   /// Whether the robot is on its way to the goal (else to the start).
   bool towardsGoal() const { return towardsGoal_; }

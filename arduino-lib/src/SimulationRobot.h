@@ -43,6 +43,37 @@ class ClockSensor : public ISimulationSensor {
   bool ticked_ = false;
 };
 
+/// The maze the simulator builds (extension frame 14, sent once asked): size in cells, the cell's
+/// side, and the goal rectangle. received() is false until the frame has come.
+class MazeInfoSensor : public ISimulationSensor {
+ public:
+  uint8_t getId() const override { return UNIMOUSE_ID_MAZE_INFO; }
+  void notify(const uint8_t* payload) override {
+    width_ = payload[0];
+    height_ = payload[1];
+    cellMm_ = unimouse_get_u16(payload + 2);
+    for (uint8_t i = 0; i < 4; ++i) goal_[i] = payload[4 + i];
+    received_ = true;
+  }
+  bool received() const { return received_; }
+  /// Cells west to east and south to north; 0 when the world has no maze.
+  uint8_t width() const { return width_; }
+  uint8_t height() const { return height_; }
+  /// The side of a cell (the posts' pitch) in metres: 0.18 classic, 0.09 half-size.
+  float cellMetres() const { return cellMm_ / 1000.0f; }
+  /// The goal rectangle's corners, inclusive: south-west (x0, y0) and north-east (x1, y1).
+  uint8_t goalX0() const { return goal_[0]; }
+  uint8_t goalY0() const { return goal_[1]; }
+  uint8_t goalX1() const { return goal_[2]; }
+  uint8_t goalY1() const { return goal_[3]; }
+
+ private:
+  bool received_ = false;
+  uint8_t width_ = 0, height_ = 0;
+  uint16_t cellMm_ = 0;
+  uint8_t goal_[4] = {};
+};
+
 class SimulationRobot {
  public:
   explicit SimulationRobot(Stream& stream) : sensors_(stream), actuators_(stream) {
@@ -52,6 +83,7 @@ class SimulationRobot {
     sensors_.addSensor(leftEncoder_);
     sensors_.addSensor(rightEncoder_);
     sensors_.addSensor(clock_);
+    sensors_.addSensor(maze_);
   }
 
 #ifdef UNIMOUSE_PC_CORE
@@ -118,6 +150,19 @@ class SimulationRobot {
     actuators_.send(id, payload, size);
   }
 
+  /// Asks the simulator for the maze (an extension the original ignores); the answer comes
+  /// with a later update(): maze().received(). Asked before begin(), in lock-step it comes with
+  /// the first step's frames.
+  void requestMaze() { manager(UNIMOUSE_MANAGER_MAZE_INFO); }
+  /// Tells the simulator the size of the maze the firmware works with, so that it warns when
+  /// the world's maze is another size.
+  void reportMazeSize(uint8_t width, uint8_t height) {
+    const uint8_t size[2] = {width, height};
+    actuators_.send(UNIMOUSE_ID_MAZE_SIZE, size, 2);
+  }
+  /// What the simulator said about the maze (after requestMaze()).
+  const MazeInfoSensor& maze() const { return maze_; }
+
   /// Sim time of the latest clock frame, in microseconds (lock-step only).
   uint32_t simMicros() const { return clock_.timeUs(); }
 
@@ -138,19 +183,20 @@ class SimulationRobot {
   MotorActuator& rightMotorActuator() { return rightMotor_; }
 
   /// The frame reader, for its counts of skipped bytes and unclaimed frames.
-  const StreamSimulationSensorManager<6>& sensorManager() const { return sensors_; }
+  const StreamSimulationSensorManager<7>& sensorManager() const { return sensors_; }
 
  private:
   // millis() is an unsigned long, 64 bits on the PC: counted in 32 bits, it wraps as on boards
   static uint32_t nowMs() { return static_cast<uint32_t>(millis()); }
   void manager(uint8_t code) { actuators_.send(UNIMOUSE_ID_MANAGER, &code, 1); }
 
-  StreamSimulationSensorManager<6> sensors_;
+  StreamSimulationSensorManager<7> sensors_;
   StreamActuatorManager actuators_;
   DistanceSensor left_{UNIMOUSE_ID_TOF_LEFT}, right_{UNIMOUSE_ID_TOF_RIGHT},
       front_{UNIMOUSE_ID_TOF_FRONT};
   EncoderSensor leftEncoder_{UNIMOUSE_ID_ENCODER_LEFT}, rightEncoder_{UNIMOUSE_ID_ENCODER_RIGHT};
   ClockSensor clock_;
+  MazeInfoSensor maze_;
   MotorActuator leftMotor_{actuators_, UNIMOUSE_ID_MOTOR_LEFT};
   MotorActuator rightMotor_{actuators_, UNIMOUSE_ID_MOTOR_RIGHT};
   SimulationLogger logger_{actuators_};

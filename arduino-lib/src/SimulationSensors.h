@@ -90,7 +90,7 @@ class StreamSimulationSensorManager : public ISimulationSensorManager {
   ISimulationSensor* sensors_[N] = {};
   uint8_t count_ = 0;
   uint8_t id_ = 0, need_ = 0, have_ = 0;  // have_: bytes of the current frame, id included
-  uint8_t payload_[4] = {};
+  uint8_t payload_[8] = {};               // the longest sim -> MCU frame, maze info
   uint32_t skippedBytes_ = 0, unclaimedFrames_ = 0;
 };
 

@@ -31,7 +31,12 @@ enum {
   UNIMOUSE_ID_DEBUG_WALLS = 10,   /* MCU -> sim, 4 bytes: x, y, walls, known (UNIMOUSE_SIDE_*) */
   UNIMOUSE_ID_DEBUG_VISITED = 11, /* MCU -> sim, 2 bytes: x, y */
   UNIMOUSE_ID_DEBUG_PATH = 12,    /* MCU -> sim, n, then n pairs x, y: the path it plans */
-  UNIMOUSE_ID_DEBUG_VALUE = 13    /* MCU -> sim, float32, then a name ended by 0x00 */
+  UNIMOUSE_ID_DEBUG_VALUE = 13,   /* MCU -> sim, float32, then a name ended by 0x00 */
+  UNIMOUSE_ID_MAZE_INFO = 14,     /* sim -> MCU, 8 bytes, once asked (UNIMOUSE_MANAGER_MAZE_INFO):
+                                     width, height (cells; 0 0 without a maze), cell side in mm
+                                     (uint16), goal rectangle x0, y0, x1, y1 (inclusive) */
+  UNIMOUSE_ID_MAZE_SIZE = 15      /* MCU -> sim, 2 bytes: the width and height of the maze the
+                                     firmware works with; the simulator warns if they differ */
 };
 
 /* manager codes */
@@ -41,12 +46,13 @@ enum {
   UNIMOUSE_MANAGER_SENSORS_ON = 0x02,
   UNIMOUSE_MANAGER_SENSORS_OFF = 0x03,
   /* extensions */
-  UNIMOUSE_MANAGER_LOCKSTEP_ON = 0x10,     /* from the next step on, the simulator sends a clock
-                                              frame after each step's sensor frames and waits */
-  UNIMOUSE_MANAGER_STEP_DONE = 0x11,       /* the firmware has sent everything for this step */
-  UNIMOUSE_MANAGER_REPEATS_COMMANDS = 0x12 /* the firmware resends its motor commands at least
+  UNIMOUSE_MANAGER_LOCKSTEP_ON = 0x10,      /* from the next step on, the simulator sends a clock
+                                               frame after each step's sensor frames and waits */
+  UNIMOUSE_MANAGER_STEP_DONE = 0x11,        /* the firmware has sent everything for this step */
+  UNIMOUSE_MANAGER_REPEATS_COMMANDS = 0x12, /* the firmware resends its motor commands at least
                                               every 50 ms, so silence means it is in trouble:
                                               the simulator stops the motors after failsafe_s */
+  UNIMOUSE_MANAGER_MAZE_INFO = 0x13         /* the simulator answers with one maze info frame */
 };
 
 /* sides in a debug walls frame: bits of `walls` and `known` */
@@ -85,7 +91,10 @@ static inline int unimouse_payload_size(uint8_t id) {
     case UNIMOUSE_ID_DEBUG_WALLS:
       return 4;
     case UNIMOUSE_ID_DEBUG_VISITED:
+    case UNIMOUSE_ID_MAZE_SIZE:
       return 2;
+    case UNIMOUSE_ID_MAZE_INFO:
+      return 8;
     case UNIMOUSE_ID_LOG:
     case UNIMOUSE_ID_DEBUG_PATH:
     case UNIMOUSE_ID_DEBUG_VALUE:

@@ -205,6 +205,20 @@ void Kernel::BindComponent(int index) {
   b.component_name = c.name.c_str();
   b.period_s = c.every_n_steps * timestep_s();
   b.output_dir = options_.output_dir.c_str();
+  if (const Maze* maze = world().maze()) {
+    b.maze_width_cells = maze->width();
+    b.maze_height_cells = maze->height();
+    b.maze_cell_m = maze->dimensions().cell_m;
+    b.maze_goal_x0 = b.maze_goal_y0 = kMaxMazeSide_cells;
+    for (const Cell& g : maze->goals()) {
+      b.maze_goal_x0 = std::min(b.maze_goal_x0, g.x);
+      b.maze_goal_y0 = std::min(b.maze_goal_y0, g.y);
+      b.maze_goal_x1 = std::max(b.maze_goal_x1, g.x);
+      b.maze_goal_y1 = std::max(b.maze_goal_y1, g.y);
+    }
+    const int area = (b.maze_goal_x1 - b.maze_goal_x0 + 1) * (b.maze_goal_y1 - b.maze_goal_y0 + 1);
+    b.maze_goal_is_rectangle = static_cast<int>(maze->goals().size()) == area;
+  }
   b.joint = [](void* ctx, const char* name) {
     auto* s = static_cast<BindSession*>(ctx);
     return s->Lookup(mjOBJ_JOINT, "joint", name, s->kernel->mj_model().njnt);

@@ -49,6 +49,19 @@ void CheckMazeSize(int64_t width, int64_t height, const std::string& file) {
 
 double HeadingYaw(Heading h) { return static_cast<int>(h) * std::numbers::pi / 2; }
 
+MazeDimensions DimensionsOf(MazeClass c) {
+  // the half-size rules halve the cell and the wall's thickness and height
+  if (c == MazeClass::kHalfSize) return {0.09, 0.006, 0.025};
+  return {0.18, 0.012, 0.05};
+}
+
+MazeClass DefaultMazeClass(int width, int height) {
+  return std::max(width, height) > kClassicMaxSide_cells ? MazeClass::kHalfSize
+                                                         : MazeClass::kClassic;
+}
+
+const char* MazeClassName(MazeClass c) { return c == MazeClass::kHalfSize ? "half" : "classic"; }
+
 Maze::Maze(int width, int height)
     : width_(width),
       height_(height),
@@ -57,6 +70,7 @@ Maze::Maze(int width, int height)
   UNIMOUSE_DEMAND(width > 0 && height > 0 && width <= kMaxMazeSide_cells &&
                   height <= kMaxMazeSide_cells);
   set_goals(CentreCells(width, height));
+  set_class(DefaultMazeClass(width, height));
 }
 
 void Maze::set_goals(std::vector<Cell> goals) {

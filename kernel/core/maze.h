@@ -30,9 +30,37 @@ struct Cell {
 /// Returns the heading's angle in radians (east 0, north pi/2).
 double HeadingYaw(Heading h);
 
+/// The contest a maze is built for: it sets the size of the cells and walls.
+enum class MazeClass { kClassic, kHalfSize };
+
+/// Maze geometry in metres: the lattice pitch of the posts (a cell's side), and the thickness
+/// and height of walls and posts. docs/mazes.md cites the rules for both classes.
+struct MazeDimensions {
+  double cell_m = 0.18;
+  double wall_thickness_m = 0.012;
+  double wall_height_m = 0.05;
+  bool operator==(const MazeDimensions&) const = default;
+};
+
+/// Returns the dimensions a contest's rules set: classic 180 mm cells with 12 mm thick, 50 mm
+/// high walls (IEEE / All Japan classic rules); half-size 90 mm cells with 6 mm thick, 25 mm high
+/// walls (NTF "Rules for Micromouse Halfsize", UKMARS half-size rules 2019).
+MazeDimensions DimensionsOf(MazeClass c);
+
+/// Most cells on a side of a classic maze (16 x 16); a larger maze is half-size (up to 32 x 32).
+inline constexpr int kClassicMaxSide_cells = 16;
+
+/// Returns the class a maze of this size is taken to be: half-size when a side is longer than
+/// kClassicMaxSide_cells, else classic (a 16 x 16 half-size maze needs saying so).
+MazeClass DefaultMazeClass(int width, int height);
+
+/// Returns "classic" or "half".
+const char* MazeClassName(MazeClass c);
+
 class Maze {
  public:
-  /// Creates a maze with no walls at all, start (0, 0) facing north and the centre as goal.
+  /// Creates a maze with no walls at all, start (0, 0) facing north, the centre as goal, and
+  /// the dimensions of DefaultMazeClass.
   Maze(int width, int height);
 
   int width() const { return width_; }
@@ -61,6 +89,14 @@ class Maze {
   /// Sets the goal cells; each must be inside the maze.
   void set_goals(std::vector<Cell> goals);
 
+  MazeClass maze_class() const { return class_; }
+  const MazeDimensions& dimensions() const { return dims_; }
+  /// Builds the maze at another contest's dimensions (a 16 x 16 half-size maze, for one).
+  void set_class(MazeClass c) {
+    class_ = c;
+    dims_ = DimensionsOf(c);
+  }
+
  private:
   int width_;
   int height_;
@@ -70,6 +106,8 @@ class Maze {
   Heading start_heading_ = Heading::kNorth;
   std::vector<Cell> goals_;
   std::vector<uint8_t> is_goal_;  // width x height: 1 on a goal cell
+  MazeClass class_;
+  MazeDimensions dims_;
 };
 
 /// Turns the start heading towards the start cell's opening: north, as in the classic rules,

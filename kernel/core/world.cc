@@ -203,7 +203,8 @@ mjModel* CompileMjcf(const std::string& mjcf, const std::string& what) {
   return m;
 }
 
-std::vector<StaticBox> MazeBoxes(const Maze& maze, const MazeDimensions& dims) {
+std::vector<StaticBox> MazeBoxes(const Maze& maze) {
+  const MazeDimensions& dims = maze.dimensions();
   const double p = dims.cell_m;
   const double t = dims.wall_thickness_m / 2;
   const double h = dims.wall_height_m / 2;
@@ -231,7 +232,8 @@ std::vector<StaticBox> MazeBoxes(const Maze& maze, const MazeDimensions& dims) {
   return boxes;
 }
 
-std::vector<StaticBox> MazeCollisionBoxes(const Maze& maze, const MazeDimensions& dims) {
+std::vector<StaticBox> MazeCollisionBoxes(const Maze& maze) {
+  const MazeDimensions& dims = maze.dimensions();
   const double p = dims.cell_m;
   const double t = dims.wall_thickness_m / 2;
   const double h = dims.wall_height_m / 2;
@@ -292,7 +294,6 @@ std::unique_ptr<World> World::Build(const RobotSpec& robot, const Maze* maze,
                                     std::optional<Pose2D> spawn,
                                     const std::vector<StaticBox>& boxes) {
   std::unique_ptr<World> w(new World());
-  MazeDimensions dims;
   double floor_centre_x = 0, floor_centre_y = 0, floor_half_m = 5;
   if (maze != nullptr) {
     if (maze->width() > kMaxMazeSide_cells || maze->height() > kMaxMazeSide_cells) {
@@ -302,8 +303,10 @@ std::unique_ptr<World> World::Build(const RobotSpec& robot, const Maze* maze,
                        std::to_string(kMaxMazeSide_cells) +
                        " cells a run builds (docs/limits.md); the maze tools read larger ones");
     }
-    w->scenery_ = MazeBoxes(*maze, dims);
-    w->collision_shapes_ = MazeCollisionBoxes(*maze, dims);
+    w->maze_ = *maze;
+    const MazeDimensions& dims = maze->dimensions();
+    w->scenery_ = MazeBoxes(*maze);
+    w->collision_shapes_ = MazeCollisionBoxes(*maze);
     floor_centre_x = dims.cell_m * maze->width() / 2;
     floor_centre_y = dims.cell_m * maze->height() / 2;
     floor_half_m = dims.cell_m * std::max(maze->width(), maze->height()) / 2 + 0.5;

@@ -21,13 +21,6 @@
 
 namespace unimouse {
 
-/// Maze geometry in metres (dissertation table 4.8; original MazeClassic spec).
-struct MazeDimensions {
-  double cell_m = 0.18;
-  double wall_thickness_m = 0.012;
-  double wall_height_m = 0.05;
-};
-
 /// An immovable box of the scenery.
 struct StaticBox {
   enum class Kind { kWall, kPost, kObstacle };
@@ -44,13 +37,13 @@ struct Pose2D {
   double yaw_rad = 0;
 };
 
-/// Returns the walls and posts of a maze, one box each, in a fixed order: posts row by row from
-/// the south-west, then east-west walls, then north-south walls.
-std::vector<StaticBox> MazeBoxes(const Maze& maze, const MazeDimensions& dims = {});
+/// Returns the walls and posts of a maze at its dimensions, one box each, in a fixed order: posts
+/// row by row from the south-west, then east-west walls, then north-south walls.
+std::vector<StaticBox> MazeBoxes(const Maze& maze);
 
 /// Returns boxes covering the same space with fewer, larger pieces: each straight run of walls
 /// becomes one box including its posts, and only posts touching no wall stay on their own.
-std::vector<StaticBox> MazeCollisionBoxes(const Maze& maze, const MazeDimensions& dims = {});
+std::vector<StaticBox> MazeCollisionBoxes(const Maze& maze);
 
 /// Returns the world position of a cell's centre.
 Pose2D CellCentre(Cell c, Heading h, const MazeDimensions& dims = {});
@@ -83,6 +76,10 @@ class World {
   const mjData& scenery_data() const { return *scenery_data_; }
 
   Pose2D spawn() const { return spawn_; }
+  /// The maze the world was built from, or null on an open floor.
+  const Maze* maze() const { return maze_ ? &*maze_ : nullptr; }
+  /// The maze's dimensions; classic ones on an open floor.
+  MazeDimensions maze_dimensions() const { return maze_ ? maze_->dimensions() : MazeDimensions{}; }
   int robot_body() const { return robot_body_; }
   double robot_radius_m() const { return robot_radius_m_; }
   int proxy_count() const { return proxy_count_; }
@@ -124,6 +121,7 @@ class World {
   std::unique_ptr<mjModel, ModelDeleter> scenery_model_;
   std::unique_ptr<mjData, DataDeleter> scenery_data_;
   Pose2D spawn_;
+  std::optional<Maze> maze_;
   int robot_body_ = -1;
   int robot_qpos_ = -1;
   int robot_qvel_ = -1;

@@ -162,7 +162,7 @@ void SceneRenderer::AddBeams() {
 }
 
 void SceneRenderer::AddBeliefs(const FirmwareBeliefs& beliefs) {
-  const MazeDimensions dims;
+  const MazeDimensions dims = kernel_.world().maze_dimensions();
   auto centre = [&](Cell c) { return CellCentre(c, Heading::kNorth, dims); };
   // believed walls: a strip on top of each, so that true and believed walls are seen together
   for (const auto& [cell, w] : beliefs.walls) {
@@ -187,7 +187,7 @@ void SceneRenderer::AddBeliefs(const FirmwareBeliefs& beliefs) {
   for (const Cell& c : beliefs.visited) {
     mjvGeom* g = NewGeom();
     if (g == nullptr) return;
-    const mjtNum size[3] = {0.03, 0.03, 0.0005};
+    const mjtNum size[3] = {dims.cell_m / 6, dims.cell_m / 6, 0.0005};
     const Pose2D p = centre(c);
     const mjtNum pos[3] = {p.x_m, p.y_m, 0.001};
     mjv_initGeom(g, mjGEOM_BOX, size, pos, nullptr, kVisited);
@@ -198,7 +198,8 @@ void SceneRenderer::AddBeliefs(const FirmwareBeliefs& beliefs) {
     if (g == nullptr) return;
     mjv_initGeom(g, mjGEOM_CAPSULE, nullptr, nullptr, nullptr, kPlannedPath);
     const Pose2D pa = centre(beliefs.path[i - 1]), pb = centre(beliefs.path[i]);
-    mjv_makeConnector(g, mjGEOM_CAPSULE, 0.006, pa.x_m, pa.y_m, 0.004, pb.x_m, pb.y_m, 0.004);
+    mjv_makeConnector(g, mjGEOM_CAPSULE, dims.cell_m / 30, pa.x_m, pa.y_m, 0.004, pb.x_m, pb.y_m,
+                      0.004);
     g->category = mjCAT_DECOR;
     g->emission = 0.5f;
   }

@@ -259,6 +259,7 @@ void Session::Assemble() {
                    message.c_str());
     }
     std::fprintf(log_.get(), "%.6f\t%s\t%s%s\n", time_s, component.c_str(), kind, message.c_str());
+    if (level == UNIMOUSE_LOG_WARNING) warnings_.push_back(component + ": " + message);
     std::fflush(log_.get());
   };
   kernel_ = Kernel::Create(robot_, maze_.get(), *registry, kernel_options);
@@ -454,6 +455,7 @@ SessionResult Session::Finish(const nlohmann::json& extra) {
   }
   if (firmware_maze) r["firmware_maze"] = "maze.png";
   if (!measurements_.empty()) r["measurements"] = measurements_;
+  r["warnings"] = warnings_;
   r["exit_code"] = result.exit_code;
   if (extra.is_object()) r.update(extra);
   WriteResultRecord(options_.out_dir, r);

@@ -129,6 +129,7 @@ class Session {
   FirmwareBeliefs beliefs_;
   // what components measured over the run (UNIMOUSE_REPORT_MEASURE), by component and name
   nlohmann::json measurements_ = nlohmann::json::object();
+  std::vector<std::string> warnings_;  // every warning logged, "component: text", for the record
   std::unique_ptr<RunPictures> pictures_;
   std::unique_ptr<RealTimePacer> pacer_;
   bool pace_ = false;

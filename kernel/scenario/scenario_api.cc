@@ -95,7 +95,7 @@ struct ScenarioApi {
   static int RobotGetCell(LuaCall& call) {
     const Kernel& k = RunningKernel(call);
     const Pose2D p = k.world().RobotPose(k.state().data());
-    const MazeDimensions dims;
+    const MazeDimensions dims = k.world().maze_dimensions();
     lua_State* L = call.state();
     lua_createtable(L, 0, 2);
     lua_pushinteger(L, static_cast<lua_Integer>(std::floor(p.x_m / dims.cell_m)));
@@ -130,6 +130,29 @@ struct ScenarioApi {
     lua_setfield(L, -2, "x");
     lua_pushinteger(L, s.maze_start_.y);
     lua_setfield(L, -2, "y");
+    return 1;
+  }
+
+  static int MazeGetDimensions(LuaCall& call) {
+    const Scenario& s = Self(call);
+    // in run the world holds the maze, in world the scenario does
+    const Maze* maze = s.kernel_ ? s.kernel_->world().maze() : s.world_.maze.get();
+    if (maze == nullptr) call.Fail("sim.maze_get_dimensions: no maze loaded");
+    const MazeDimensions& d = maze->dimensions();
+    lua_State* L = call.state();
+    lua_createtable(L, 0, 6);
+    lua_pushinteger(L, maze->width());
+    lua_setfield(L, -2, "width");
+    lua_pushinteger(L, maze->height());
+    lua_setfield(L, -2, "height");
+    lua_pushnumber(L, d.cell_m);
+    lua_setfield(L, -2, "cell_m");
+    lua_pushnumber(L, d.wall_thickness_m);
+    lua_setfield(L, -2, "wall_thickness_m");
+    lua_pushnumber(L, d.wall_height_m);
+    lua_setfield(L, -2, "wall_height_m");
+    lua_pushstring(L, MazeClassName(maze->maze_class()));
+    lua_setfield(L, -2, "class");
     return 1;
   }
 
@@ -221,11 +244,23 @@ struct ScenarioApi {
   static int MazeLoad(LuaCall& call) {
     NotInRun(call);
     const std::string name = call.CheckString(1);
+    // the contest's dimensions: "auto" follows DefaultMazeClass, a 16 x 16 maze may be either
+    std::string maze_class = "auto";
+    if (!call.IsNoneOrNil(2)) {
+      call.CheckTable(2);
+      maze_class = call.StringField(2, "class", maze_class);
+      if (maze_class != "auto" && maze_class != "classic" && maze_class != "half") {
+        call.Fail("sim.maze_load: class is auto, classic or half, not '" + maze_class + "'");
+      }
+    }
     // a maze that cannot be read throws InputError, which the boundary raises as the message
     Scenario& s = Self(call);
     try {
       s.world_.maze_file = ResolveDataFile(name, "mazes/", ".txt");
       s.world_.maze = std::make_unique<Maze>(LoadMaze(s.world_.maze_file));
+      if (maze_class != "auto") {
+        s.world_.maze->set_class(maze_class == "half" ? MazeClass::kHalfSize : MazeClass::kClassic);
+      }
     } catch (const InputError& e) {
       // named on the command line (--set, --maze): the user's input, not the script, is wrong
       for (const auto& [param, value] : s.overrides_) {
@@ -639,7 +674,11 @@ constexpr ApiEntry kApi[] = {
      "puts the robot there at rest; in world, its start"},
     {"robot_reset", ScenarioApi::RobotReset, 1, "robot_reset()",
      "puts the robot back at its start, at rest (run)"},
-    {"maze_load", ScenarioApi::MazeLoad, 1, "maze_load(name_or_file)", "builds a maze (world)"},
+    {"maze_load", ScenarioApi::MazeLoad, 1, "maze_load(name_or_file, {class?})",
+     "builds a maze (world) at its contest's dimensions; class auto, classic or half"},
+    {"maze_get_dimensions", ScenarioApi::MazeGetDimensions, 3,
+     "maze_get_dimensions() -> {width, height, cell_m, wall_thickness_m, wall_height_m, class}",
+     "the loaded maze's size in cells and its dimensions in metres"},
     {"maze_is_goal", ScenarioApi::MazeIsGoal, 1, "maze_is_goal(x, y) -> boolean",
      "whether a cell is a goal cell of the loaded maze"},
     {"maze_get_start", ScenarioApi::MazeGetStart, 1, "maze_get_start() -> {x, y}",

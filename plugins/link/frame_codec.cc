@@ -14,7 +14,7 @@ constexpr size_t kNameMax = 32;
 bool ControlFromFirmware(uint8_t id) {
   return id == UNIMOUSE_ID_MANAGER || id == UNIMOUSE_ID_LOG || id == UNIMOUSE_ID_DEBUG_WALLS ||
          id == UNIMOUSE_ID_DEBUG_VISITED || id == UNIMOUSE_ID_DEBUG_PATH ||
-         id == UNIMOUSE_ID_DEBUG_VALUE;
+         id == UNIMOUSE_ID_DEBUG_VALUE || id == UNIMOUSE_ID_MAZE_SIZE;
 }
 
 uint16_t ToWord(long v) { return static_cast<uint16_t>(static_cast<int16_t>(v)); }
@@ -30,7 +30,7 @@ long RoundClamped(double value, long min, long max) {
 
 int EncodingSize(Encoding encoding) { return encoding == Encoding::kF32 ? 4 : 2; }
 
-bool IsControlId(int id) { return id >= UNIMOUSE_ID_MANAGER && id <= UNIMOUSE_ID_DEBUG_VALUE; }
+bool IsControlId(int id) { return id >= UNIMOUSE_ID_MANAGER && id <= UNIMOUSE_ID_MAZE_SIZE; }
 
 std::vector<DataFrame> OriginalCommandFrames() {
   return {{UNIMOUSE_ID_MOTOR_LEFT, Encoding::kMotor}, {UNIMOUSE_ID_MOTOR_RIGHT, Encoding::kMotor}};
@@ -99,6 +99,7 @@ void FrameDecoder::Feed(std::span<const uint8_t> bytes, std::vector<FirmwareFram
           break;
         case UNIMOUSE_ID_DEBUG_WALLS:
         case UNIMOUSE_ID_DEBUG_VISITED:
+        case UNIMOUSE_ID_MAZE_SIZE:
           if (size == static_cast<size_t>(unimouse_payload_size(id))) {
             frame.data.assign(payload, payload + size);
             complete = true;
@@ -168,6 +169,17 @@ void PutClockFrame(uint64_t time_us, std::string& out) {
   uint8_t frame[5] = {UNIMOUSE_ID_CLOCK};
   unimouse_put_u32(frame + 1, static_cast<uint32_t>(time_us));
   out.append(reinterpret_cast<const char*>(frame), 5);
+}
+
+void PutMazeInfoFrame(const BindContext::MazeInfo& maze, std::string& out) {
+  uint8_t frame[9] = {UNIMOUSE_ID_MAZE_INFO, static_cast<uint8_t>(maze.width_cells),
+                      static_cast<uint8_t>(maze.height_cells)};
+  unimouse_put_u16(frame + 3, static_cast<uint16_t>(std::lround(maze.cell_m * 1000)));
+  frame[5] = static_cast<uint8_t>(maze.goal_x0);
+  frame[6] = static_cast<uint8_t>(maze.goal_y0);
+  frame[7] = static_cast<uint8_t>(maze.goal_x1);
+  frame[8] = static_cast<uint8_t>(maze.goal_y1);
+  out.append(reinterpret_cast<const char*>(frame), sizeof(frame));
 }
 
 }  // namespace unimouse::link

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "unimouse/component.h"
 #include "unimouse_protocol.h"
 
 namespace unimouse::link {
@@ -99,6 +100,9 @@ void PutDataFrame(uint8_t id, Encoding encoding, double value, double tof_full_s
                   std::string& out);
 /// Appends a clock frame: sim time in microseconds, modulo 2^32.
 void PutClockFrame(uint64_t time_us, std::string& out);
+/// Appends a maze info frame: width and height in cells, the cell's side in whole millimetres,
+/// the goal rectangle (a world has at most 128 cells a side, so each fits a byte).
+void PutMazeInfoFrame(const BindContext::MazeInfo& maze, std::string& out);
 
 }  // namespace unimouse::link
 

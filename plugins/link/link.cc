@@ -16,8 +16,9 @@ constexpr int kLockstep = 1;
 constexpr int kLastFrame_s = 2;
 constexpr int kFailsafe = 3;
 constexpr int kUnknownReported = 4;
-constexpr int kRepeats = 5;  // the firmware said it resends its commands
-constexpr int kStateSize = 6;
+constexpr int kRepeats = 5;    // the firmware said it resends its commands
+constexpr int kMazeAsked = 6;  // the firmware asked for the maze: it goes out with the next frames
+constexpr int kStateSize = 7;
 
 // visited cells kept for the beliefs file: a firmware that reports more repeats itself
 constexpr size_t kMaxVisitedKept = 1 << 20;
@@ -88,6 +89,7 @@ void Link::Bind(BindContext& ctx) {
   for (Incoming& i : receive_) i.signal = ctx.WriteSignal(i.entry.signal);
   ctx.SetStateSize(kStateSize);
   if (!p_.beliefs_out.empty()) beliefs_path_ = ctx.OutputFile(p_.beliefs_out);
+  maze_ = ctx.maze();
 }
 
 void Link::Start() {
@@ -106,6 +108,7 @@ void Link::Reset(const ResetContext& ctx) const {
   s[kFailsafe] = 0;
   s[kUnknownReported] = 0;
   s[kRepeats] = 0;
+  s[kMazeAsked] = 0;
   ZeroReceived(ctx);
   decoder_ = FrameDecoder(data_frames_);
   inbox_.clear();
@@ -147,7 +150,7 @@ void Link::Apply(const SenseContext& ctx, const FirmwareFrame& f, Heard& heard) 
   const bool extension_code =
       f.id == UNIMOUSE_ID_MANAGER &&
       (f.value == UNIMOUSE_MANAGER_LOCKSTEP_ON || f.value == UNIMOUSE_MANAGER_STEP_DONE ||
-       f.value == UNIMOUSE_MANAGER_REPEATS_COMMANDS);
+       f.value == UNIMOUSE_MANAGER_REPEATS_COMMANDS || f.value == UNIMOUSE_MANAGER_MAZE_INFO);
   if (extension_code && !p_.extensions) {
     std::snprintf(text, sizeof(text),
                   "manager byte 0x%02x ignored: this link speaks the original's protocol only "
@@ -187,6 +190,14 @@ void Link::Apply(const SenseContext& ctx, const FirmwareFrame& f, Heard& heard) 
           }
           s[kRepeats] = 1;
           break;
+        case UNIMOUSE_MANAGER_MAZE_INFO:
+          s[kMazeAsked] = 1;
+          if (!maze_.goal_is_rectangle) {
+            ctx.Warn(
+                "the firmware asked for the maze: its goal cells are not a rectangle, so "
+                "the frame's goal rectangle holds other cells too");
+          }
+          break;
         default:
           std::snprintf(text, sizeof(text), "unknown manager byte 0x%02x, ignored", f.value);
           ctx.Warn(text);
@@ -194,6 +205,15 @@ void Link::Apply(const SenseContext& ctx, const FirmwareFrame& f, Heard& heard) 
       break;
     case UNIMOUSE_ID_LOG:
       ctx.Firmware(f.text);
+      break;
+    case UNIMOUSE_ID_MAZE_SIZE:
+      if (f.data[0] != maze_.width_cells || f.data[1] != maze_.height_cells) {
+        std::snprintf(text, sizeof(text),
+                      "the firmware works with a %d x %d maze, but the world's maze is %d x %d: "
+                      "it cannot know the whole maze",
+                      f.data[0], f.data[1], maze_.width_cells, maze_.height_cells);
+        ctx.Warn(text);
+      }
       break;
     case UNIMOUSE_ID_DEBUG_WALLS: {
       beliefs_.walls[{f.data[0], f.data[1]}] = {f.data[2], f.data[3]};
@@ -439,6 +459,10 @@ void Link::Sense(const SenseContext& ctx) const {
         PutDataFrame(o.entry.id, o.entry.encoding, ctx.Read(o.signal), p_.tof_full_scale_m, out);
       }
     }
+  }
+  if (s[kMazeAsked] != 0) {
+    PutMazeInfoFrame(maze_, out);
+    s[kMazeAsked] = 0;
   }
   const bool lockstep = s[kLockstep] != 0;
   if (lockstep) PutClockFrame(static_cast<uint64_t>(std::llround(ctx.time_s() * 1e6)), out);

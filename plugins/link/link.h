@@ -153,6 +153,7 @@ class Link final : public Component {
   mutable double last_step_done_s_ = 0;
   double bytes_per_step_ = 0;
   std::string beliefs_path_;
+  BindContext::MazeInfo maze_;  // what a firmware is told when it asks for the maze
   // the connection is a resource, opened by Start, never part of a snapshot
   std::unique_ptr<Transport> transport_;
 

@@ -207,6 +207,12 @@ TEST_F(CliTest, CheckAcceptsTheBundledRobot) {
   EXPECT_NE(o.output.find("ok: robot 'unimouse', 4 bodies"), std::string::npos) << o.output;
 }
 
+TEST_F(CliTest, CheckAcceptsTheBundledHalfSizeRobot) {
+  const Outcome o = Unimouse("check unimouse-half");
+  EXPECT_EQ(o.exit_code, 0) << o.output;
+  EXPECT_NE(o.output.find("ok: robot 'unimouse-half', 4 bodies"), std::string::npos) << o.output;
+}
+
 TEST_F(CliTest, BadRobotFileExitsWithCode2AndOneLocatedLine) {
   const std::string path = Write("bad.yaml", "name: x\nchassis:\n  name: c\n  mass: 1\n");
   const Outcome o = Unimouse("check " + path);

@@ -18,7 +18,8 @@ namespace {
 using FirmwareMaze = ::Maze<16, 16>;
 using FirmwareSolver = ::FFSolver<16, 16>;
 
-void CopyWalls(const unimouse::Maze& from, FirmwareMaze* to) {
+template <class FirmwareMazeType>
+void CopyWalls(const unimouse::Maze& from, FirmwareMazeType* to) {
   for (int x = 0; x < from.width(); ++x) {
     for (int y = 0; y < from.height(); ++y) {
       for (Heading h : {Heading::kEast, Heading::kNorth, Heading::kWest, Heading::kSouth}) {
@@ -44,7 +45,7 @@ TEST(FirmwareMazeTest, WallsAreSharedWithTheNeighbourAndTheOuterWallsStay) {
   EXPECT_TRUE(maze.isKnown(3, 3, Direction::North));
   maze.removeWall(0, 5, Direction::West);
   EXPECT_TRUE(maze.hasWall(0, 5, Direction::West));
-  static_assert(sizeof(FirmwareMaze) == 256, "one byte a cell");
+  static_assert(sizeof(FirmwareMaze) == 256 + 2, "one byte a cell, and the size in use");
 }
 
 TEST(FirmwareSolverTest, CostsEqualTheSimulatorsModifiedFloodFillOnRandomMazes) {
@@ -62,6 +63,48 @@ TEST(FirmwareSolverTest, CostsEqualTheSimulatorsModifiedFloodFillOnRandomMazes) 
           ASSERT_EQ(solver.cost(static_cast<uint8_t>(x), static_cast<uint8_t>(y), ToDirection(h)),
                     reference.Cost({x, y}, h))
               << "seed " << seed << " cell " << x << "," << y << " heading " << static_cast<int>(h);
+        }
+      }
+    }
+  }
+}
+
+TEST(FirmwareMazeTest, AMazeResizedWithinItsRoomHasItsOuterWallsAtItsSize) {
+  ::Maze<32, 32> maze;
+  EXPECT_EQ(maze.width(), 32);
+  ASSERT_TRUE(maze.resize(5, 3));
+  EXPECT_FALSE(maze.resize(33, 3));  // beyond the room: unchanged
+  EXPECT_EQ(maze.width(), 5);
+  EXPECT_EQ(maze.height(), 3);
+  EXPECT_TRUE(maze.hasWall(4, 1, Direction::East));
+  EXPECT_TRUE(maze.hasWall(2, 2, Direction::North));
+  EXPECT_FALSE(maze.hasWall(3, 1, Direction::East));
+  EXPECT_TRUE(maze.contains(4, 2));
+  EXPECT_FALSE(maze.contains(5, 2));
+  maze.placeWall(4, 1, Direction::East);  // an outer wall stays, and nothing beyond changes
+  EXPECT_EQ(maze.cell(5, 1), 0xFF);
+}
+
+TEST(FirmwareSolverTest, ASolverWithRoomFor32By32CostsA16By16MazeAsOneSizedForIt) {
+  // a 32 x 32 firmware maze resized to 16 x 16 plans as Maze<16, 16> does (tested above
+  // against the simulator's flood fill): the same cost for every state
+  for (uint64_t seed = 1; seed <= 5; ++seed) {
+    const unimouse::Maze truth = GenerateMaze({16, 16, seed, 0.3});
+    FirmwareMaze small;
+    CopyWalls(truth, &small);
+    ::Maze<32, 32> large;
+    ASSERT_TRUE(large.resize(16, 16));
+    CopyWalls(truth, &large);
+    FirmwareSolver small_solver(small);
+    ::FFSolver<32, 32> large_solver(large);
+    small_solver.calculateCosts(7, 7, 8, 8);
+    large_solver.calculateCosts(7, 7, 8, 8);
+    for (uint8_t x = 0; x < 16; ++x) {
+      for (uint8_t y = 0; y < 16; ++y) {
+        for (uint8_t d = 0; d < 4; ++d) {
+          ASSERT_EQ(large_solver.cost(x, y, static_cast<Direction>(d)),
+                    small_solver.cost(x, y, static_cast<Direction>(d)))
+              << "seed " << seed << " cell " << +x << "," << +y;
         }
       }
     }

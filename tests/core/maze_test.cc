@@ -24,6 +24,29 @@ std::string ErrorOf(const std::string& text) {
   return "no error";
 }
 
+TEST(MazeClassTest, TheClassesHaveTheirRulesCellWallAndHeight) {
+  // classic: 18 cm cells, walls 1.2 cm thick and 5 cm high (IEEE / All Japan classic rules)
+  const MazeDimensions classic = DimensionsOf(MazeClass::kClassic);
+  EXPECT_EQ(classic.cell_m, 0.18);
+  EXPECT_EQ(classic.wall_thickness_m, 0.012);
+  EXPECT_EQ(classic.wall_height_m, 0.05);
+  // half-size: 9 cm cells, walls 0.6 cm thick and 2.5 cm high (NTF half-size rules)
+  const MazeDimensions half = DimensionsOf(MazeClass::kHalfSize);
+  EXPECT_EQ(half.cell_m, 0.09);
+  EXPECT_EQ(half.wall_thickness_m, 0.006);
+  EXPECT_EQ(half.wall_height_m, 0.025);
+}
+
+TEST(MazeClassTest, AMazeLargerThan16CellsASideIsHalfSizeAndASmallerOneClassic) {
+  EXPECT_EQ(DefaultMazeClass(16, 16), MazeClass::kClassic);
+  EXPECT_EQ(DefaultMazeClass(5, 5), MazeClass::kClassic);
+  EXPECT_EQ(DefaultMazeClass(21, 21), MazeClass::kHalfSize);
+  EXPECT_EQ(DefaultMazeClass(32, 16), MazeClass::kHalfSize);
+  EXPECT_EQ(Maze(32, 32).maze_class(), MazeClass::kHalfSize);
+  EXPECT_EQ(Maze(32, 32).dimensions().cell_m, 0.09);
+  EXPECT_EQ(Maze(16, 16).dimensions().cell_m, 0.18);
+}
+
 TEST(MazeTextTest, ReadsSizeWallsAndStart) {
   const Maze maze = ParseMazeText(kSmallMaze, "small.txt");
   EXPECT_EQ(maze.width(), 3);

@@ -66,6 +66,56 @@ TEST(MazeBoxesTest, CollisionBoxesCoverRunsOfWallsWithTheirPosts) {
   EXPECT_EQ(runs.size(), 6u);
 }
 
+// the rule numbers (docs/mazes.md): classic 180 mm cells, walls and posts 12 mm thick and 50 mm
+// high; half-size 90 mm cells, 6 mm thick and 25 mm high
+// a maze of the given size with only the south wall of cell (0, 0) and the west wall of the
+// north-west cell
+Maze TwoWalls(int side) {
+  Maze maze(side, side);
+  maze.SetWall({0, 0}, Heading::kSouth, true);
+  maze.SetWall({0, side - 1}, Heading::kWest, true);
+  return maze;
+}
+
+TEST(MazeBoxesTest, AClassicMazeIsBuiltAtTheClassicRulesDimensions) {
+  const std::vector<StaticBox> boxes = MazeBoxes(TwoWalls(16));
+  // the north-east post of a 16 x 16 maze: 16 x 180 mm = 2.88 m from the origin
+  EXPECT_TRUE(HasBox(boxes, StaticBox::Kind::kPost, {2.88, 2.88, 0.025}, {0.006, 0.006, 0.025}));
+  // the south wall of cell (0, 0): 180 - 12 = 168 mm long between its posts
+  EXPECT_TRUE(HasBox(boxes, StaticBox::Kind::kWall, {0.09, 0, 0.025}, {0.084, 0.006, 0.025}));
+}
+
+TEST(MazeBoxesTest, AMazeLargerThan16By16IsBuiltAtTheHalfSizeRulesDimensions) {
+  const std::vector<StaticBox> boxes = MazeBoxes(TwoWalls(32));
+  // the north-east post of a 32 x 32 maze: 32 x 90 mm = 2.88 m, 6 x 6 x 25 mm
+  EXPECT_TRUE(HasBox(boxes, StaticBox::Kind::kPost, {2.88, 2.88, 0.0125}, {0.003, 0.003, 0.0125}));
+  // the south wall of cell (0, 0): 90 - 6 = 84 mm long, 6 mm thick, 25 mm high
+  EXPECT_TRUE(HasBox(boxes, StaticBox::Kind::kWall, {0.045, 0, 0.0125}, {0.042, 0.003, 0.0125}));
+  // the west wall of cell (0, 31)
+  EXPECT_TRUE(HasBox(boxes, StaticBox::Kind::kWall, {0, 2.835, 0.0125}, {0.003, 0.042, 0.0125}));
+}
+
+TEST(MazeBoxesTest, A16By16MazeSaidToBeHalfSizeIsBuiltAtHalfSize) {
+  Maze maze = TwoWalls(16);
+  for (int x = 1; x < 16; ++x) maze.SetWall({x, 0}, Heading::kSouth, true);
+  maze.set_class(MazeClass::kHalfSize);
+  const std::vector<StaticBox> boxes = MazeBoxes(maze);
+  EXPECT_TRUE(HasBox(boxes, StaticBox::Kind::kPost, {1.44, 1.44, 0.0125}, {0.003, 0.003, 0.0125}));
+  const std::vector<StaticBox> runs = MazeCollisionBoxes(maze);
+  // the south edge as one run, posts included: 16 x 90 + 6 mm
+  EXPECT_TRUE(HasBox(runs, StaticBox::Kind::kWall, {0.72, 0, 0.0125}, {0.723, 0.003, 0.0125}));
+}
+
+TEST(WorldBuildTest, AHalfSizeWorldStartsTheRobotInTheCentreOfIts90MillimetreStartCell) {
+  const Maze maze(32, 32);
+  auto world = World::Build(testing::BareRobot(), &maze, std::nullopt, {});
+  EXPECT_NEAR(world->spawn().x_m, 0.045, 1e-12);
+  EXPECT_NEAR(world->spawn().y_m, 0.045, 1e-12);
+  EXPECT_EQ(world->maze_dimensions(), DimensionsOf(MazeClass::kHalfSize));
+  ASSERT_NE(world->maze(), nullptr);
+  EXPECT_EQ(world->maze()->width(), 32);
+}
+
 class WorldTest : public ::testing::Test {
  protected:
   void SetUp() override {

@@ -51,6 +51,32 @@ TEST(FrameCodecTest, ClockFramesCarryMicroseconds) {
   EXPECT_EQ(Bytes(out), (std::vector<uint8_t>{0x09, 0x87, 0xD6, 0x12, 0x00}));
 }
 
+TEST(FrameCodecTest, MazeInfoFramesCarrySizeCellInMillimetresAndGoalRectangle) {
+  std::string out;
+  BindContext::MazeInfo maze;
+  maze.width_cells = 32;
+  maze.height_cells = 32;
+  maze.cell_m = 0.09;
+  maze.goal_x0 = 1;
+  maze.goal_y0 = 2;
+  maze.goal_x1 = 3;
+  maze.goal_y1 = 4;
+  PutMazeInfoFrame(maze, out);
+  EXPECT_EQ(Bytes(out), (std::vector<uint8_t>{0x0E, 32, 32, 0x5A, 0x00, 1, 2, 3, 4}));
+  out.clear();
+  maze.cell_m = 0.18;
+  PutMazeInfoFrame(maze, out);
+  EXPECT_EQ(Bytes(out)[3], 0xB4);  // 180 mm
+}
+
+TEST(FrameCodecTest, MazeSizeFramesFromTheFirmwareCarryWidthAndHeight) {
+  const auto f = Decode({0x0F, 16, 16, 0x07, 0x13});
+  ASSERT_EQ(f.size(), 2u);
+  EXPECT_EQ(f[0].id, UNIMOUSE_ID_MAZE_SIZE);
+  EXPECT_EQ(f[0].data, (std::vector<uint8_t>{16, 16}));
+  EXPECT_EQ(f[1].value, UNIMOUSE_MANAGER_MAZE_INFO);
+}
+
 TEST(FrameCodecTest, MotorCommandsAreClampedTo1023) {
   const auto f = Decode({0x05, 0xFF, 0x03, 0x06, 0x01, 0xFC, 0x05, 0xD0, 0x07, 0x06, 0x00, 0x80});
   ASSERT_EQ(f.size(), 4u);

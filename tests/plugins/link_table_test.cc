@@ -36,9 +36,9 @@ using testing::SignalValue;
 // the original's frames, then the two side sensors and the gyro, every other step
 constexpr const char* kFiveTofSend =
     "3 left.encoder_counts i16; 4 right.encoder_counts i16; 0 tof.left_m tof 0.03; "
-    "1 tof.right_m tof 0.03; 2 tof.front_m tof 0.03; 14 tof.left_side_m tof 0.03; "
-    "15 tof.right_side_m tof 0.03; 20 gyro.yaw_rate_rad_s f32 0.002";
-constexpr const char* kFiveTofReport = "3:i16,4:i16,0:tof,1:tof,2:tof,14:tof,15:tof,20:f32";
+    "1 tof.right_m tof 0.03; 2 tof.front_m tof 0.03; 16 tof.left_side_m tof 0.03; "
+    "17 tof.right_side_m tof 0.03; 20 gyro.yaw_rate_rad_s f32 0.002";
+constexpr const char* kFiveTofReport = "3:i16,4:i16,0:tof,1:tof,2:tof,16:tof,17:tof,20:f32";
 
 struct Sent {
   int id;
@@ -49,8 +49,8 @@ struct Sent {
 constexpr Sent kFiveTofFrames[] = {
     {3, "left.encoder_counts", "i16", 1}, {4, "right.encoder_counts", "i16", 1},
     {0, "tof.left_m", "tof", 30},         {1, "tof.right_m", "tof", 30},
-    {2, "tof.front_m", "tof", 30},        {14, "tof.left_side_m", "tof", 30},
-    {15, "tof.right_side_m", "tof", 30},  {20, "gyro.yaw_rate_rad_s", "f32", 2},
+    {2, "tof.front_m", "tof", 30},        {16, "tof.left_side_m", "tof", 30},
+    {17, "tof.right_side_m", "tof", 30},  {20, "gyro.yaw_rate_rad_s", "f32", 2},
 };
 
 // one frame as the firmware reported it: "rx ID STEP VALUE"
@@ -140,10 +140,10 @@ TEST_F(LinkTableTest, FramesGoOutInTheTablesOrderWithinAStep) {
   RunFiveTofRobot(31);
   std::map<int, std::vector<int>> order;  // step -> ids in arrival order
   for (const Received& r : received_) order[r.step].push_back(r.id);
-  EXPECT_EQ(order[0], (std::vector<int>{3, 4, 0, 1, 2, 14, 15, 20}));
+  EXPECT_EQ(order[0], (std::vector<int>{3, 4, 0, 1, 2, 16, 17, 20}));
   EXPECT_EQ(order[1], (std::vector<int>{3, 4}));
   EXPECT_EQ(order[2], (std::vector<int>{3, 4, 20}));
-  EXPECT_EQ(order[30], (std::vector<int>{3, 4, 0, 1, 2, 14, 15, 20}));
+  EXPECT_EQ(order[30], (std::vector<int>{3, 4, 0, 1, 2, 16, 17, 20}));
 }
 
 TEST_F(LinkTableTest, EachFrameCarriesItsSignalInItsEncoding) {
@@ -158,7 +158,7 @@ TEST_F(LinkTableTest, EachFrameCarriesItsSignalInItsEncoding) {
     const std::string encoding = sent->encoding;
     if (encoding == "tof") {
       EXPECT_EQ(std::stol(r.value), unimouse_tof_to_counts(v, 1.2)) << r.id << " at " << r.step;
-      side_hits += (r.id == 14 || r.id == 15) && std::stol(r.value) < UNIMOUSE_TOF_NO_TARGET;
+      side_hits += (r.id == 16 || r.id == 17) && std::stol(r.value) < UNIMOUSE_TOF_NO_TARGET;
     } else if (encoding == "i16") {
       EXPECT_EQ(std::stol(r.value), std::lround(v)) << r.id << " at " << r.step;
     } else {

@@ -52,6 +52,9 @@ class LinkTest : public ::testing::Test {
     KernelOptions options;
     options.trust_robot_file = true;  // the test wrote the robot file
     options.seed = 3;
+    options.log_sink = [this](double, int level, const std::string&, const std::string& text) {
+      if (level == UNIMOUSE_LOG_WARNING) warnings_.push_back(text);
+    };
     kernel_ = testing::MakeKernel(yaml, maze, options);
   }
   void TearDown() override {
@@ -66,6 +69,7 @@ class LinkTest : public ::testing::Test {
   std::string dir_;
   std::string path_;
   std::unique_ptr<Kernel> kernel_;
+  std::vector<std::string> warnings_;
 };
 
 TEST_F(LinkTest, MotorFramesMoveTheWheelsTheRightWay) {
@@ -106,6 +110,42 @@ TEST_F(LinkTest, ManagerBytesTurnSensorFramesOffAndOn) {
   board.Send({UNIMOUSE_ID_MANAGER, UNIMOUSE_MANAGER_SENSORS_ON});
   Step(10);
   EXPECT_GE(board.Drain()[UNIMOUSE_ID_ENCODER_LEFT], 9);
+}
+
+TEST_F(LinkTest, AFirmwareThatAsksForTheMazeIsToldItsSizeCellAndGoalOnce) {
+  // a 32 x 32 maze is half-size: 90 mm cells; its goal, the 3 x 3 cells (1, 2) to (3, 4)
+  Maze maze(32, 32);
+  std::vector<Cell> goal;
+  for (int x = 1; x <= 3; ++x) {
+    for (int y = 2; y <= 4; ++y) goal.push_back({x, y});
+  }
+  maze.set_goals(goal);
+  Make(", send: '3 left.encoder_counts i16'", &maze);
+  Board board(path_);
+  Step(2);
+  EXPECT_EQ(board.Bytes(), (std::vector<uint8_t>{3, 0, 0, 3, 0, 0}));  // nothing unasked
+  board.Send({UNIMOUSE_ID_MANAGER, UNIMOUSE_MANAGER_MAZE_INFO});
+  Step(1);
+  // the step's encoder frame, then the answer
+  EXPECT_EQ(board.Bytes(), (std::vector<uint8_t>{3, 0, 0, 14, 32, 32, 90, 0, 1, 2, 3, 4}));
+  Step(2);
+  EXPECT_EQ(board.Bytes().size(), 6u);  // once
+  EXPECT_TRUE(warnings_.empty());
+}
+
+TEST_F(LinkTest, AFirmwareWhoseMazeIsAnotherSizeThanTheWorldsIsWarnedAbout) {
+  const Maze maze(32, 32);
+  Make("", &maze);
+  Board board(path_);
+  board.Send({UNIMOUSE_ID_MAZE_SIZE, 32, 32});
+  Step(2);
+  EXPECT_TRUE(warnings_.empty());
+  board.Send({UNIMOUSE_ID_MAZE_SIZE, 16, 16});
+  Step(2);
+  ASSERT_EQ(warnings_.size(), 1u);
+  EXPECT_EQ(warnings_[0],
+            "the firmware works with a 16 x 16 maze, but the world's maze is 32 x 32: it cannot "
+            "know the whole maze");
 }
 
 TEST_F(LinkTest, GarbageNeitherCrashesNorBlocksTheSimulation) {

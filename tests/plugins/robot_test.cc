@@ -9,6 +9,7 @@
 
 #include "inline_assets.h"
 #include "plugin_rig.h"
+#include "text_file.h"
 
 namespace unimouse {
 namespace {
@@ -87,6 +88,23 @@ TEST_F(RobotTest, WithoutCommandsItStaysPut) {
   const Pose2D start = Pose();
   Drive(0, 0, 2000);
   EXPECT_LT(std::hypot(Pose().x_m - start.x_m, Pose().y_m - start.y_m), 1e-4);
+}
+
+// robots/unimouse-half.yaml in a half-size corridor: 90 mm cells, 84 mm between the 6 mm walls
+TEST(HalfSizeRobotTest, DrivesAlongAHalfSizeCorridorWithoutTouchingItsWalls) {
+  Maze maze(32, 32);
+  for (int y = 0; y < 32; ++y) maze.SetWall({0, y}, Heading::kEast, true);
+  auto kernel = MakeKernel(ReadTextFile(UNIMOUSE_SOURCE_DIR "/robots/unimouse-half.yaml"), &maze);
+  ASSERT_EQ(kernel->world().maze_dimensions().cell_m, 0.09);
+  SetSignal(*kernel, "left.command", 300);
+  SetSignal(*kernel, "right.command", 300);
+  for (int i = 0; i < 1500; ++i) {
+    kernel->Step();
+    ASSERT_FALSE(kernel->world().RobotTouchesScenery(kernel->state().data())) << "step " << i;
+  }
+  const Pose2D p = kernel->world().RobotPose(kernel->state().data());
+  EXPECT_GT(p.y_m, 0.3);            // on its way north, several cells
+  EXPECT_NEAR(p.x_m, 0.045, 0.01);  // still in the middle of the corridor
 }
 
 }  // namespace

@@ -69,7 +69,9 @@ TEST(ResultRecordTest, TheContestRecordsEachOfItsThreeRunsWithPathCostAndWallCon
     EXPECT_TRUE(r["time_s"].is_number_float()) << r;
     EXPECT_TRUE(r["wall_contacts"].is_number_integer()) << r;
     contacts_in_runs += r["wall_contacts"].get<int>();
-    if (i > 0) EXPECT_GT(r["start_s"].get<double>(), runs[i - 1]["start_s"].get<double>());
+    if (i > 0) {
+      EXPECT_GT(r["start_s"].get<double>(), runs[i - 1]["start_s"].get<double>());
+    }
   }
   EXPECT_EQ(runs[0]["start_s"], 0.0);
   // the speed run is the best: the documented 73.854 s on the optimal path

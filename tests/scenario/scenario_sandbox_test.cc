@@ -209,6 +209,29 @@ TEST(ScenarioLoadTest, AMazeThatCannotBeReadIsAScriptErrorNotAnExceptionThroughL
   EXPECT_NE(error.find("no_such_maze_anywhere"), std::string::npos) << error;
 }
 
+TEST(ScenarioMazeTest, AMazeIsBuiltAtItsContestsDimensionsUnlessTheScenarioNamesItsClass) {
+  // 32 x 32: half-size by itself (90 mm cells, 6 mm walls, 25 mm high); 16 x 16: classic
+  // unless said to be half-size
+  const std::string path = WorldScenario(
+      "  sim.maze_load('japan2016hef')\n"
+      "  local d = sim.maze_get_dimensions()\n"
+      "  assert(d.width == 32 and d.height == 32 and d.class == 'half', d.class)\n"
+      "  assert(d.cell_m == 0.09 and d.wall_thickness_m == 0.006 and d.wall_height_m == 0.025)\n"
+      "  sim.maze_load('UK-techfest-2022-a')\n"
+      "  assert(sim.maze_get_dimensions().cell_m == 0.18)\n"
+      "  sim.maze_load('UK-techfest-2022-a', { class = 'half' })\n"
+      "  assert(sim.maze_get_dimensions().cell_m == 0.09)\n"
+      "  sim.maze_load('japan2016hef', { class = 'classic' })\n"
+      "  assert(sim.maze_get_dimensions().wall_height_m == 0.05)");
+  EXPECT_EQ(WorldError(path), "");
+}
+
+TEST(ScenarioMazeTest, AMazeClassThatIsNoneOfTheThreeIsAScriptError) {
+  const std::string path = WorldScenario("  sim.maze_load('japan2018', { class = 'mini' })");
+  const std::string error = WorldError(path);
+  EXPECT_NE(error.find("class is auto, classic or half, not 'mini'"), std::string::npos) << error;
+}
+
 TEST(ScenarioMemoryTest, AStringBeyondTheMemoryLimitIsAScriptError) {
   const std::string path = WorldScenario("  local s = string.rep('x', 1e9)");
   EXPECT_EQ(WorldError(path), std::string(kMemoryFull) + " (in world)");

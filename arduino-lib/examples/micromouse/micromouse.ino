@@ -9,26 +9,45 @@
 //  - Walls: while crossing into a cell, the 45-degree sensors see its side walls and the front
 //    sensor the wall beyond it (the sensor is blind nearer than 3 cm).
 // It logs the speed run's path cost and "done"; `--set end_on_log=done` ends the contest there.
+//
+// The maze: the simulator tells its size, cell and goal (maze info frame, docs/protocol.md), so
+// one image runs classic (180 mm cells) and half-size (90 mm) mazes; without an answer in 1 s it
+// takes the classic 16 x 16 maze with the centre goal. Every distance below is for the classic
+// maze and robots/unimouse.yaml; in a half-size maze they scale with the cell, and the robot is
+// robots/unimouse-half.yaml, the classic one at half scale. The largest maze the firmware holds is
+// UNIMOUSE_MAZE_MAX_SIDE a side: 32 on the PC; 16 on a board, where a 32 x 32 flood fill (16 KiB)
+// does not fit the 8 KiB of a Mega 2560's RAM.
 #include <UnimouseSim.h>
 #include <stdio.h>
 
-SimulationRobot robot(Serial);
-const RobotConstructionSpecification spec;
-PoseEstimator pose(spec);
-Maze<16, 16> maze;
-FFSolver<16, 16> solver(maze);
-PathManager<16, 16> paths(solver, 0, 0, Direction::North, 7, 7, 8, 8);
+#ifndef UNIMOUSE_MAZE_MAX_SIDE
+#ifdef UNIMOUSE_PC_CORE
+#define UNIMOUSE_MAZE_MAX_SIDE 32
+#else
+#define UNIMOUSE_MAZE_MAX_SIDE 16
+#endif
+#endif
+const uint8_t kMaxSide = UNIMOUSE_MAZE_MAX_SIDE;
 
-const float kCell = 0.18f;         // m
-const float kSideWall = 0.10f;     // m, a 45-degree reading below this is a side wall
-const float kFrontWall = 0.15f;    // m, a front reading below this, half a cell before the centre
-const float kFrontStop = 0.035f;   // m, stop here before a wall (the sensor is blind below 0.03)
-const float kCentred = 0.0509f;    // m, a 45-degree reading when centred between walls
+SimulationRobot robot(Serial);
+RobotConstructionSpecification spec;
+PoseEstimator pose(spec);
+Maze<kMaxSide, kMaxSide> maze;
+FFSolver<kMaxSide, kMaxSide> solver(maze);
+PathManager<kMaxSide, kMaxSide> paths(solver, 0, 0, Direction::North, 7, 7, 8, 8);
+
+// the classic maze's distances, scaled to the maze's cell by setupMaze()
+float kCell = 0.18f;        // m
+float kSideWall = 0.10f;    // m, a 45-degree reading below this is a side wall
+float kFrontWall = 0.15f;   // m, a front reading below this, half a cell before the centre
+float kFrontStop = 0.035f;  // m, stop here before a wall (the sensor is blind below 0.03)
+float kCentred = 0.0509f;   // m, a 45-degree reading when centred between walls
+float kScale = 1;           // the cell over the classic cell
 const bool kTraceDecisions = false;  // log "at x y heading do action" for every decision
 const int kForward = 300, kSlow = 150, kTurn = 130;
 
-enum class Mode : uint8_t { Decide, Forward, Turn, Settle, Done };
-Mode mode = Mode::Decide;
+enum class Mode : uint8_t { AwaitMaze, Decide, Forward, Turn, Settle, Done };
+Mode mode = Mode::AwaitMaze;
 uint8_t x = 0, y = 0;
 Direction heading = Direction::North;
 Action action = Action::None;
@@ -83,9 +102,33 @@ void recordWall(Direction side, bool wall) {
   }
 }
 
-void setup() {
-  Serial.begin(UNIMOUSE_BAUD);
-  robot.begin();
+// the maze as the simulator said (or the classic one), the start cell, and the pose in it
+void setupMaze() {
+  const MazeInfoSensor& info = robot.maze();
+  if (info.received() && info.width() > 0) {
+    const uint8_t width = info.width() < kMaxSide ? info.width() : kMaxSide;
+    const uint8_t height = info.height() < kMaxSide ? info.height() : kMaxSide;
+    if (width != info.width() || height != info.height()) {
+      robot.log("the maze is larger than this firmware's room: it explores what fits");
+    }
+    maze.resize(width, height);
+    paths.setGoal(info.goalX0(), info.goalY0(), info.goalX1(), info.goalY1());
+    kScale = info.cellMetres() / kCell;
+    kCell = info.cellMetres();
+  } else {
+    maze.resize(16, 16);
+    robot.log("no maze from the simulator: a classic 16 x 16 maze, centre goal");
+  }
+  robot.reportMazeSize(maze.width(), maze.height());
+  kSideWall *= kScale;
+  kFrontWall *= kScale;
+  kFrontStop *= kScale;
+  kCentred *= kScale;
+  // the robot at the same scale: wheels and track
+  spec.leftWheelRadius *= kScale;
+  spec.rightWheelRadius *= kScale;
+  spec.wheelBaseDistance *= kScale;
+  pose = PoseEstimator(spec);
   // the classic start cell: open to the north only
   maze.placeWall(0, 0, Direction::East);
   maze.removeWall(0, 0, Direction::North);
@@ -95,13 +138,25 @@ void setup() {
   pose.setPose(start);
 }
 
+void setup() {
+  Serial.begin(UNIMOUSE_BAUD);
+  robot.requestMaze();  // before begin(): in lock-step the answer comes with the first step
+  robot.begin();
+}
+
 void loop() {
   robot.update();
+  if (mode == Mode::AwaitMaze) {
+    // in lock-step the answer comes with the first step's frames
+    if (!robot.maze().received() && millis() < 1000) return;
+    setupMaze();
+    mode = Mode::Decide;
+  }
   pose.updatePose(robot.leftEncoderTotal(), robot.rightEncoderTotal());
   const Pose& p = pose.getPose();
   switch (mode) {
     case Mode::Decide: {
-      const PathManager<16, 16>::Phase before = paths.phase();
+      const PathManager<kMaxSide, kMaxSide>::Phase before = paths.phase();
       const uint16_t trips = paths.trips();
       action = paths.nextAction(x, y, heading);
       if (kTraceDecisions) {
@@ -110,7 +165,7 @@ void loop() {
                  static_cast<unsigned>(action));
         robot.log(dbg);
       }
-      if (paths.trips() != trips && before == PathManager<16, 16>::Phase::SpeedRun &&
+      if (paths.trips() != trips && before == PathManager<kMaxSide, kMaxSide>::Phase::SpeedRun &&
           !paths.towardsGoal()) {
         // a speed run reached the goal
         char line[40];
@@ -144,14 +199,14 @@ void loop() {
       const float toGo = (targetX - p.x) * stepX(heading) + (targetY - p.y) * stepY(heading);
       const float travelled = startToGo - toGo;
       // the side walls of the cell ahead pass the 45-degree sensors about half a cell before it
-      if (toGo < 0.11f && toGo > 0.07f) {
+      if (toGo < 0.11f * kScale && toGo > 0.07f * kScale) {
         minLeft = fminf(minLeft, robot.leftDistance());
         minRight = fminf(minRight, robot.rightDistance());
       }
       // the wall ahead of the cell, seen before the sensor gets too near to see it
-      if (toGo < 0.09f && toGo > 0.04f) minFront = fminf(minFront, robot.frontDistance());
+      if (toGo < 0.09f * kScale && toGo > 0.04f * kScale) minFront = fminf(minFront, robot.frontDistance());
       const bool wallAhead = minFront < kFrontWall;
-      if (toGo <= 0.002f || (robot.frontDistance() <= kFrontStop)) {
+      if (toGo <= 0.002f * kScale || (robot.frontDistance() <= kFrontStop)) {
         x = static_cast<uint8_t>(x + stepX(heading));
         y = static_cast<uint8_t>(y + stepY(heading));
         recordWall(turnLeft(heading), minLeft < kSideWall);
@@ -165,17 +220,19 @@ void loop() {
       const float left = robot.leftDistance(), right = robot.rightDistance();
       // positive turns left: nearer the left wall, the left sensor reads less, so turn right
       if (left < kSideWall && right < kSideWall) {
-        correction += 800 * (left - right);
+        correction += 800 / kScale * (left - right);
       } else if (left < kSideWall) {
-        correction += 800 * (left - kCentred);
+        correction += 800 / kScale * (left - kCentred);
       } else if (right < kSideWall) {
-        correction += 800 * (kCentred - right);
+        correction += 800 / kScale * (kCentred - right);
       }
       if (correction > 120) correction = 120;
       if (correction < -120) correction = -120;
       // ramp up over the first 3 cm, so that the wheels do not spin and fool the encoders
-      int base = toGo < 0.03f ? kSlow : kForward;
-      if (travelled < 0.03f) base = kSlow + static_cast<int>((kForward - kSlow) * travelled / 0.03f);
+      int base = toGo < 0.03f * kScale ? kSlow : kForward;
+      if (travelled < 0.03f * kScale) {
+        base = kSlow + static_cast<int>((kForward - kSlow) * travelled / (0.03f * kScale));
+      }
       drive(base - static_cast<int>(correction), base + static_cast<int>(correction));
       break;
     }
@@ -196,6 +253,7 @@ void loop() {
         mode = Mode::Decide;
       }
       break;
+    case Mode::AwaitMaze:  // left above
     case Mode::Done:
       break;
   }

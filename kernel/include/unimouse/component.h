@@ -87,6 +87,21 @@ class BindContext {
   }
   RngId Rng(const std::string& name) const { return {Check(b_.rng_stream(b_.ctx, name.c_str()))}; }
   void SetStateSize(int nstate) const { b_.set_state_size(b_.ctx, nstate); }
+  /// The maze the world was built from (see unimouse_bind); width_cells 0 on an open floor or
+  /// from a kernel older than the field.
+  struct MazeInfo {
+    int width_cells = 0;
+    int height_cells = 0;
+    double cell_m = 0;
+    int goal_x0 = 0, goal_y0 = 0, goal_x1 = 0, goal_y1 = 0;
+    bool goal_is_rectangle = true;
+  };
+  MazeInfo maze() const {
+    if (!UNIMOUSE_HAS_FIELD(&b_, unimouse_bind, maze_goal_is_rectangle)) return {};
+    return {
+        b_.maze_width_cells, b_.maze_height_cells, b_.maze_cell_m,  b_.maze_goal_x0,
+        b_.maze_goal_y0,     b_.maze_goal_x1,      b_.maze_goal_y1, b_.maze_goal_is_rectangle != 0};
+  }
   /// Declares a beam the host draws: from `site` along its x axis, `length` metres long; a
   /// length of range_max_m or more is a miss.
   void DeclareBeam(int site, SignalId length, double range_max_m) const {

@@ -93,6 +93,13 @@ typedef struct unimouse_bind {
   /* appended in 0.2: a beam the host draws, from a site along its x axis, as long as the value of
    * a signal (metres); a value of range_max_m or more is a miss */
   void (*declare_beam)(void* ctx, int site, int length_signal, double range_max_m);
+  /* appended in 0.4: the maze the world was built from, for a firmware that asks for it; width
+   * and height 0 on an open floor. The goal is the smallest rectangle holding every goal cell,
+   * maze_goal_is_rectangle 0 when it holds other cells too. */
+  int maze_width_cells, maze_height_cells;
+  double maze_cell_m;
+  int maze_goal_x0, maze_goal_y0, maze_goal_x1, maze_goal_y1;
+  int maze_goal_is_rectangle;
 } unimouse_bind;
 
 /* A text line a component logged (a firmware's log channel, for one), with when and who. */

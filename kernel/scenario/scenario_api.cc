@@ -784,10 +784,13 @@ TableArgument TableArgumentOf(const ApiEntry& entry) {
   TableArgument table;
   for (size_t i = 0; i < arguments.size(); ++i) {
     if (arguments[i].front() != '{') continue;
+    const std::vector<std::string_view> keys =
+        SplitArguments(arguments[i].substr(1, arguments[i].size() - 2));
+    // "{field = value, ...}" takes keys of the scenario's choosing (sim.record_add's fields)
+    if (std::find(keys.begin(), keys.end(), "...") != keys.end()) continue;
     table.position = static_cast<int>(i) + 1;
-    for (std::string_view key : SplitArguments(arguments[i].substr(1, arguments[i].size() - 2))) {
+    for (std::string_view key : keys)
       table.keys.emplace_back(key.substr(0, key.find_first_of(" =?")));
-    }
   }
   return table;
 }

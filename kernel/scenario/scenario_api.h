@@ -32,7 +32,8 @@ std::span<const ApiEntry> ScenarioApiEntries();
 /// The table argument of a function as its signature shows it: its position (1 for
 /// "robot_place{x_m, y_m, yaw_deg?}", 2 for "snapshot_save(file, {camera?, ...})", 0 when it takes
 /// none) and the keys it takes, the signature's names without "?" or "= ...". A script that gives
-/// any other key is stopped at its line.
+/// any other key is stopped at its line. A table written "{field = value, ...}" takes keys of the
+/// script's choosing and is not one of these.
 struct TableArgument {
   int position = 0;
   std::vector<std::string> keys;

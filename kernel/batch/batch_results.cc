@@ -36,34 +36,6 @@ std::string Number(const json& value, const char* format) {
   return text;
 }
 
-std::string Xml(const std::string& text) {
-  std::string out;
-  for (char c : text) {
-    switch (c) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      default:
-        // control characters other than tab and newline are not allowed in XML 1.0
-        if (static_cast<unsigned char>(c) < 0x20 && c != '\t' && c != '\n') {
-          out += ' ';
-        } else {
-          out += c;
-        }
-    }
-  }
-  return out;
-}
-
 std::string Text(const json& value) {
   return value.is_string() ? value.get<std::string>() : value.is_null() ? "" : value.dump();
 }
@@ -234,24 +206,24 @@ void WriteResults(const std::string& out_dir, const json& rows, const std::strin
     }
     const int not_failed_errors =
         s["jobs"].get<int>() - s["passed"].get<int>() - s["failed"].get<int>();
-    xml << "  <testsuite name=\"" << Xml(name) << "\" tests=\"" << s["jobs"].get<int>()
+    xml << "  <testsuite name=\"" << XmlEscaped(name) << "\" tests=\"" << s["jobs"].get<int>()
         << "\" failures=\"" << s["failed"].get<int>() << "\" errors=\"" << not_failed_errors
         << "\" time=\"" << Number(time_s, "%.3f") << "\">\n";
     for (const auto& row : rows) {
       if (Text(row["submission"]) != name) continue;
       const std::string id = Text(row["id"]);
       const std::string status = Text(row["status"]);
-      xml << "    <testcase classname=\"" << Xml(name + "." + Text(row["scenario"])) << "\" name=\""
-          << Xml(id.substr(id.find('/') + 1)) << "\" time=\"" << Number(row["wall_time_s"], "%.3f")
-          << "\"";
+      xml << "    <testcase classname=\"" << XmlEscaped(name + "." + Text(row["scenario"]))
+          << "\" name=\"" << XmlEscaped(id.substr(id.find('/') + 1)) << "\" time=\""
+          << Number(row["wall_time_s"], "%.3f") << "\"";
       if (status == "passed") {
         xml << "/>\n";
         continue;
       }
       const char* element = status == "failed" ? "failure" : "error";
-      xml << ">\n      <" << element << " type=\"" << Xml(status) << "\" message=\""
-          << Xml(Text(row["reason"])) << "\">" << Xml(Text(row["dir"])) << "</" << element
-          << ">\n    </testcase>\n";
+      xml << ">\n      <" << element << " type=\"" << XmlEscaped(status) << "\" message=\""
+          << XmlEscaped(Text(row["reason"])) << "\">" << XmlEscaped(Text(row["dir"])) << "</"
+          << element << ">\n    </testcase>\n";
     }
     xml << "  </testsuite>\n";
   }

@@ -3,6 +3,7 @@
 #define UNIMOUSE_CORE_TEXT_FILE_H_
 
 #include <string>
+#include <string_view>
 
 namespace unimouse {
 
@@ -16,6 +17,11 @@ std::string ReadTextFile(const std::string& path);
 
 /// Writes a file whole, through a temporary name so that readers never see half of it.
 void WriteTextFile(const std::string& path, const std::string& content);
+
+/// Returns text safe between XML or HTML tags and inside a quoted attribute value: & < > " '
+/// escaped, and control characters other than tab and newline (which XML 1.0 does not allow)
+/// replaced by spaces. For names from robot files, job reasons from firmware, any text.
+std::string XmlEscaped(std::string_view text);
 
 }  // namespace unimouse
 

@@ -9,6 +9,7 @@
 #include <numbers>
 #include <sstream>
 
+#include "text_file.h"
 #include "unimouse/errors.h"
 
 namespace unimouse {
@@ -48,33 +49,6 @@ class Mjcf {
   std::ostringstream out_;
 };
 
-// a name from the robot file as an XML attribute value: it may hold any character
-std::string Xml(const std::string& text) {
-  std::string out;
-  for (const char c : text) {
-    switch (c) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '\'':
-        out += "&apos;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      default:
-        out += c;
-    }
-  }
-  return out;
-}
-
 const char* MaterialOf(StaticBox::Kind kind) {
   switch (kind) {
     case StaticBox::Kind::kWall:
@@ -108,7 +82,7 @@ void WriteAssets(Mjcf& x) {
 
 void WriteGeom(Mjcf& x, const GeomSpec& g) {
   x << "<geom";
-  if (!g.name.empty()) x << " name='" << Xml(g.name) << "'";
+  if (!g.name.empty()) x << " name='" << XmlEscaped(g.name) << "'";
   x << " type='" << g.type << "' group='" << kGroupRobot << "' ";
   x << (g.contact ? kRobotContact : "contype='0' conaffinity='0'");
   if (g.type == "box") {
@@ -126,7 +100,7 @@ void WriteGeom(Mjcf& x, const GeomSpec& g) {
 }
 
 void WriteBody(Mjcf& x, const BodySpec& b, bool is_chassis) {
-  x << "<body name='" << Xml(b.name) << "'";
+  x << "<body name='" << XmlEscaped(b.name) << "'";
   if (!is_chassis) {
     x << " pos='";
     x.Vec(b.pos_m) << "' euler='";
@@ -134,10 +108,10 @@ void WriteBody(Mjcf& x, const BodySpec& b, bool is_chassis) {
   }
   x << ">\n";
   if (is_chassis) {
-    x << "<freejoint name='" << Xml(b.name) << "_free'/>\n";
+    x << "<freejoint name='" << XmlEscaped(b.name) << "_free'/>\n";
   } else {
     const JointSpec& j = *b.joint;
-    x << "<joint name='" << Xml(j.name) << "' type='" << j.type << "'";
+    x << "<joint name='" << XmlEscaped(j.name) << "' type='" << j.type << "'";
     if (j.type == "hinge") {
       x << " axis='";
       x.Vec(j.axis) << "'";
@@ -146,7 +120,8 @@ void WriteBody(Mjcf& x, const BodySpec& b, bool is_chassis) {
   }
   for (const auto& g : b.geoms) WriteGeom(x, g);
   for (const auto& s : b.sites) {
-    x << "<site name='" << Xml(s.name) << "' group='" << kGroupRobot << "' size='0.003' pos='";
+    x << "<site name='" << XmlEscaped(s.name) << "' group='" << kGroupRobot
+      << "' size='0.003' pos='";
     x.Vec(s.pos_m) << "' euler='";
     x.Vec(s.euler_deg) << "'/>\n";
   }
@@ -331,7 +306,7 @@ std::unique_ptr<World> World::Build(const RobotSpec& robot, const Maze* maze,
 
   // physics: floor, proxies, robot
   Mjcf x;
-  x << "<mujoco model='" << Xml(robot.name) << "'>\n"
+  x << "<mujoco model='" << XmlEscaped(robot.name) << "'>\n"
     << "<compiler angle='degree' eulerseq='xyz' autolimits='true'/>\n"
     << "<option timestep='" << robot.timestep_s << "' integrator='" << robot.integrator << "'/>\n"
     << "<visual><global offwidth='1920' offheight='1080'/></visual>\n";
@@ -350,7 +325,8 @@ std::unique_ptr<World> World::Build(const RobotSpec& robot, const Maze* maze,
   WriteBody(x, robot.chassis, true);
   x << "</worldbody>\n<actuator>\n";
   for (const auto& a : robot.actuators) {
-    x << "<motor name='" << Xml(a.name) << "' joint='" << Xml(a.joint) << "' gear='1'/>\n";
+    x << "<motor name='" << XmlEscaped(a.name) << "' joint='" << XmlEscaped(a.joint)
+      << "' gear='1'/>\n";
   }
   x << "</actuator>\n</mujoco>\n";
   w->mjcf_ = x.str();

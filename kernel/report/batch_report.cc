@@ -144,34 +144,6 @@ const json& Field(const json& object, const char* key) {
   return found == object.end() ? kNull : *found;
 }
 
-// text safe both between tags and inside a quoted attribute value
-std::string Escaped(std::string_view text) {
-  std::string out;
-  out.reserve(text.size());
-  for (const char c : text) {
-    switch (c) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      case '\'':
-        out += "&#39;";
-        break;
-      default:
-        out += c;
-    }
-  }
-  return out;
-}
-
 // a relative path as an address: every byte but letters, digits, "-._~" and "/" is
 // percent-encoded, so a name with '#', '?', ':' or a space stays one file name
 std::string PathAddress(std::string_view path) {
@@ -213,13 +185,13 @@ std::string Seconds(const json& value) {
 // a cell that sorts by its number in full precision; empty when the value is not a number
 std::string NumberCell(const json& value, const std::string& shown) {
   const std::string sort_value = value.is_number() ? value.dump() : "";
-  return "<td class=\"num\" data-value=\"" + sort_value + "\">" + Escaped(shown) + "</td>";
+  return "<td class=\"num\" data-value=\"" + sort_value + "\">" + XmlEscaped(shown) + "</td>";
 }
 
 std::string TextCell(const std::string& text, const char* css_class = nullptr) {
   const std::string attribute =
       css_class == nullptr ? "" : std::string(" class=\"") + css_class + "\"";
-  return "<td" + attribute + ">" + Escaped(text) + "</td>";
+  return "<td" + attribute + ">" + XmlEscaped(text) + "</td>";
 }
 
 // the class of a status comes from the known list only, never from the text itself
@@ -229,7 +201,7 @@ std::string StatusBadge(const json& status) {
   for (const char* known : kStatuses) {
     if (text == known) css_class = std::string("status-") + known;
   }
-  return "<span class=\"status " + css_class + "\">" + Escaped(text) + "</span>";
+  return "<span class=\"status " + css_class + "\">" + XmlEscaped(text) + "</span>";
 }
 
 struct Column {
@@ -243,11 +215,11 @@ std::string HeaderRow(const std::vector<Column>& columns) {
   for (const auto& c : columns) {
     out += "<th";
     if (!c.key.empty()) {
-      out += " data-key=\"" + Escaped(c.key) + "\"";
+      out += " data-key=\"" + XmlEscaped(c.key) + "\"";
       if (c.numeric) out += " data-type=\"number\"";
-      out += " title=\"sort by " + Escaped(c.title) + "\"";
+      out += " title=\"sort by " + XmlEscaped(c.title) + "\"";
     }
-    out += ">" + Escaped(c.title) + "</th>";
+    out += ">" + XmlEscaped(c.title) + "</th>";
   }
   return out + "</tr></thead>\n";
 }
@@ -274,15 +246,15 @@ std::string PicturesCell(const json& job) {
            (pictures.size() == 1 ? " picture" : " pictures") + "</summary>";
     for (const auto& picture : pictures) {
       const std::string path = Shown(picture);
-      const std::string address = Escaped(PathAddress(path));
-      const std::string name = Escaped(path.substr(path.find_last_of('/') + 1));
+      const std::string address = XmlEscaped(PathAddress(path));
+      const std::string name = XmlEscaped(path.substr(path.find_last_of('/') + 1));
       out += "<a href=\"" + address + "\"><img src=\"" + address + "\" alt=\"" + name +
              "\" loading=\"lazy\">" + name + "</a>";
     }
     out += "</details>";
   }
   const std::string dir = Shown(Field(job, "dir"));
-  if (!dir.empty()) out += "<a href=\"" + Escaped(PathAddress(dir)) + "/\">job folder</a>";
+  if (!dir.empty()) out += "<a href=\"" + XmlEscaped(PathAddress(dir)) + "/\">job folder</a>";
   return out + "</td>";
 }
 
@@ -301,8 +273,8 @@ std::string JobTable(const json& jobs) {
   size_t index = 0;
   for (const auto& job : jobs) {
     out += "<tr id=\"job-" + std::to_string(index++) + "\" data-job=\"" +
-           Escaped(Shown(Field(job, "id"))) + "\" data-status=\"" +
-           Escaped(Shown(Field(job, "status"))) + "\">";
+           XmlEscaped(Shown(Field(job, "id"))) + "\" data-status=\"" +
+           XmlEscaped(Shown(Field(job, "status"))) + "\">";
     out += TextCell(Shown(Field(job, "submission")));
     out += TextCell(Shown(Field(job, "scenario")));
     out += TextCell(Shown(Field(job, "maze")));
@@ -327,7 +299,7 @@ std::string BestCell(const json& best, const json& jobs) {
   std::vector<std::string> parts;
   const std::string id = Shown(Field(best, "id"));
   if (!id.empty()) {
-    parts.push_back(Escaped(id));
+    parts.push_back(XmlEscaped(id));
     for (size_t i = 0; i < jobs.size(); ++i) {
       if (Shown(Field(jobs[i], "id")) != id) continue;
       parts.back() = "<a href=\"#job-" + std::to_string(i) + "\">" + parts.back() + "</a>";
@@ -335,7 +307,7 @@ std::string BestCell(const json& best, const json& jobs) {
     }
   }
   for (const auto& [name, value] : best.items()) {
-    if (name != "id") parts.push_back(Escaped(name) + " " + Escaped(Shown(value)));
+    if (name != "id") parts.push_back(XmlEscaped(name) + " " + XmlEscaped(Shown(value)));
   }
   std::string out = "<td>";
   for (size_t i = 0; i < parts.size(); ++i) out += (i == 0 ? "" : "; ") + parts[i];
@@ -385,10 +357,10 @@ std::string BatchReportHtml(const nlohmann::json& results) {
   const std::string manifest = Shown(Field(results, "manifest"));
 
   std::string out(kHead);
-  out += "<title>Batch report: " + Escaped(manifest) + "</title>\n</head>\n<body>\n";
-  out += "<h1>Batch report</h1>\n<p>Manifest <code>" + Escaped(manifest) + "</code>, unimouse " +
-         Escaped(Shown(Field(results, "unimouse_version"))) + ". " + Escaped(JobCounts(jobs)) +
-         ".</p>\n";
+  out += "<title>Batch report: " + XmlEscaped(manifest) + "</title>\n</head>\n<body>\n";
+  out += "<h1>Batch report</h1>\n<p>Manifest <code>" + XmlEscaped(manifest) + "</code>, unimouse " +
+         XmlEscaped(Shown(Field(results, "unimouse_version"))) + ". " +
+         XmlEscaped(JobCounts(jobs)) + ".</p>\n";
   out += "<h2>Submissions</h2>\n" + SummaryTable(summary, jobs);
   out +=
       "<h2>Jobs</h2>\n<div id=\"controls\" hidden><label>Status <select id=\"status-filter\">"

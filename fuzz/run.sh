@@ -33,7 +33,13 @@ for target in "${targets[@]}"; do
   mkdir -p "$corpus"
   echo "== $target: ${seconds} s"
   # -rss_limit_mb: every input's memory is bounded; -timeout: so is its time
-  "$build/bin/$target" "$corpus" "$seeds/${target#fuzz_}" -max_total_time="$seconds" \
+  log=$build/findings/$target.log
+  if ! "$build/bin/$target" "$corpus" "$seeds/${target#fuzz_}" -max_total_time="$seconds" \
     -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 \
-    -artifact_prefix="$build/findings/$target-" 2>&1 | tail -n 12
+    -artifact_prefix="$build/findings/$target-" > "$log" 2>&1; then
+    # the finding with its reason and stack, without the progress lines before it
+    grep -v '^#[0-9]' "$log" | tail -n 60
+    exit 1
+  fi
+  tail -n 12 "$log"
 done

@@ -83,10 +83,21 @@ constexpr RobotKey kRobotKeys[] = {
 };
 
 // names must be unique per kind across the whole robot
+// MJCF is XML, whose attributes cannot carry control characters: a name with one would reach
+// the physics as another name
+void RequirePrintableName(const std::string& kind, const std::string& name, const YamlNode& where) {
+  for (const char c : name) {
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) {
+      where.Fail(kind + " name must not contain control characters (tab, newline, ...)");
+    }
+  }
+}
+
 class NameBook {
  public:
   void Add(const std::string& kind, const std::string& name, const YamlNode& where) {
     if (name.empty()) return;
+    RequirePrintableName(kind, name, where);
     auto [it, fresh] = seen_[kind].emplace(name, where.location.line);
     if (!fresh) {
       where.Fail(kind + " name '" + name + "' is already used at line " +
@@ -260,7 +271,9 @@ RobotSpec ParseRobotSpec(const std::string& text, const std::string& file) {
   const MapReader r(root, "robot", RobotKeysOf("robot"));
   RobotSpec robot;
   robot.file = file;
-  robot.name = r.Required("name").AsString("name");
+  const YamlNode& name = r.Required("name");
+  robot.name = name.AsString("name");
+  RequirePrintableName("robot", robot.name, name);
   if (const YamlNode* t = r.Optional("timestep_s")) {
     robot.timestep_s = t->AsNumber("timestep_s");
     if (!(robot.timestep_s >= kMinTimestep_s && robot.timestep_s <= kMaxTimestep_s)) {

@@ -185,6 +185,14 @@ TEST(RobotSpecTest, DuplicateKeysAndNamesAreRefused) {
             "robot.yaml:7:7: body name 'body' is already used at line 3");
 }
 
+// found by fuzz_robot: MJCF cannot carry a control character, so the world's body was another
+TEST(RobotSpecTest, NamesWithControlCharactersAreRefused) {
+  EXPECT_EQ(ErrorOf(TinyWith("name: body", "name: \"bo\\x01dy\"")),
+            "robot.yaml:3:3: body name must not contain control characters (tab, newline, ...)");
+  EXPECT_EQ(ErrorOf(TinyWith("name: tiny", "name: \"ti\\tny\"")),
+            "robot.yaml:1:7: robot name must not contain control characters (tab, newline, ...)");
+}
+
 TEST(RobotSpecTest, ActuatorsMustNameAJoint) {
   EXPECT_EQ(ErrorOf(std::string(kTiny) + "actuators:\n  - { name: m, joint: axle }\n"),
             "robot.yaml:7:23: actuator 'm': no joint named 'axle'");

@@ -119,25 +119,15 @@ void RemoveGuards() {
   sigaction(WatchdogSignal(), &previous[WatchdogSignal()], nullptr);
 }
 
+// a fault at an address says where; the other signals say what
 std::string SignalText(int sig, void* address) {
+  if (sig != SIGSEGV && sig != SIGBUS) return FirmwareSignalText(sig);
   char text[128];
-  switch (sig) {
-    case SIGSEGV:
-    case SIGBUS:
-      std::snprintf(
-          text, sizeof(text), "%s (%s 0x%lx)", sig == SIGSEGV ? "SIGSEGV" : "SIGBUS",
-          reinterpret_cast<uintptr_t>(address) < 4096 ? "null pointer? address" : "bad address",
-          static_cast<unsigned long>(reinterpret_cast<uintptr_t>(address)));
-      return text;
-    case SIGFPE:
-      return "SIGFPE (division by zero?)";
-    case SIGILL:
-      return "SIGILL (an illegal instruction: a function that returns no value?)";
-    case SIGABRT:
-      return "SIGABRT (abort(), a failed assert or an uncaught exception)";
-    default:
-      return "signal " + std::to_string(sig);
-  }
+  std::snprintf(
+      text, sizeof(text), "%s (%s 0x%lx)", sig == SIGSEGV ? "SIGSEGV" : "SIGBUS",
+      reinterpret_cast<uintptr_t>(address) < 4096 ? "null pointer? address" : "bad address",
+      static_cast<unsigned long>(reinterpret_cast<uintptr_t>(address)));
+  return text;
 }
 
 class InprocTransport final : public Transport {

@@ -74,6 +74,7 @@ class NativeTransport final : public StreamTransport {
     if (text_fd_ >= 0) ::close(text_fd_);
     if (pinned_) ::sched_setaffinity(0, sizeof(own_cpus_), &own_cpus_);
     if (child_ <= 0) return;
+    if (ended_) return;
     ::kill(child_, SIGTERM);
     for (int i = 0; i < 100; ++i) {
       if (::waitpid(child_, nullptr, WNOHANG) == child_) return;
@@ -81,6 +82,25 @@ class NativeTransport final : public StreamTransport {
     }
     ::kill(child_, SIGKILL);
     ::waitpid(child_, nullptr, 0);
+  }
+
+  std::string Failure() const override {
+    // the socket closes as the program exits, a moment before it can be waited for; a program
+    // still connected is alive (or hangs) and is not waited for at all
+    for (int i = 0; !ended_ && !Connected() && i < 100; ++i) {
+      int status = 0;
+      if (::waitpid(child_, &status, WNOHANG) == child_) {
+        ended_ = true;
+        if (WIFSIGNALED(status)) {
+          failure_ = "the firmware crashed: " + FirmwareSignalText(WTERMSIG(status));
+        } else {
+          failure_ = "the firmware exited with code " + std::to_string(WEXITSTATUS(status));
+        }
+      } else {
+        ::usleep(10000);
+      }
+    }
+    return failure_;
   }
 
   std::string Describe() const override {
@@ -119,6 +139,9 @@ class NativeTransport final : public StreamTransport {
   std::string partial_;  // its text after the last whole line
   cpu_set_t own_cpus_;   // the simulator thread's cores before the firmware shared one
   bool pinned_ = false;  // whether the simulator thread runs on the firmware's core
+  // how the program ended, once it has been waited for
+  mutable bool ended_ = false;
+  mutable std::string failure_;
 };
 
 }  // namespace

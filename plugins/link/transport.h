@@ -79,6 +79,9 @@ std::span<const TransportKind> Transports();
 /// program.
 const char* TransportUsages();
 
+/// Returns a signal that ended a firmware, named for a student: "SIGFPE (division by zero?)".
+std::string FirmwareSignalText(int sig);
+
 /// Opens a transport from its spec, "SCHEME" or "SCHEME:REST". Throws InputError.
 std::unique_ptr<Transport> OpenTransport(const std::string& spec);
 

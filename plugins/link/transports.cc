@@ -2,6 +2,9 @@
 // The one list of transports. It feeds the `transport` parameter's documentation (and so
 // `unimouse run --help`), the error for an unknown scheme, and docs/protocol.md. A new
 // transport is a new source file defining its opener, declared and listed here.
+#include <signal.h>
+
+#include <cstring>
 #include <string>
 
 #include "transport.h"
@@ -16,6 +19,22 @@ std::unique_ptr<Transport> OpenTcp(const std::string& rest);
 std::unique_ptr<Transport> OpenNative(const std::string& command);
 std::unique_ptr<Transport> OpenAvr(const std::string& path);
 std::unique_ptr<Transport> OpenInproc(const std::string& path);
+
+std::string FirmwareSignalText(int sig) {
+  switch (sig) {
+    case SIGSEGV:
+      return "SIGSEGV (a bad pointer or array index?)";
+    case SIGFPE:
+      return "SIGFPE (division by zero?)";
+    case SIGILL:
+      return "SIGILL (an illegal instruction: a function that returns no value?)";
+    case SIGABRT:
+      return "SIGABRT (abort(), a failed assert or an uncaught exception)";
+    default:
+      const char* name = sigabbrev_np(sig);
+      return name ? "SIG" + std::string(name) : "signal " + std::to_string(sig);
+  }
+}
 
 namespace {
 

@@ -6,6 +6,7 @@
 #include <signal.h>
 
 #include <cerrno>
+#include <chrono>
 #include <cstring>
 #include <filesystem>
 #include <regex>
@@ -95,6 +96,26 @@ TEST_F(NativeLinkTest, TheRunCommandReportsAHungFirmwareWithExitCode3) {
   std::filesystem::remove_all(out);
   EXPECT_EQ(o.exit_code, 3) << o.output;
   EXPECT_NE(o.output.find("did not finish its step at t=0.100 s"), std::string::npos) << o.output;
+}
+
+// a batch tells a crashed submission from a hung one by these words (docs/batch.md)
+TEST_F(NativeLinkTest, AFirmwareThatDiesOfASignalOrExitsIsReportedSoAtOnce) {
+  for (const auto& [option, expected] :
+       {std::pair{" --crash-at 30", "the firmware crashed: SIGSEGV"},
+        std::pair{" --exit-at 30", "the firmware exited with code 4"}}) {
+    // a lock-step timeout far longer than the test: the end is known, not waited for
+    auto kernel = Make(option, 60);
+    const auto start = std::chrono::steady_clock::now();
+    try {
+      for (int i = 0; i < 100; ++i) kernel->Step();
+      FAIL() << "the firmware's end went unnoticed";
+    } catch (const RuntimeFault& e) {
+      EXPECT_NE(std::string(e.what()).find(expected), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("at t=0.03"), std::string::npos) << e.what();
+    }
+    EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(30));
+    kernel.reset();
+  }
 }
 
 TEST_F(NativeLinkTest, WhatTheFirmwareReportsIsKeptAndDrawn) {

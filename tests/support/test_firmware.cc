@@ -3,7 +3,9 @@
 // clock frame with motor commands (drive until the front sensor sees a wall within 0.3 m) and
 // step-done.
 //
-//   --hang-at N          stop answering at step N, as a crashed firmware would
+//   --hang-at N          stop answering at step N, as a hung firmware would
+//   --crash-at N         die of SIGSEGV at step N
+//   --exit-at N          exit with code 4 at step N
 //   --report ID:ENC,...  report every frame with one of these ids (ENC tof, i16 or f32: how it
 //                        reads) as a log line "rx ID STEP VALUE", STEP counting clock frames
 //   --motors L,R         send these commands every step instead
@@ -15,6 +17,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -76,6 +79,8 @@ std::string Value(const std::string& encoding, const uint8_t* payload) {
 
 int main(int argc, char** argv) {
   long hang_at = -1;
+  long crash_at = -1;
+  long exit_at = -1;
   std::map<int, std::string> report;
   bool fixed_motors = false;
   int left = 0, right = 0;
@@ -85,6 +90,8 @@ int main(int argc, char** argv) {
       junk_every_step = static_cast<size_t>(std::atol(argv[i + 1]));
     }
     if (std::strcmp(argv[i], "--hang-at") == 0) hang_at = std::atol(argv[i + 1]);
+    if (std::strcmp(argv[i], "--crash-at") == 0) crash_at = std::atol(argv[i + 1]);
+    if (std::strcmp(argv[i], "--exit-at") == 0) exit_at = std::atol(argv[i + 1]);
     if (std::strcmp(argv[i], "--report") == 0) report = ParseReport(argv[i + 1]);
     if (std::strcmp(argv[i], "--motors") == 0) {
       fixed_motors = std::sscanf(argv[i + 1], "%d,%d", &left, &right) == 2;
@@ -142,6 +149,8 @@ int main(int argc, char** argv) {
       }
       if (pending[i] == UNIMOUSE_ID_TOF_FRONT) front = unimouse_get_u16(&pending[i + 1]);
       if (pending[i] == UNIMOUSE_ID_CLOCK) {
+        if (step == crash_at) ::raise(SIGSEGV);
+        if (step == exit_at) std::exit(4);
         if (step++ == hang_at) {
           for (;;) ::pause();
         }

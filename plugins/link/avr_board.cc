@@ -12,6 +12,7 @@
 #include <cstring>
 #include <ctime>
 #include <filesystem>
+#include <set>
 
 #include "unimouse/errors.h"
 #include "unimouse_protocol.h"
@@ -71,6 +72,26 @@ void FreeMcu(avr_t* avr) {
   }
   std::free(pool.irq);
   std::free(avr);
+}
+
+// the names of an ELF file's sections; none when it cannot be read as ELF
+std::set<std::string> SectionNames(const std::string& elf_path) {
+  std::set<std::string> names;
+  if (elf_version(EV_CURRENT) == EV_NONE) return names;
+  const int fd = ::open(elf_path.c_str(), O_RDONLY);
+  if (fd < 0) return names;
+  Elf* elf = elf_begin(fd, ELF_C_READ, nullptr);
+  size_t strings = 0;
+  if (elf && elf_getshdrstrndx(elf, &strings) == 0) {
+    for (Elf_Scn* scn = nullptr; (scn = elf_nextscn(elf, scn)) != nullptr;) {
+      GElf_Shdr shdr;
+      if (gelf_getshdr(scn, &shdr) == nullptr) continue;
+      if (const char* name = elf_strptr(elf, strings, shdr.sh_name)) names.insert(name);
+    }
+  }
+  if (elf) elf_end(elf);
+  ::close(fd);
+  return names;
 }
 
 }  // namespace
@@ -153,6 +174,12 @@ AvrBoard::AvrBoard(const std::string& elf_path, const Options& options) : option
     }
   } fw;
   avr_global_logger_set(&Logger);
+  // simavr 1.6 dereferences a null pointer when an image has lock bits but no fuses
+  const std::set<std::string> sections = SectionNames(elf_path);
+  UNIMOUSE_THROW_UNLESS(sections.count(".lock") == 0 || sections.count(".fuse") == 1,
+                        elf_path +
+                            ": lock bits (.lock) without fuses (.fuse), which the emulated board "
+                            "cannot load: give the part's fuses too, or leave the lock bits out");
   UNIMOUSE_THROW_UNLESS(elf_read_firmware(elf_path.c_str(), &fw) == 0 && fw.flashsize > 0,
                         elf_path + ": not an AVR .elf image");
   // the image's own AVR_MCU section wins over the link's parameters

@@ -6,10 +6,13 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <string>
 #include <vector>
 
+#include "run_program.h"
+#include "text_file.h"
 #include "unimouse/errors.h"
 
 namespace unimouse::link {
@@ -151,6 +154,28 @@ TEST(AvrBoardTest, AnImageLargerThanThePartsFlashIsAnInputError) {
               std::string::npos)
         << e.what();
   }
+}
+
+// found by hand: simavr's loader itself crashes on such an image, so it is refused before
+TEST(AvrBoardTest, LockBitsWithoutFusesAreAnInputError) {
+  FIRMWARE_OR_SKIP(elf, "millis_clock");
+  const std::string dir = testing::FreshDirectory("avr_lock_bits");
+  WriteTextFile(dir + "/lock", "\xff");
+  const std::string locked = dir + "/locked.elf";
+  if (std::system(("avr-objcopy --add-section .lock=" + dir + "/lock " + elf + " " + locked +
+                   " 2> /dev/null")
+                      .c_str()) != 0) {
+    GTEST_SKIP() << "no avr-objcopy (binutils-avr)";
+  }
+  try {
+    AvrBoard board(locked, {});
+    FAIL() << "loaded";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("lock bits (.lock) without fuses (.fuse)"),
+              std::string::npos)
+        << e.what();
+  }
+  std::filesystem::remove_all(dir);
 }
 
 // under the sanitizer build, also that the refused MCU is freed and forgotten

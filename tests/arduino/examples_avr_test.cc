@@ -31,8 +31,12 @@ ExampleRun RunOnBoard(const std::string& image, const std::string& scenario,
     run.result.erase("real_time_factor");
     run.result.erase("wall_time_split_s");
     run.result.erase("real_time_pacing");
-    run.result["measurements"]["link"].erase("avr.host_cpu_s");
-    run.result["measurements"]["link"].erase("avr.host_emulated_mhz");
+    // a run that ended early has no board figures: its exit code and output say why
+    if (const auto board = run.result.find("measurements");
+        board != run.result.end() && board->contains("link")) {
+      (*board)["link"].erase("avr.host_cpu_s");
+      (*board)["link"].erase("avr.host_emulated_mhz");
+    }
   }
   return run;
 }

@@ -233,6 +233,8 @@ int main(int argc, char** argv) {
   mms_cmd->add_flag("--end-on-crash", mms.end_on_crash,
                     "a move into a wall ends the run (mms itself only replies crash)");
   mms_cmd->add_option("program", mms.program, "the program and its arguments, after --");
+  mms_cmd->add_option("--program-dir", mms.program_dir,
+                      "the program's working directory (mms's Directory setting)");
   mms_cmd->add_option("--port", mms.port,
                       "instead of a program: a board or relay speaking the protocol on pty or "
                       "pty:LINK, serial:PATH@BAUD or tcp::PORT, its log on lines starting 'log '");

@@ -142,6 +142,23 @@ T Get(const nlohmann::json& j, const nlohmann::json::json_pointer& at, T fallbac
   return fallback;
 }
 
+bool IsMmsResult(const nlohmann::json& result) {
+  return Get<std::string>(result, nlohmann::json::json_pointer("/command"), "") == "mms";
+}
+
+// what a job scores: the scenario's scores, or an mms run's score and counts
+nlohmann::json Scores(const nlohmann::json& result) {
+  using P = nlohmann::json::json_pointer;
+  if (!IsMmsResult(result)) {
+    return Get<nlohmann::json>(result, P("/scenario/scores"), nlohmann::json::object());
+  }
+  nlohmann::json scores = nlohmann::json::object();
+  for (const char* name : {"score", "moves", "crashes"}) {
+    if (result.contains(name)) scores[name] = result[name];
+  }
+  return scores;
+}
+
 nlohmann::json LimitsJson(const JobLimits& l) {
   return {{"wall_time_s", l.wall_time_s},
           {"cpu_time_s", l.cpu_time_s},
@@ -175,8 +192,10 @@ JobOutcome ClassifyJob(const ProcessEnd& end, const nlohmann::json& result,
     }
     return {"crashed", why};
   }
-  const std::string error = Get<std::string>(result, P("/error"), "");
-  const std::string reason = Get<std::string>(result, P("/scenario/reason"), "");
+  // an mms program's run says why it ended in its own field (docs/mms.md)
+  const bool mms = IsMmsResult(result);
+  const std::string error = Get<std::string>(result, P(mms ? "/reason" : "/error"), "");
+  const std::string reason = Get<std::string>(result, P(mms ? "/reason" : "/scenario/reason"), "");
   if (result.is_null()) {
     return {"crashed", "the run ended with exit code " + std::to_string(end.exit_code) +
                            " and wrote no result.json"};
@@ -189,6 +208,10 @@ JobOutcome ClassifyJob(const ProcessEnd& end, const nlohmann::json& result,
     case kExitBadInput:
       return {"bad_input", error};
     case kExitRuntimeFault: {
+      if (mms) {
+        const bool crashed = Get<std::string>(result, P("/status"), "") == "program_crashed";
+        return {crashed ? "crashed" : "firmware_error", reason};
+      }
       // a firmware ended by a fatal signal is named by the link ("the firmware crashed: SIGSEGV")
       if (error.find("firmware crashed: SIG") != std::string::npos) return {"crashed", error};
       // a component's failure is the firmware's (its link) or the robot's; else the script's
@@ -307,7 +330,7 @@ int RunJob(const Manifest& manifest, const Job& job, const std::string& batch_ou
   nlohmann::json record = {
       {"id", job.id},
       {"submission", sub.name},
-      {"scenario", manifest.scenarios[static_cast<size_t>(job.scenario)].name},
+      {"scenario", ScenarioName(manifest, job)},
       {"maze", job.maze.empty() ? nlohmann::json(nullptr) : nlohmann::json(job.maze)},
       {"seed", job.seed},
       {"status", outcome.status},
@@ -315,8 +338,10 @@ int RunJob(const Manifest& manifest, const Job& job, const std::string& batch_ou
       {"exit_code", end.exit_code >= 0 ? nlohmann::json(end.exit_code) : nlohmann::json(nullptr)},
       {"signal",
        end.signal != 0 ? nlohmann::json(SignalName(end.signal)) : nlohmann::json(nullptr)},
-      {"scores", Get<nlohmann::json>(result, P("/scenario/scores"), nlohmann::json::object())},
-      {"sim_time_s", Get<nlohmann::json>(result, P("/sim_time_s"), nullptr)},
+      {"scores", Scores(result)},
+      {"sim_time_s",
+       Get<nlohmann::json>(result, P(IsMmsResult(result) ? "/contest_time_s" : "/sim_time_s"),
+                           nullptr)},
       {"wall_time_s", wall_s},
       {"sandbox", bwrap.empty() ? "none" : "bwrap"},
       {"manifest", manifest.file},

@@ -100,30 +100,60 @@ std::string LinkSpec(const YamlNode& node, const fs::path& dir) {
          (space == std::string::npos ? "" : rest.substr(space));
 }
 
+// "python3 main.py" as words; no shell in between, as for a native link
+std::vector<std::string> Words(const YamlNode& node, const std::string& what) {
+  const std::string& text = node.AsString(what);
+  std::vector<std::string> words;
+  for (size_t at = 0; at < text.size();) {
+    const size_t end = std::min(text.find(' ', at), text.size());
+    if (end > at) words.push_back(text.substr(at, end - at));
+    at = end + 1;
+  }
+  if (words.empty()) node.Fail(what + " must name a program");
+  return words;
+}
+
 Submission ReadSubmission(const YamlNode& node, const fs::path& dir, const JobLimits& limits) {
   const MapReader r(node, "submission",
-                    {"name", "link", "controller", "link_set", "firmware_profile", "limits"});
+                    {"name", "link", "controller", "mms", "dir", "mms_options", "link_set",
+                     "firmware_profile", "limits"});
   Submission s;
   s.location = node.location;
   s.name = r.Required("name").AsString("name");
   if (s.name.empty()) r.Required("name").Fail("a submission's name must not be empty");
   const YamlNode* link = r.Optional("link");
   const YamlNode* controller = r.Optional("controller");
-  if ((link == nullptr) == (controller == nullptr)) {
-    node.Fail("submission '" + s.name + "': give exactly one of link or controller");
+  const YamlNode* mms = r.Optional("mms");
+  if ((link != nullptr) + (controller != nullptr) + (mms != nullptr) != 1) {
+    node.Fail("submission '" + s.name + "': give exactly one of link, controller or mms");
   }
   if (link != nullptr) s.link = LinkSpec(*link, dir);
   if (controller != nullptr) s.controller = FromManifest(dir, controller->AsString("controller"));
+  if (mms != nullptr) {
+    s.mms = Words(*mms, "mms");
+    s.program_dir = dir.string();
+  }
+  if (const YamlNode* own = r.Optional("dir")) {
+    if (mms == nullptr) own->Fail("dir is where an mms program runs; it goes with mms");
+    s.program_dir = FromManifest(dir, own->AsString("dir"));
+    if (!fs::is_directory(s.program_dir)) own->Fail(s.program_dir + ": no such directory");
+  }
+  if (const YamlNode* options = r.Optional("mms_options")) {
+    if (mms == nullptr) options->Fail("mms_options go with mms");
+    for (const auto& item : ListOf(*options, "mms_options").items) {
+      s.mms_options.push_back(item.AsString("mms option"));
+    }
+  }
   if (const YamlNode* sets = r.Optional("link_set")) {
-    if (controller != nullptr) sets->Fail("link_set goes with link, not with controller");
+    if (link == nullptr) sets->Fail("link_set goes with link");
     if (!sets->IsMap()) sets->Fail("link_set must be a map of parameter: value lines");
     for (const auto& [k, v] : sets->entries) {
       s.link_sets.push_back(k.scalar + "=" + v.AsString(k.scalar));
     }
   }
   s.firmware_profile = r.String("firmware_profile", "");
-  if (!s.firmware_profile.empty() && controller != nullptr) {
-    r.Required("firmware_profile").Fail("firmware_profile goes with link, not with controller");
+  if (!s.firmware_profile.empty() && link == nullptr) {
+    r.Required("firmware_profile").Fail("firmware_profile goes with link");
   }
   s.limits = limits;
   if (const YamlNode* own = r.Optional("limits")) s.limits = ReadLimits(*own, limits);
@@ -251,7 +281,12 @@ Manifest LoadManifest(const std::string& path) {
     }
   }
   names.clear();
-  for (const auto& item : ListOf(r.Required("scenarios"), "scenarios").items) {
+  const bool only_mms = std::all_of(m.submissions.begin(), m.submissions.end(),
+                                    [](const Submission& s) { return !s.mms.empty(); });
+  const YamlNode* scenarios = only_mms ? r.Optional("scenarios") : &r.Required("scenarios");
+  for (size_t i = 0; scenarios != nullptr && i < ListOf(*scenarios, "scenarios").items.size();
+       ++i) {
+    const YamlNode& item = scenarios->items[i];
     m.scenarios.push_back(ReadScenario(item, dir));
     if (!names.insert(SanitizeName(m.scenarios.back().name)).second) {
       item.Fail("a second scenario named '" + m.scenarios.back().name +
@@ -260,9 +295,9 @@ Manifest LoadManifest(const std::string& path) {
   }
 
   // what a job runs in: a maze from the list, or the scenario's own
+  // (an mms program's job, scenario -1, always has a maze)
   const auto add = [&](int submission, int scenario, const MazeEntry* maze, uint64_t seed,
                        const YamlNode& where) {
-    const ScenarioEntry& s = m.scenarios[static_cast<size_t>(scenario)];
     Job job;
     job.submission = submission;
     job.scenario = scenario;
@@ -270,12 +305,12 @@ Manifest LoadManifest(const std::string& path) {
     if (maze != nullptr) {
       job.maze = maze->name;
       job.maze_file = maze->file;
-    } else if (s.has_maze) {
+    } else if (const ScenarioEntry& s = m.scenarios[static_cast<size_t>(scenario)]; s.has_maze) {
       job.maze = SanitizeName(fs::path(s.default_maze).stem().string());
     }
     job.id = SanitizeName(m.submissions[static_cast<size_t>(submission)].name) + "/" +
-             SanitizeName(s.name) + "/" + (job.maze.empty() ? "no-maze" : job.maze) + "/seed-" +
-             std::to_string(seed);
+             SanitizeName(ScenarioName(m, job)) + "/" + (job.maze.empty() ? "no-maze" : job.maze) +
+             "/seed-" + std::to_string(seed);
     if (m.jobs.size() >= kMaxJobs) {
       where.Fail("more than " + std::to_string(kMaxJobs) + " jobs; split the batch");
     }
@@ -288,10 +323,13 @@ Manifest LoadManifest(const std::string& path) {
     for (const auto& item : ListOf(*jobs, "jobs").items) {
       const MapReader j(item, "job", {"submission", "scenario", "maze", "seed"});
       const int submission = IndexByName(m.submissions, j.Required("submission"), "submission");
-      const int scenario = IndexByName(m.scenarios, j.Required("scenario"), "scenario");
+      const bool mms = !m.submissions[static_cast<size_t>(submission)].mms.empty();
+      if (mms) j.Forbid("scenario", "does not apply to an mms program: it runs in its maze alone");
+      const int scenario = mms ? -1 : IndexByName(m.scenarios, j.Required("scenario"), "scenario");
       std::vector<MazeEntry> maze;
+      if (mms) j.Required("maze");
       if (const YamlNode* node = j.Optional("maze")) {
-        if (!m.scenarios[static_cast<size_t>(scenario)].has_maze) {
+        if (!mms && !m.scenarios[static_cast<size_t>(scenario)].has_maze) {
           node->Fail("scenario '" + m.scenarios[static_cast<size_t>(scenario)].name +
                      "' has no maze parameter");
         }
@@ -340,6 +378,17 @@ Manifest LoadManifest(const std::string& path) {
       seeds.push_back(1);
     }
     for (int sub = 0; sub < static_cast<int>(m.submissions.size()); ++sub) {
+      const Submission& submission = m.submissions[static_cast<size_t>(sub)];
+      if (!submission.mms.empty()) {
+        if (mazes.empty()) {
+          root.Fail("submission '" + submission.name + "' (" + submission.location.ToString() +
+                    ") is an mms program, which runs in mazes: give them (mazes: [...])");
+        }
+        for (const MazeEntry& maze : mazes) {
+          for (const uint64_t seed : seeds) add(sub, -1, &maze, seed, root);
+        }
+        continue;
+      }
       for (int sc = 0; sc < static_cast<int>(m.scenarios.size()); ++sc) {
         for (size_t mz = 0; mz < std::max<size_t>(1, mazes.size()); ++mz) {
           for (const uint64_t seed : seeds) {
@@ -367,9 +416,23 @@ const Job& FindJob(const Manifest& manifest, const std::string& id) {
   return *it;
 }
 
+std::string ScenarioName(const Manifest& manifest, const Job& job) {
+  return job.scenario < 0 ? kMmsScenario
+                          : manifest.scenarios[static_cast<size_t>(job.scenario)].name;
+}
+
 std::vector<std::string> RunArguments(const Manifest& manifest, const Job& job,
                                       const std::string& out_dir) {
   const Submission& sub = manifest.submissions[static_cast<size_t>(job.submission)];
+  if (!sub.mms.empty()) {
+    // the logic tier has no chance in it: the seed only names the job
+    std::vector<std::string> args = {"mms",         "--out",         out_dir,        "--maze",
+                                     job.maze_file, "--program-dir", sub.program_dir};
+    args.insert(args.end(), sub.mms_options.begin(), sub.mms_options.end());
+    args.push_back("--");
+    args.insert(args.end(), sub.mms.begin(), sub.mms.end());
+    return args;
+  }
   const ScenarioEntry& scenario = manifest.scenarios[static_cast<size_t>(job.scenario)];
   std::vector<std::string> args = {
       "run",     "--out",        out_dir,      "--seed",     std::to_string(job.seed),

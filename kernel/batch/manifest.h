@@ -6,6 +6,8 @@
 //   submissions:
 //     - name: alice
 //       link: native:alice/firmware        # or controller: alice.lua; avr:FILE.elf; inproc:FILE.so
+//     - name: bob
+//       mms: python3 main.py                 # a program for the mms simulator: mazes only
 //   scenarios:
 //     - scenario: micromouse
 //       set: {contest_s: 120}
@@ -35,14 +37,18 @@ struct JobLimits {
   bool operator==(const JobLimits&) const = default;
 };
 
-/// One student's or strategy's entry: exactly one way to drive the robot.
+/// One student's or strategy's entry: exactly one way to drive the robot, or a program written
+/// for the mms simulator, which runs in the mazes without the scenarios (`unimouse mms`).
 struct Submission {
-  std::string name;                    ///< as written; its sanitised form names directories
-  std::string link;                    ///< --link spec with absolute paths; "" with a controller
-  std::string controller;              ///< absolute path of a Lua controller; "" with a link
-  std::vector<std::string> link_sets;  ///< --link-set name=value
-  std::string firmware_profile;        ///< --firmware-profile; "" for the default
-  JobLimits limits;                    ///< the manifest's limits, with this entry's overrides
+  std::string name;                      ///< as written; its sanitised form names directories
+  std::string link;                      ///< --link spec with absolute paths; "" with a controller
+  std::string controller;                ///< absolute path of a Lua controller; "" with a link
+  std::vector<std::string> mms;          ///< an mms program and its arguments; empty otherwise
+  std::vector<std::string> mms_options;  ///< options of `unimouse mms`, as given
+  std::string program_dir;               ///< the mms program's working directory (absolute)
+  std::vector<std::string> link_sets;    ///< --link-set name=value
+  std::string firmware_profile;          ///< --firmware-profile; "" for the default
+  JobLimits limits;                      ///< the manifest's limits, with this entry's overrides
   SourceLocation location;
 };
 
@@ -62,11 +68,14 @@ struct MazeEntry {
   std::string file;  ///< absolute path, or a bundled maze's file
 };
 
+/// The scenario column of an mms program's jobs.
+inline constexpr const char* kMmsScenario = "mms";
+
 /// One run of the batch: a submission in a scenario, maze and seed.
 struct Job {
   std::string id;         ///< submission/scenario/maze/seed-N, sanitised
   int submission = 0;     ///< index into Manifest::submissions
-  int scenario = 0;       ///< index into Manifest::scenarios
+  int scenario = 0;       ///< index into Manifest::scenarios; -1 for an mms program's job
   std::string maze;       ///< maze name; "" for a scenario without a maze parameter
   std::string maze_file;  ///< what --maze gets; "" for the scenario's own
   uint64_t seed = 1;
@@ -90,6 +99,9 @@ Manifest LoadManifest(const std::string& path);
 /// Returns `text` with every character outside [A-Za-z0-9._-] replaced by '_' (and "." or ".."
 /// made "_"), for a directory name.
 std::string SanitizeName(const std::string& text);
+
+/// Returns the name of the job's scenario: its entry's, or "mms".
+std::string ScenarioName(const Manifest& manifest, const Job& job);
 
 /// Returns the job with this id, or throws InputError.
 const Job& FindJob(const Manifest& manifest, const std::string& id);

@@ -70,7 +70,7 @@ class Channel {
 // the program, in its own process group so that whatever it starts goes with it
 class Child final : public Channel {
  public:
-  explicit Child(const std::vector<std::string>& program) {
+  Child(const std::vector<std::string>& program, const std::string& dir) {
     int to_child[2], from_child[2], exec_error[2];
     if (pipe(to_child) != 0 || pipe(from_child) != 0 || pipe2(exec_error, O_CLOEXEC) != 0) {
       throw RuntimeFault(std::string("cannot make pipes: ") + std::strerror(errno));
@@ -85,6 +85,11 @@ class Child final : public Channel {
         close(fd);
       }
       signal(SIGPIPE, SIG_DFL);
+      if (!dir.empty() && chdir(dir.c_str()) != 0) {
+        const int error = errno;
+        (void)!write(exec_error[1], &error, sizeof(error));
+        _exit(127);
+      }
       std::vector<char*> argv;
       for (const std::string& arg : program) argv.push_back(const_cast<char*>(arg.c_str()));
       argv.push_back(nullptr);
@@ -106,7 +111,8 @@ class Child final : public Channel {
     close(exec_error[0]);
     if (n == sizeof(error)) {
       Stop();
-      throw InputError("cannot run '" + program[0] + "': " + std::strerror(error));
+      throw InputError("cannot run '" + program[0] + "'" + (dir.empty() ? "" : " in " + dir) +
+                       ": " + std::strerror(error));
     }
     fcntl(in_, F_SETFL, fcntl(in_, F_GETFL) | O_NONBLOCK);
     fcntl(out_, F_SETFL, fcntl(out_, F_GETFL) | O_NONBLOCK);
@@ -387,7 +393,7 @@ int RunMms(const MmsRunOptions& options) {
     MmsWorld world(maze, options.timing);
     std::unique_ptr<Channel> channel;
     if (options.port.empty()) {
-      channel = std::make_unique<Child>(options.program);
+      channel = std::make_unique<Child>(options.program, options.program_dir);
     } else {
       channel = std::make_unique<Device>(options.port, options.connect_timeout_s);
     }

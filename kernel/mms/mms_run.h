@@ -17,6 +17,7 @@ namespace unimouse {
 struct MmsRunOptions {
   std::string maze = "japan2018";    ///< maze file or bundled maze name
   std::vector<std::string> program;  ///< the program and its arguments; or
+  std::string program_dir;           ///< the program's working directory; "" for this one
   std::string port;                  ///< a board or relay: pty:LINK, serial:PATH@BAUD, tcp::PORT
   std::string out_dir = "out";
   MmsTiming timing;

@@ -50,7 +50,9 @@ constexpr TransportKind kTransports[] = {
      "a TCP server, one client at a time (boards on Wi-Fi, remote labs)", &OpenTcp},
     {"native", "native:PROGRAM [ARGS]",
      "a firmware program the simulator starts, talking on its stdin and stdout, in lock-step "
-     "from the first step; stopped with the run",
+     "from the first step; stopped with the run; its death ends the run with an error that "
+     "names the signal (`the firmware crashed: SIGSEGV ...`) or exit code, its hang after "
+     "`lockstep_timeout_s`",
      &OpenNative},
     {"avr", "avr:PATH.elf",
      "the image one would flash onto an Arduino Mega 2560 or Uno, run on an emulated ATmega in "

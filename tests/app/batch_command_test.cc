@@ -182,6 +182,51 @@ TEST(BatchCommandTest, AClassGetsTheRightStatusForEveryJobTheSameOnResumeAndThro
             CsvWithout(out + "/results.csv", "wall_time_s"));
 }
 
+// an algorithm written for mms scored over mazes as each of its own `unimouse mms` runs scores
+TEST(BatchCommandTest, MmsProgramsAreScoredOverTheMazesAsTheirOwnRunsScoreThem) {
+  const std::string dir = FreshDirectory("batch_mms");
+  const std::string manifest = WriteFile(dir, "mms.yaml",
+                                         std::string(R"(
+submissions:
+  - {name: flood, mms: )") + UNIMOUSE_MMS_FLOODFILL +
+                                             R"(}
+  - {name: wall, mms: python3 left_wall.py, dir: )" +
+                                             kSource + R"(/tests/mms/clients}
+  - {name: quits, mms: "false"}
+mazes: [japan2018, japan2019]
+)");
+  const std::string out = dir + "/out";
+  const Outcome run = Unimouse("batch run " + manifest + " -j 2 --out " + out);
+  ASSERT_EQ(run.exit_code, 1) << run.output;
+  const json results = Results(out);
+  ASSERT_EQ(results["jobs"].size(), 6u) << results.dump(1);
+  for (const auto& job : results["jobs"]) {
+    EXPECT_EQ(job["scenario"], "mms");
+    const std::string submission = job["submission"];
+    if (submission == "flood") {
+      // the same program run by hand in the same maze
+      const std::string own = dir + "/own";
+      const Outcome direct = Unimouse("mms --maze " + job["maze"].get<std::string>() + " --out " +
+                                      own + " -- " + UNIMOUSE_MMS_FLOODFILL);
+      ASSERT_EQ(direct.exit_code, 0) << direct.output;
+      const json result = json::parse(ReadTextFile(own + "/result.json"));
+      EXPECT_EQ(job["status"], "passed") << job.dump();
+      EXPECT_EQ(job["scores"]["score"], result["score"]) << job.dump();
+      EXPECT_EQ(job["scores"]["moves"], result["moves"]) << job.dump();
+      EXPECT_EQ(job["sim_time_s"], result["contest_time_s"]) << job.dump();
+    }
+    if (submission == "wall") {
+      // a left-hand wall follower never reaches a centre goal: 1200 moves of 0.5 s, and out
+      EXPECT_EQ(job["status"], "failed") << job.dump();
+      EXPECT_EQ(job["scores"]["score"], 2000) << job.dump();
+    }
+    if (submission == "quits") {
+      EXPECT_EQ(job["status"], "firmware_error") << job.dump();
+      EXPECT_NE(job["reason"].get<std::string>().find("exit"), std::string::npos) << job.dump();
+    }
+  }
+}
+
 TEST(BatchCommandTest, TheSlurmArrayScriptRunsTheLinesOfThePlan) {
   const std::string dir = FreshDirectory("batch_slurm");
   const std::string manifest = WriteFile(dir, "class.yaml", ClassManifest());

@@ -45,6 +45,22 @@ TEST(ClassifyJobTest, AFaultIsTheFirmwaresWhenAComponentFailedElseTheScripts) {
   EXPECT_EQ(crash.status, "crashed");
 }
 
+// `unimouse mms` writes its reason and status at the top (docs/mms.md)
+TEST(ClassifyJobTest, AnMmsRunIsClassifiedFromItsOwnStatusAndReason) {
+  const JobLimits limits;
+  const auto mms = [](const std::string& status) {
+    return json{{"command", "mms"}, {"status", status}, {"reason", "why: " + status}};
+  };
+  const JobOutcome goal = ClassifyJob(Exited(0), mms("goal_reached"), limits);
+  EXPECT_EQ(goal.status, "passed");
+  EXPECT_EQ(goal.reason, "why: goal_reached");
+  EXPECT_EQ(ClassifyJob(Exited(1), mms("time_out"), limits).status, "failed");
+  EXPECT_EQ(ClassifyJob(Exited(2), mms("error"), limits).reason, "why: error");
+  EXPECT_EQ(ClassifyJob(Exited(3), mms("program_crashed"), limits).status, "crashed");
+  EXPECT_EQ(ClassifyJob(Exited(3), mms("program_hang"), limits).status, "firmware_error");
+  EXPECT_EQ(ClassifyJob(Exited(3), mms("program_exited"), limits).status, "firmware_error");
+}
+
 TEST(ClassifyJobTest, WhatTheJobSawWinsOverAnyResult) {
   JobLimits limits;
   limits.wall_time_s = 2;

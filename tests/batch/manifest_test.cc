@@ -102,6 +102,58 @@ seeds: [7]
   EXPECT_EQ(args, expected);
 }
 
+// an algorithm written for mms scored over mazes: its jobs run `unimouse mms`, not a scenario
+TEST_F(ManifestTest, AnMmsProgramRunsInEveryMazeWithoutTheScenarios) {
+  fs::create_directories(dir_ + "/bob");
+  const Manifest m = LoadManifest(Write("m.yaml", R"(
+submissions:
+  - {name: amy, controller: a.lua}
+  - name: bob
+    mms: python3  main.py --fast
+    dir: bob
+    mms_options: [--end-on-crash]
+scenarios: [micromouse]
+mazes: [japan2018, japan2019]
+)"));
+  ASSERT_EQ(m.jobs.size(), 4u);  // amy: 1 scenario x 2 mazes; bob: 2 mazes
+  EXPECT_EQ(m.jobs[2].id, "bob/mms/japan2018/seed-1");
+  EXPECT_EQ(m.jobs[3].id, "bob/mms/japan2019/seed-1");
+  EXPECT_EQ(ScenarioName(m, m.jobs[2]), "mms");
+  const std::vector<std::string> expected = {
+      "mms",         "--out",          "/out/j", "--maze",  m.jobs[2].maze_file, "--program-dir",
+      dir_ + "/bob", "--end-on-crash", "--",     "python3", "main.py",           "--fast"};
+  EXPECT_EQ(RunArguments(m, m.jobs[2], "/out/j"), expected);
+  // without dir: the manifest's directory, as mms runs a program in its own directory
+  const Manifest only = LoadManifest(Write("only.yaml", R"(
+submissions: [{name: bob, mms: ./solver}]
+jobs: [{submission: bob, maze: japan2019, seed: 3}]
+)"));
+  ASSERT_EQ(only.jobs.size(), 1u);
+  EXPECT_EQ(only.jobs[0].id, "bob/mms/japan2019/seed-3");
+  EXPECT_EQ(only.submissions[0].program_dir, dir_);
+}
+
+TEST_F(ManifestTest, AnMmsProgramsMistakesAreRefusedWithFileLineAndColumn) {
+  const std::string file = dir_ + "/manifest.yaml";
+  const std::string mazes = "mazes: [japan2018]\n";
+  EXPECT_EQ(ErrorOf("submissions: [{name: bob, mms: ' '}]\n" + mazes),
+            file + ":1:32: mms must name a program");
+  EXPECT_EQ(ErrorOf("submissions: [{name: bob, mms: x, dir: nowhere}]\n" + mazes),
+            file + ":1:40: " + dir_ + "/nowhere: no such directory");
+  EXPECT_EQ(ErrorOf("submissions: [{name: bob, mms: x, link_set: {a: 1}}]\n" + mazes),
+            file + ":1:45: link_set goes with link");
+  EXPECT_EQ(ErrorOf("submissions: [{name: bob, controller: c.lua, dir: .}]\n"
+                    "scenarios: [micromouse]\n"),
+            file + ":1:51: dir is where an mms program runs; it goes with mms");
+  EXPECT_EQ(ErrorOf("submissions: [{name: bob, mms: x}]\n"),
+            file + ":1:1: submission 'bob' (" + file +
+                ":1:15) is an mms program, which runs in mazes: give them (mazes: [...])");
+  EXPECT_EQ(
+      ErrorOf("submissions: [{name: bob, mms: x}]\n"
+              "jobs: [{submission: bob, scenario: micromouse, maze: japan2018}]\n"),
+      file + ":2:26: job: 'scenario' does not apply to an mms program: it runs in its maze alone");
+}
+
 TEST_F(ManifestTest, AFirmwareNotBesideTheManifestIsNamedAsGiven) {
   // the link finds it then: a bundled firmware's name, or an error of that one job
   const Manifest m = LoadManifest(Write("m.yaml", R"(
@@ -169,7 +221,7 @@ TEST_F(ManifestTest, MistakesAreRefusedWithFileLineAndColumn) {
                 "safe for a directory)");
   EXPECT_EQ(ErrorOf("submissions: [{name: amy, controller: a.lua, link: pty}]\n"
                     "scenarios: [micromouse]\n"),
-            file + ":1:15: submission 'amy': give exactly one of link or controller");
+            file + ":1:15: submission 'amy': give exactly one of link, controller or mms");
   EXPECT_EQ(ErrorOf(head + "scenarios: [{scenario: micromouse, set: {contest: 5}}]\n"),
             file +
                 ":2:42: scenario 'micromouse' has no parameter 'contest' (did you mean "

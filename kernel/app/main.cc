@@ -232,6 +232,8 @@ int main(int argc, char** argv) {
                     "keep answering after the goal until the program exits or time runs out");
   mms_cmd->add_flag("--end-on-crash", mms.end_on_crash,
                     "a move into a wall ends the run (mms itself only replies crash)");
+  mms_cmd->add_flag("--no-pictures", mms.no_pictures,
+                    "no maze.png or maze.svg of what the program displayed");
   mms_cmd->add_option("program", mms.program, "the program and its arguments, after --");
   mms_cmd->add_option("--program-dir", mms.program_dir,
                       "the program's working directory (mms's Directory setting)");

@@ -11,6 +11,48 @@ bool InAnyMaze(int x, int y) {
 
 }  // namespace
 
+// the saturated colours full, the dark ones at half
+std::optional<Rgb8> CellColourOf(char letter) {
+  switch (letter) {
+    case 'k':
+      return Rgb8{0, 0, 0};
+    case 'b':
+      return Rgb8{0, 0, 255};
+    case 'a':
+      return Rgb8{160, 160, 160};
+    case 'c':
+      return Rgb8{0, 255, 255};
+    case 'g':
+      return Rgb8{0, 255, 0};
+    case 'o':
+      return Rgb8{255, 165, 0};
+    case 'r':
+      return Rgb8{255, 0, 0};
+    case 'w':
+      return Rgb8{255, 255, 255};
+    case 'y':
+      return Rgb8{255, 255, 0};
+    case 'B':
+      return Rgb8{0, 0, 128};
+    case 'A':
+      return Rgb8{96, 96, 96};
+    case 'C':
+      return Rgb8{0, 128, 128};
+    case 'G':
+      return Rgb8{0, 128, 0};
+    case 'O':
+      return Rgb8{200, 100, 0};
+    case 'R':
+      return Rgb8{128, 0, 0};
+    case 'Y':
+      return Rgb8{128, 128, 0};
+    case 'V':
+      return Rgb8{128, 0, 128};
+    default:
+      return std::nullopt;
+  }
+}
+
 bool FirmwareBeliefs::Apply(const unimouse_report& r) {
   switch (r.kind) {
     case UNIMOUSE_REPORT_WALLS:

@@ -6,6 +6,7 @@
 #include <cstring>
 #include <sstream>
 
+#include "bitmap_font.h"
 #include "png_file.h"
 #include "text_file.h"
 #include "unimouse/errors.h"
@@ -13,9 +14,7 @@
 namespace unimouse {
 namespace {
 
-struct Rgb {
-  uint8_t r, g, b;
-};
+using Rgb = Rgb8;
 
 constexpr Rgb kBackground{255, 255, 255};
 constexpr Rgb kVisited{204, 230, 255};
@@ -27,17 +26,21 @@ constexpr Rgb kPost{30, 30, 30};
 constexpr Rgb kOpenPath{255, 140, 0};
 constexpr Rgb kClosedPath{31, 95, 214};
 constexpr Rgb kNumber{90, 90, 90};
+constexpr Rgb kBelievedWall{51, 140, 255};  // the 3D pictures' believed walls
+constexpr Rgb kMouse{220, 0, 140};
+constexpr Rgb kTextOnDark{255, 255, 255};
+constexpr int kRowChars = 5;  // mms's cell text: two rows of five
+
+// light text on a dark fill, dark text on a light one
+Rgb TextColourOn(Rgb fill) {
+  return 299 * fill.r + 587 * fill.g + 114 * fill.b < 128 * 1000 ? kTextOnDark : kKnownWall;
+}
 
 std::string Hex(Rgb c) {
   char text[8];
   std::snprintf(text, sizeof(text), "#%02x%02x%02x", c.r, c.g, c.b);
   return text;
 }
-
-// 3 x 5 digits, one row of three bits per entry, top row first
-constexpr uint8_t kDigits[10][5] = {
-    {7, 5, 5, 5, 7}, {2, 6, 2, 2, 7}, {7, 1, 7, 4, 7}, {7, 1, 7, 1, 7}, {5, 5, 7, 1, 1},
-    {7, 4, 7, 1, 7}, {7, 4, 7, 5, 7}, {7, 1, 1, 1, 1}, {7, 5, 7, 5, 7}, {7, 5, 7, 1, 7}};
 
 class Canvas {
  public:
@@ -55,24 +58,28 @@ class Canvas {
     }
   }
 
-  // a number centred on (cx, cy), each font pixel `scale` pixels wide
-  void Number(int value, int cx, int cy, int scale, Rgb c) {
-    const std::string text = std::to_string(value);
-    const int width = static_cast<int>(text.size()) * 4 * scale - scale;
-    int x = cx - width / 2;
-    const int y = cy - 5 * scale / 2;
-    for (char ch : text) {
-      if (ch >= '0' && ch <= '9') {
-        for (int row = 0; row < 5; ++row) {
-          for (int col = 0; col < 3; ++col) {
-            if (kDigits[ch - '0'][row] >> (2 - col) & 1) {
-              Fill(x + col * scale, y + row * scale, x + (col + 1) * scale, y + (row + 1) * scale,
-                   c);
+  // a cell's text in the bitmap font, laid out as maze_plot.h says
+  void Text(const std::string& text, int cx, int cy, int cell_px, Rgb c) {
+    const int rows = text.size() > kRowChars ? 2 : 1;
+    const int columns = std::min(static_cast<int>(text.size()), kRowChars);
+    if (columns == 0) return;
+    const int scale =
+        std::max(1, std::min((cell_px - 4) / (6 * columns), (cell_px - 4) / (8 * rows)));
+    for (int row = 0; row < rows; ++row) {
+      const std::string line = text.substr(static_cast<size_t>(row * kRowChars), kRowChars);
+      int x = cx - (6 * static_cast<int>(line.size()) - 1) * scale / 2;
+      const int y = cy - (8 * rows - 1) * scale / 2 + 8 * scale * row;
+      for (char ch : line) {
+        const Glyph& glyph = GlyphOf(ch);
+        for (int gy = 0; gy < kGlyphHeight_px; ++gy) {
+          for (int gx = 0; gx < kGlyphWidth_px; ++gx) {
+            if (glyph[static_cast<size_t>(gy)] >> (kGlyphWidth_px - 1 - gx) & 1) {
+              Fill(x + gx * scale, y + gy * scale, x + (gx + 1) * scale, y + (gy + 1) * scale, c);
             }
           }
         }
+        x += 6 * scale;
       }
-      x += 4 * scale;
     }
   }
 
@@ -107,6 +114,81 @@ void ForEachWall(const Maze& m, F draw) {
   }
 }
 
+// the side's bit in FirmwareBeliefs: north 1, east 2, south 4, west 8
+uint8_t SideBit(Heading h) {
+  switch (h) {
+    case Heading::kNorth:
+      return 1;
+    case Heading::kEast:
+      return 2;
+    case Heading::kSouth:
+      return 4;
+    case Heading::kWest:
+      return 8;
+  }
+  return 0;
+}
+
+// every wall the report says is there, on the cell side it was reported for
+template <class F>
+void ForEachBelievedWall(const MazePicture& p, F draw) {
+  if (p.beliefs == nullptr) return;
+  for (const auto& [at, w] : p.beliefs->walls) {
+    const Cell c{at.first, at.second};
+    if (!p.maze->Contains(c)) continue;
+    for (Heading h : {Heading::kNorth, Heading::kEast, Heading::kSouth, Heading::kWest}) {
+      if (w.known & w.walls & SideBit(h)) draw(c, h);
+    }
+  }
+}
+
+// how a cell looks: visited, goal or start, the colour the report gave it over those; the
+// reported text, else its number
+struct CellLook {
+  Rgb fill = kBackground;
+  std::string text;
+  Rgb text_colour = kNumber;
+};
+CellLook LookOf(const MazePicture& p, Cell c) {
+  CellLook look;
+  if (Visited(p, c)) look.fill = kVisited;
+  if (p.maze->IsGoal(c)) look.fill = kGoal;
+  if (c == p.maze->start()) look.fill = kStart;
+  const size_t i = static_cast<size_t>(c.y * p.maze->width() + c.x);
+  if (!p.numbers.empty() && p.numbers[i] >= 0) look.text = std::to_string(p.numbers[i]);
+  if (p.beliefs == nullptr) return look;
+  const auto colour = p.beliefs->colours.find({c.x, c.y});
+  if (colour != p.beliefs->colours.end()) {
+    look.fill = CellColourOf(colour->second).value_or(look.fill);
+  }
+  const auto text = p.beliefs->texts.find({c.x, c.y});
+  if (text != p.beliefs->texts.end()) {
+    look.text = text->second.substr(0, kMaxCellText);
+    look.text_colour = TextColourOn(look.fill);
+  }
+  return look;
+}
+
+// the rectangle of a wall `width` pixels thick, `inset` short of each post
+struct Rect {
+  int x0, y0, x1, y1;
+};
+Rect WallRect(const PlotGeometry& g, const Maze& m, Cell c, Heading h, int width, int inset) {
+  const int cx = g.CentreX(m, c.x), cy = g.CentreY(m, c.y), half = g.cell_px / 2;
+  const int lo = -width / 2, hi = width - width / 2;
+  switch (h) {
+    case Heading::kSouth:
+      return {cx - half + inset, cy + half + lo, cx + half - inset, cy + half + hi};
+    case Heading::kNorth:
+      return {cx - half + inset, cy - half + lo, cx + half - inset, cy - half + hi};
+    case Heading::kWest:
+      return {cx - half + lo, cy - half + inset, cx - half + hi, cy + half - inset};
+    case Heading::kEast:
+      return {cx + half + lo, cy - half + inset, cx + half + hi, cy + half - inset};
+  }
+  return {};
+}
+
 }  // namespace
 
 std::vector<uint8_t> RenderMazePixels(const MazePicture& p, const PlotGeometry& g) {
@@ -114,19 +196,14 @@ std::vector<uint8_t> RenderMazePixels(const MazePicture& p, const PlotGeometry& 
   Canvas canvas(g.Width(m), g.Height(m));
   const int cell = g.cell_px, half = cell / 2;
 
-  // cells: visited, start, goals
+  // cells: visited, start, goals, colours, and their texts or numbers
   for (int y = 0; y < m.height(); ++y) {
     for (int x = 0; x < m.width(); ++x) {
       const Cell c{x, y};
-      Rgb fill = kBackground;
-      if (Visited(p, c)) fill = kVisited;
-      if (m.IsGoal(c)) fill = kGoal;
-      if (c == m.start()) fill = kStart;
+      const CellLook look = LookOf(p, c);
       const int cx = g.CentreX(m, x), cy = g.CentreY(m, y);
-      canvas.Fill(cx - half, cy - half, cx + half, cy + half, fill);
-      if (!p.numbers.empty() && p.numbers[static_cast<size_t>(y * m.width() + x)] >= 0) {
-        canvas.Number(p.numbers[static_cast<size_t>(y * m.width() + x)], cx, cy, 2, kNumber);
-      }
+      canvas.Fill(cx - half, cy - half, cx + half, cy + half, look.fill);
+      canvas.Text(look.text, cx, cy, cell, look.text_colour);
     }
   }
 
@@ -145,30 +222,26 @@ std::vector<uint8_t> RenderMazePixels(const MazePicture& p, const PlotGeometry& 
   draw_path(p.open_path, -3, kOpenPath);
   draw_path(p.closed_path, 3, kClosedPath);
 
-  // walls and posts on top
+  // walls, believed walls as a strip along their middle, posts on top
+  auto fill = [&](Rect r, Rgb colour) { canvas.Fill(r.x0, r.y0, r.x1, r.y1, colour); };
   ForEachWall(m, [&](Cell c, Heading h) {
-    const int cx = g.CentreX(m, c.x), cy = g.CentreY(m, c.y);
-    const Rgb colour = Known(p, c, h) ? kKnownWall : kUnknownWall;
-    switch (h) {
-      case Heading::kSouth:
-        canvas.Fill(cx - half, cy + half - 2, cx + half, cy + half + 2, colour);
-        break;
-      case Heading::kNorth:
-        canvas.Fill(cx - half, cy - half - 2, cx + half, cy - half + 2, colour);
-        break;
-      case Heading::kWest:
-        canvas.Fill(cx - half - 2, cy - half, cx - half + 2, cy + half, colour);
-        break;
-      case Heading::kEast:
-        canvas.Fill(cx + half - 2, cy - half, cx + half + 2, cy + half, colour);
-        break;
-    }
+    fill(WallRect(g, m, c, h, 4, 0), Known(p, c, h) ? kKnownWall : kUnknownWall);
   });
+  ForEachBelievedWall(p,
+                      [&](Cell c, Heading h) { fill(WallRect(g, m, c, h, 2, 2), kBelievedWall); });
   for (int y = 0; y <= m.height(); ++y) {
     for (int x = 0; x <= m.width(); ++x) {
       const int px = g.margin_px + cell * x, py = g.margin_px + cell * (m.height() - y);
       canvas.Fill(px - 2, py - 2, px + 2, py + 2, kPost);
     }
+  }
+  if (p.mouse && m.Contains(*p.mouse)) {
+    // a frame 2 pixels wide, 5 inside the cell's edges
+    const int cx = g.CentreX(m, p.mouse->x), cy = g.CentreY(m, p.mouse->y), r = half - 5;
+    canvas.Fill(cx - r, cy - r, cx + r, cy - r + 2, kMouse);
+    canvas.Fill(cx - r, cy + r - 2, cx + r, cy + r, kMouse);
+    canvas.Fill(cx - r, cy - r, cx - r + 2, cy + r, kMouse);
+    canvas.Fill(cx + r - 2, cy - r, cx + r, cy + r, kMouse);
   }
   return std::move(canvas.rgb());
 }
@@ -188,20 +261,20 @@ std::string RenderMazeSvg(const MazePicture& p) {
       << "<rect width='100%' height='100%' fill='" << Hex(kBackground) << "'/>\n";
   for (int y = 0; y < m.height(); ++y) {
     for (int x = 0; x < m.width(); ++x) {
-      const Cell c{x, y};
-      std::string fill;
-      if (Visited(p, c)) fill = Hex(kVisited);
-      if (m.IsGoal(c)) fill = Hex(kGoal);
-      if (c == m.start()) fill = Hex(kStart);
-      if (!fill.empty()) {
+      const CellLook look = LookOf(p, {x, y});
+      if (look.fill != kBackground) {
         out << "<rect class='cell' x='" << g.CentreX(m, x) - half << "' y='"
             << g.CentreY(m, y) - half << "' width='" << cell << "' height='" << cell << "' fill='"
-            << fill << "'/>\n";
+            << Hex(look.fill) << "'/>\n";
       }
-      if (!p.numbers.empty() && p.numbers[static_cast<size_t>(y * m.width() + x)] >= 0) {
-        out << "<text x='" << g.CentreX(m, x) << "' y='" << g.CentreY(m, y) + 4
-            << "' font-family='sans-serif' font-size='11' text-anchor='middle' fill='"
-            << Hex(kNumber) << "'>" << p.numbers[static_cast<size_t>(y * m.width() + x)]
+      // one line of up to five characters, or two, as in the PNG
+      const int rows = look.text.empty() ? 0 : look.text.size() > kRowChars ? 2 : 1;
+      for (int row = 0; row < rows; ++row) {
+        out << "<text x='" << g.CentreX(m, x) << "' y='"
+            << g.CentreY(m, y) + 4 + 12 * row - 6 * (rows - 1)
+            << "' font-family='monospace' font-size='11' text-anchor='middle' fill='"
+            << Hex(look.text_colour) << "'>"
+            << XmlEscaped(look.text.substr(static_cast<size_t>(row * kRowChars), kRowChars))
             << "</text>\n";
       }
     }
@@ -217,17 +290,24 @@ std::string RenderMazeSvg(const MazePicture& p) {
   };
   draw_path(p.open_path, -3, kOpenPath, "open-path");
   draw_path(p.closed_path, 3, kClosedPath, "closed-path");
+  auto line = [&](Rect r, const char* name, int width, Rgb colour) {
+    out << "<line class='" << name << "' x1='" << r.x0 << "' y1='" << r.y0 << "' x2='" << r.x1
+        << "' y2='" << r.y1 << "' stroke-width='" << width << "' stroke='" << Hex(colour)
+        << "'/>\n";
+  };
   ForEachWall(m, [&](Cell c, Heading h) {
-    const int cx = g.CentreX(m, c.x), cy = g.CentreY(m, c.y);
-    int x0 = cx - half, y0 = cy - half, x1 = cx + half, y1 = cy + half;
-    if (h == Heading::kSouth) y0 = y1;
-    if (h == Heading::kNorth) y1 = y0;
-    if (h == Heading::kWest) x1 = x0;
-    if (h == Heading::kEast) x0 = x1;
-    out << "<line class='" << (Known(p, c, h) ? "wall" : "unknown-wall") << "' x1='" << x0
-        << "' y1='" << y0 << "' x2='" << x1 << "' y2='" << y1 << "' stroke-width='4' stroke='"
-        << Hex(Known(p, c, h) ? kKnownWall : kUnknownWall) << "'/>\n";
+    const bool known = Known(p, c, h);
+    line(WallRect(g, m, c, h, 0, 0), known ? "wall" : "unknown-wall", 4,
+         known ? kKnownWall : kUnknownWall);
   });
+  ForEachBelievedWall(p, [&](Cell c, Heading h) {
+    line(WallRect(g, m, c, h, 0, 2), "believed-wall", 2, kBelievedWall);
+  });
+  if (p.mouse && m.Contains(*p.mouse)) {
+    out << "<rect class='mouse' x='" << g.CentreX(m, p.mouse->x) - half + 6 << "' y='"
+        << g.CentreY(m, p.mouse->y) - half + 6 << "' width='" << cell - 12 << "' height='"
+        << cell - 12 << "' fill='none' stroke-width='2' stroke='" << Hex(kMouse) << "'/>\n";
+  }
   out << "</svg>\n";
   return out.str();
 }

@@ -1,14 +1,19 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Top-down pictures of a maze, as figures 5.7-5.13 of the dissertation: visited cells shaded,
 // known walls dark and walls not yet seen light, the open path orange and the closed path blue,
-// the start and goal marked, and optionally a number in every cell. PNG and SVG.
+// the start and goal marked, and optionally a number in every cell. Over the true maze, what a
+// firmware or an mms program reported (FirmwareBeliefs): the walls it believes in as blue strips
+// along the wall, its cell colours filling the cells, its cell texts; and the mouse's cell
+// framed. PNG and SVG.
 #ifndef UNIMOUSE_MAZETOOLS_MAZE_PLOT_H_
 #define UNIMOUSE_MAZETOOLS_MAZE_PLOT_H_
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "firmware_beliefs.h"
 #include "maze.h"
 #include "maze_explorer.h"
 #include "maze_solver.h"
@@ -22,6 +27,8 @@ struct MazePicture {
   MazePath open_path;                        ///< drawn orange
   MazePath closed_path;                      ///< drawn blue
   std::vector<int> numbers;                  ///< per cell, -1 for none
+  const FirmwareBeliefs* beliefs = nullptr;  ///< believed walls, cell colours and texts
+  std::optional<Cell> mouse;                 ///< framed in magenta
 };
 
 /// Pixel geometry of the PNG: where a cell's centre lands.
@@ -36,7 +43,12 @@ struct PlotGeometry {
   }
 };
 
-/// Returns RGB pixels, row by row from the top, Width x Height x 3 bytes.
+/// Returns RGB pixels, row by row from the top, Width x Height x 3 bytes. A cell's text (or
+/// number) is drawn in the 5 x 7 bitmap font, glyphs 6 font pixels apart: one row of up to five
+/// characters, or the first five over the rest; a font pixel is s x s pixels, s the largest whole
+/// number >= 1 with 6 s x columns <= cell - 4 and 8 s x rows <= cell - 4 (columns: the longest
+/// row's characters); a row of n characters starts (6 n - 1) s / 2 left of the cell centre, the
+/// first row (8 rows - 1) s / 2 above it (rounded towards zero), the second 8 s below the first.
 std::vector<uint8_t> RenderMazePixels(const MazePicture& picture, const PlotGeometry& g = {});
 
 /// Writes a PNG; throws InputError if the file cannot be written.

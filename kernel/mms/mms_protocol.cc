@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <string_view>
 #include <vector>
 
 namespace unimouse {
@@ -15,8 +16,8 @@ namespace {
 constexpr int kDx[8] = {1, 1, 0, -1, -1, -1, 0, 1};
 constexpr int kDy[8] = {0, 1, 1, 1, 0, -1, -1, -1};
 
-// mms's colour letters, the two dark ones its README leaves out included
-constexpr const char* kColors = "kbacgorwyBCAGRYOV";
+// the wall sides in the order of the debug channel's bits 1, 2, 4, 8
+constexpr std::string_view kSides = "nesw";
 
 // a straight move of d half-steps counts d up to 2, then d / 2 + 1
 double Effective(long d) { return d <= 2 ? double(d) : double(d) / 2 + 1; }
@@ -324,13 +325,12 @@ MmsResponse MmsWorld::Show(const std::vector<std::string>& tokens, const std::st
   if (nargs != 3 || tokens[3].size() != 1) return Invalid("takes X Y and one letter");
   const char letter = tokens[3][0];
   if (name == "setColor") {
-    if (std::string(kColors).find(letter) == std::string::npos) {
+    if (!CellColourOf(letter)) {
       return Invalid("unknown colour '" + tokens[3] + "'");
     }
     if (inside) colors_[at] = letter;
     return done;
   }
-  static const std::string kSides = "nesw";
   const size_t side = kSides.find(letter);
   if (side == std::string::npos) return Invalid("unknown side '" + tokens[3] + "' (n, e, s, w)");
   if (!inside) return done;
@@ -362,6 +362,22 @@ nlohmann::json MmsWorld::Display() const {
     texts.push_back({{"x", at.first}, {"y", at.second}, {"text", text}});
   }
   return {{"walls", walls}, {"colors", colors}, {"texts", texts}};
+}
+
+// the walls as the firmware debug channel reports them: a cleared side is known open
+FirmwareBeliefs MmsWorld::Beliefs() const {
+  FirmwareBeliefs beliefs;
+  for (const auto& [at, sides] : walls_) {
+    FirmwareBeliefs::CellWalls& w = beliefs.walls[at];
+    for (const auto& [side, present] : sides) {
+      const auto bit = static_cast<uint8_t>(1 << kSides.find(side));
+      w.known |= bit;
+      if (present) w.walls |= bit;
+    }
+  }
+  beliefs.colours = colors_;
+  beliefs.texts = texts_;
+  return beliefs;
 }
 
 }  // namespace unimouse

@@ -15,6 +15,7 @@
 #include <string>
 #include <utility>
 
+#include "firmware_beliefs.h"
 #include "maze.h"
 
 namespace unimouse {
@@ -84,6 +85,9 @@ class MmsWorld {
   /// Returns the walls, colours and texts the program set: {"walls": [...], "colors": [...],
   /// "texts": [...]}, ordered by cell.
   nlohmann::json Display() const;
+  /// Returns the same as the model every picture draws: set walls known and present, cleared
+  /// ones known and open, the colours and the texts.
+  FirmwareBeliefs Beliefs() const;
 
  private:
   bool Blocked(int px, int py) const;

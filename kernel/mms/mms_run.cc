@@ -18,6 +18,7 @@
 #include <thread>
 
 #include "install_paths.h"
+#include "mms_picture.h"
 #include "result_record.h"
 #include "transport.h"
 #include "unimouse/errors.h"
@@ -409,6 +410,7 @@ int RunMms(const MmsRunOptions& options) {
     record["stats"] = world.stats().ToJson();
     record["score"] = world.stats().Score();
     record["display"] = world.Display();
+    if (!options.no_pictures) WriteMmsPictures(maze, world, options.out_dir);
   } catch (const InputError& e) {
     ending = {"error", e.what(), kExitBadInput};
   } catch (const std::exception& e) {

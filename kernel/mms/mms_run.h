@@ -3,7 +3,7 @@
 // mms protocol with it over its stdin and stdout on the logic tier (MmsWorld), and writes
 // result.json. Its stderr is passed through. Or the program runs elsewhere (an mms-arduino
 // sketch on a board, a relay) and speaks over a pty, serial port or TCP, its log on lines that
-// start "log ". docs/mms.md describes the statuses.
+// start "log ". docs/mms.md describes the statuses. maze.png shows what the program displayed.
 #ifndef UNIMOUSE_MMS_MMS_RUN_H_
 #define UNIMOUSE_MMS_MMS_RUN_H_
 
@@ -28,6 +28,7 @@ struct MmsRunOptions {
   bool until_exit = false;        ///< keep running after the goal until the program exits
   bool end_on_crash = false;      ///< a move into a wall ends the run (contest rule)
   long max_commands = 10000000;   ///< command lines before the run is stopped
+  bool no_pictures = false;       ///< no maze.png and maze.svg
 };
 
 /// Runs the program against the maze, writes out_dir/result.json, and returns the exit code:

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <limits>
 #include <numbers>
+#include <optional>
 
 #include "unimouse/errors.h"
 
@@ -19,7 +20,7 @@ constexpr float kBelievedWall[4] = {0.2f, 0.55f, 1, 1};
 constexpr float kVisited[4] = {0.2f, 0.8f, 0.9f, 0.35f};
 constexpr float kPlannedPath[4] = {1, 0.85f, 0.1f, 1};
 // the scene's geoms beyond the models' own: beams, and beliefs about a 32x32 maze at most
-constexpr int kExtraGeoms = 8 + 32 * 32 * 6;
+constexpr int kExtraGeoms = 8 + 32 * 32 * 8;
 
 // a parameter's declared default, as the component's type gives it
 }  // namespace
@@ -191,6 +192,30 @@ void SceneRenderer::AddBeliefs(const FirmwareBeliefs& beliefs) {
     const Pose2D p = centre(c);
     const mjtNum pos[3] = {p.x_m, p.y_m, 0.001};
     mjv_initGeom(g, mjGEOM_BOX, size, pos, nullptr, kVisited);
+    g->category = mjCAT_DECOR;
+  }
+  // cell colours: a tile over the floor inside the walls, under the visited marks
+  for (const auto& [cell, letter] : beliefs.colours) {
+    const std::optional<Rgb8> colour = CellColourOf(letter);
+    if (!colour) continue;
+    mjvGeom* g = NewGeom();
+    if (g == nullptr) return;
+    const double half_m = (dims.cell_m - dims.wall_thickness_m) / 2;
+    const mjtNum size[3] = {half_m, half_m, 0.0004};
+    const Pose2D p = centre({cell.first, cell.second});
+    const mjtNum pos[3] = {p.x_m, p.y_m, 0.0005};
+    const float rgba[4] = {colour->r / 255.0f, colour->g / 255.0f, colour->b / 255.0f, 1};
+    mjv_initGeom(g, mjGEOM_BOX, size, pos, nullptr, rgba);
+    g->category = mjCAT_DECOR;
+  }
+  // cell texts: MuJoCo's own labels, at the cell centre
+  for (const auto& [cell, text] : beliefs.texts) {
+    mjvGeom* g = NewGeom();
+    if (g == nullptr) return;
+    const Pose2D p = centre({cell.first, cell.second});
+    const mjtNum pos[3] = {p.x_m, p.y_m, 0.002};
+    mjv_initGeom(g, mjGEOM_LABEL, nullptr, pos, nullptr, nullptr);
+    std::snprintf(g->label, sizeof(g->label), "%s", text.c_str());
     g->category = mjCAT_DECOR;
   }
   for (size_t i = 1; i < beliefs.path.size(); ++i) {

@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Pictures of a run: the physics model's floor and robot, the scenery model's walls and posts
 // (see world.h), the ToF beams (green on a hit, red on a miss, as in the original), what the
-// firmware believes about the maze, and the scenario's HUD, drawn with MuJoCo's renderer into
-// the current OpenGL context (an EglContext offscreen, or the viewer's window).
+// firmware (or an mms program) believes about the maze (walls, visited cells, its path, cell
+// colours as floor tiles, cell texts as labels), and the scenario's HUD, drawn with MuJoCo's
+// renderer into the current OpenGL context (an EglContext offscreen, or the viewer's window).
 //
 // The renderer draws from its own copy of the model and data, so drawing never touches the
 // state of the run: a run with pictures is the same run, bit for bit, as one without.

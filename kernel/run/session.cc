@@ -357,7 +357,7 @@ std::string Session::where() const {
 }
 
 // the maze as the firmware reported it on its debug channels: cells it knows (with their true
-// walls dark), cells it visited, the path it last planned
+// walls dark), cells it visited, the walls it believes in, the path it last planned
 void Session::DrawFirmwareMaze() {
   const Maze& maze = *maze_;
   WallKnowledge knowledge(maze);
@@ -369,6 +369,7 @@ void Session::DrawFirmwareMaze() {
   MazePicture picture;
   picture.maze = &maze;
   picture.knowledge = &knowledge;
+  picture.beliefs = &beliefs_;
   picture.closed_path = DescribeRoute(beliefs_.path, maze.start_heading());
   const fs::path base = fs::path(options_.out_dir) / "maze";
   WriteMazePicture(picture, base.string() + ".png");

@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <string>
+
 namespace unimouse {
 namespace {
 
@@ -39,6 +41,28 @@ TEST(FirmwareBeliefsTest, WallsAndVisitsOutsideEveryMazeAreLeftOut) {
   EXPECT_TRUE(beliefs.empty());
   beliefs.Apply(Report(UNIMOUSE_REPORT_VISITED, kMaxMazeSide_cells - 1, 0));
   EXPECT_EQ(beliefs.visited.size(), 1u);
+}
+
+TEST(FirmwareBeliefsTest, EveryMmsColourLetterHasAColourAndNoOtherCharacterHas) {
+  const std::string letters = "kbacgorwyBACGORYV";
+  for (int c = 0; c < 128; ++c) {
+    EXPECT_EQ(CellColourOf(static_cast<char>(c)).has_value(),
+              letters.find(static_cast<char>(c)) != std::string::npos)
+        << c;
+  }
+  EXPECT_EQ(CellColourOf('r'), (Rgb8{255, 0, 0}));
+  EXPECT_EQ(CellColourOf('B'), (Rgb8{0, 0, 128}));
+  EXPECT_EQ(CellColourOf('k'), (Rgb8{0, 0, 0}));
+}
+
+TEST(FirmwareBeliefsTest, ColoursAndTextsAloneAreSomethingReported) {
+  FirmwareBeliefs beliefs;
+  EXPECT_TRUE(beliefs.empty());
+  beliefs.texts[{0, 0}] = "x";
+  EXPECT_FALSE(beliefs.empty());
+  beliefs.texts.clear();
+  beliefs.colours[{0, 0}] = 'r';
+  EXPECT_FALSE(beliefs.empty());
 }
 
 }  // namespace

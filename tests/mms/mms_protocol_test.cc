@@ -149,6 +149,26 @@ TEST_F(MmsWorldTest, KeepsTheDisplayCommandsWithoutReplying) {
   EXPECT_EQ(world_.Display()["colors"].size(), 0u);
 }
 
+TEST_F(MmsWorldTest, TheDisplayBecomesTheBeliefsEveryPictureDraws) {
+  for (const char* line :
+       {"setWall 0 0 n", "clearWall 1 1 w", "setColor 1 1 V", "setText 2 0 hi"}) {
+    EXPECT_EQ(KindOf(line), MmsResponse::Kind::kNoReply) << line;
+  }
+  const FirmwareBeliefs beliefs = world_.Beliefs();
+  // bits north 1, east 2, south 4, west 8: set walls known and present, cleared ones known open
+  using W = FirmwareBeliefs::CellWalls;
+  auto walls = [&](int x, int y) {
+    const W w = beliefs.walls.at({x, y});
+    return std::pair<int, int>(w.walls, w.known);
+  };
+  EXPECT_EQ(beliefs.walls.size(), 3u);
+  EXPECT_EQ(walls(0, 0), (std::pair<int, int>(1, 1)));
+  EXPECT_EQ(walls(0, 1), (std::pair<int, int>(4 | 0, 4 | 2)));  // south set, east cleared
+  EXPECT_EQ(walls(1, 1), (std::pair<int, int>(0, 8)));
+  EXPECT_EQ(beliefs.colours, (std::map<std::pair<int, int>, char>{{{1, 1}, 'V'}}));
+  EXPECT_EQ(beliefs.texts, (std::map<std::pair<int, int>, std::string>{{{2, 0}, "hi"}}));
+}
+
 TEST_F(MmsWorldTest, ChargesTheContestClockForMotionOnly) {
   Ask("wallFront");
   Ask("moveForward 2");

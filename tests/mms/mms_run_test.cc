@@ -21,6 +21,7 @@
 #include <filesystem>
 
 #include "inline_assets.h"
+#include "png_file.h"
 #include "run_program.h"
 #include "text_file.h"
 
@@ -172,6 +173,24 @@ echo "$reply" >&2
             std::string::npos);
   EXPECT_NE(log.find("'wallFront\\x09'"), std::string::npos);
   EXPECT_NE(log.find("\n5\n"), std::string::npos) << "the reply to mazeWidth";
+}
+
+TEST_F(MmsRunTest, MazePngShowsWhatTheProgramDisplayedUnlessPicturesAreOff) {
+  const std::string client = ShellClient("echo 'setColor 3 3 g'\necho 'setWall 1 1 n'\n");
+  const MmsOutcome run = Mms("--maze " + open_maze_ + " -- " + client);
+  EXPECT_EQ(run.result["display"]["colors"].size(), 1u);
+  int width = 0, height = 0;
+  const std::vector<uint8_t> rgb = ReadPng(out_ + "/maze.png", &width, &height);
+  // cell (3, 3) of the 5 x 5 maze: centre (32 + 3 x 32, 160 - 3 x 32), 32 px cells
+  const size_t at = static_cast<size_t>(((160 - 96 + 12) * width + 32 + 96 - 12) * 3);
+  EXPECT_EQ((std::vector<int>{rgb[at], rgb[at + 1], rgb[at + 2]}), (std::vector<int>{0, 255, 0}));
+  EXPECT_NE(ReadTextFile(out_ + "/maze.svg").find("believed-wall"), std::string::npos);
+
+  fs::remove_all(out_);
+  Mms("--no-pictures --maze " + open_maze_ + " -- " + client);
+  EXPECT_TRUE(fs::exists(out_ + "/result.json"));
+  EXPECT_FALSE(fs::exists(out_ + "/maze.png"));
+  EXPECT_FALSE(fs::exists(out_ + "/maze.svg"));
 }
 
 TEST_F(MmsRunTest, ACrashEndsTheRunOnlyWhenAsked) {

@@ -259,6 +259,31 @@ TEST_F(SnapshotTest, DrawsTheWallsTheFirmwareBelievesIn) {
   EXPECT_LT(other, blue / 2);
 }
 
+TEST_F(SnapshotTest, DrawsReportedCellColoursAsFloorTilesAndTextsAsLabels) {
+  Build(&Japan2018(), std::nullopt);
+  FirmwareBeliefs beliefs;
+  beliefs.colours[{3, 0}] = 'r';
+  DrawOptions draw = kSceneOnly;
+  draw.beliefs = true;
+  draw.firmware = &beliefs;
+  const Image plain = Picture(640, 480, kSceneOnly);
+  const Image tiled = Picture(640, 480, draw);
+  // a red tile on cell (3, 0), clear of the robot on the start cell: some 25 x 25 pixels at
+  // this scale, and nothing else changed
+  int red = 0, other = 0;
+  for (size_t i = 0; i < tiled.rgb.size(); i += 3) {
+    if (std::equal(tiled.rgb.begin() + i, tiled.rgb.begin() + i + 3, plain.rgb.begin() + i))
+      continue;
+    const int r = tiled.rgb[i], g = tiled.rgb[i + 1], b = tiled.rgb[i + 2];
+    (r > g + 60 && r > b + 60 ? red : other)++;
+  }
+  EXPECT_GT(red, 300);
+  EXPECT_LT(other, red / 4);
+  // a text adds its label's pixels
+  beliefs.texts[{3, 0}] = "12";
+  EXPECT_NE(Picture(640, 480, draw).rgb, tiled.rgb);
+}
+
 TEST_F(SnapshotTest, RefusesUnknownCamerasAndSizes) {
   Build(nullptr, std::nullopt);
   EXPECT_THROW(Picture(640, 480, {}, "side"), InputError);

@@ -214,6 +214,9 @@ mazes: [japan2018, japan2019]
       EXPECT_EQ(job["scores"]["score"], result["score"]) << job.dump();
       EXPECT_EQ(job["scores"]["moves"], result["moves"]) << job.dump();
       EXPECT_EQ(job["sim_time_s"], result["contest_time_s"]) << job.dump();
+      // what the program displayed, one click away in the report
+      ASSERT_EQ(job["pictures"].size(), 1u) << job.dump();
+      EXPECT_TRUE(job["pictures"][0].get<std::string>().ends_with("/maze.png")) << job.dump();
     }
     if (submission == "wall") {
       // a left-hand wall follower never reaches a centre goal: 1200 moves of 0.5 s, and out

@@ -37,14 +37,19 @@ for j in 1 2; do
   printf -- "-j %s: %6.1f s wall, %5.1f jobs/min (%s)\n" "$j" "${seconds[$j]}" \
     "$(awk -v n="${#mazes[@]}" -v s="${seconds[$j]}" 'BEGIN { print n * 60 / s }')" "$statuses"
 done
-# which jobs did not pass, and why (the same for both)
-python3 -c 'import csv, sys
+# which jobs did not pass, and why
+for j in 1 2; do
+  python3 -c 'import csv, sys
 for row in csv.DictReader(open(sys.argv[1])):
     if row["status"] != "passed":
-        print("  not passed:", row["maze"], row["status"], row["reason"])' "$work/j1/results.csv"
+        print("  -j", sys.argv[2], "not passed:", row["maze"], row["status"], row["reason"])' \
+    "$work/j$j/results.csv" "$j"
+done
 # the same jobs must give the same results however many run at once
 if ! diff <(cut -d, -f1-8 "$work/j1/results.csv") <(cut -d, -f1-8 "$work/j2/results.csv") > /dev/null; then
-  echo "results differ between -j 1 and -j 2" >&2
+  kept=$(mktemp -d)
+  cp -r "$work"/. "$kept"
+  echo "results differ between -j 1 and -j 2 (both batches are in $kept)" >&2
   exit 1
 fi
 printf "scaling from -j 1 to -j 2: %.2fx\n" "$(awk -v a="${seconds[1]}" -v b="${seconds[2]}" 'BEGIN { print a / b }')"

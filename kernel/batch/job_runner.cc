@@ -212,8 +212,12 @@ JobOutcome ClassifyJob(const ProcessEnd& end, const nlohmann::json& result,
         const bool crashed = Get<std::string>(result, P("/status"), "") == "program_crashed";
         return {crashed ? "crashed" : "firmware_error", reason};
       }
-      // a firmware ended by a fatal signal is named by the link ("the firmware crashed: SIGSEGV")
-      if (error.find("firmware crashed: SIG") != std::string::npos) return {"crashed", error};
+      // a firmware ended by a fatal signal is named by the link ("the firmware crashed: SIGSEGV");
+      // a run stopped by a signal from outside the batch ("interrupted by SIGTERM") ended by it
+      if (error.find("firmware crashed: SIG") != std::string::npos ||
+          Get<std::string>(result, P("/status"), "") == "interrupted") {
+        return {"crashed", error};
+      }
       // a component's failure is the firmware's (its link) or the robot's; else the script's
       if (error.find("component '") != std::string::npos) return {"firmware_error", error};
       return {"script_error", error.empty() ? reason : error};

@@ -43,6 +43,12 @@ TEST(ClassifyJobTest, AFaultIsTheFirmwaresWhenAComponentFailedElseTheScripts) {
       Exited(3), {{"error", "component 'link' failed at t=0.2 s: the firmware crashed: SIGSEGV"}},
       limits);
   EXPECT_EQ(crash.status, "crashed");
+  // killed from outside the batch: not the script's fault
+  const JobOutcome stopped = ClassifyJob(
+      Exited(3), {{"status", "interrupted"}, {"error", "interrupted by SIGTERM at 3.200 s"}},
+      limits);
+  EXPECT_EQ(stopped.status, "crashed");
+  EXPECT_EQ(stopped.reason, "interrupted by SIGTERM at 3.200 s");
 }
 
 // `unimouse mms` writes its reason and status at the top (docs/mms.md)

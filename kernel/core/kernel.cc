@@ -104,12 +104,45 @@ struct Kernel::BindSession {
   }
 };
 
+namespace {
+
+// what the robot file calls each of the world's joints, and where, for messages about them
+std::vector<std::string> JointPlaces(const RobotSpec& robot, const mjModel& m) {
+  std::vector<std::string> places(m.njnt);
+  const auto name = [&m, &places](const std::string& joint, const std::string& place) {
+    const int id = mj_name2id(&m, mjOBJ_JOINT, joint.c_str());
+    if (id >= 0) places[id] = place;
+    return id;
+  };
+  name(robot.chassis.name + "_free", "the chassis '" + robot.chassis.name + "' (" +
+                                         robot.chassis.location.ToString() + "), moving freely");
+  std::vector<const BodySpec*> bodies{&robot.chassis};
+  while (!bodies.empty()) {
+    const BodySpec& b = *bodies.back();
+    bodies.pop_back();
+    for (const BodySpec& child : b.bodies) bodies.push_back(&child);
+    if (!b.joint) continue;
+    const int id = name(b.joint->name, "joint '" + b.joint->name + "' of body '" + b.name + "' (" +
+                                           b.joint->location.ToString() + ")");
+    if (id < 0) continue;
+    for (const ActuatorSpec& a : robot.actuators) {
+      if (a.joint == b.joint->name) {
+        places[id] += ", actuator '" + a.name + "' (" + a.location.ToString() + ")";
+      }
+    }
+  }
+  return places;
+}
+
+}  // namespace
+
 std::unique_ptr<Kernel> Kernel::Create(const RobotSpec& robot, const Maze* maze,
                                        const PluginRegistry& registry,
                                        const KernelOptions& options) {
   InstallMujocoHandlers();
   std::unique_ptr<Kernel> k(new Kernel(options));
   k->model_.world = World::Build(robot, maze, options.spawn, options.boxes);
+  k->model_.joint_places = JointPlaces(robot, k->model_.mj());
 
   // inputs are written from outside: the firmware link or a scenario
   for (const auto& input : robot.inputs) {
@@ -491,14 +524,30 @@ void Kernel::Step() {
   state_->set_step(step + 1);
   ForgetSeenMessages();
 
-  // MuJoCo resets a diverged simulation silently apart from this warning
-  for (int w : {mjWARN_BADQACC, mjWARN_BADQVEL, mjWARN_BADQPOS}) {
-    if (d.warning[w].number > 0) {
-      std::ostringstream out;
-      out << "physics diverged at t=" << d.time << " s (MuJoCo warning " << w << " for dof "
-          << d.warning[w].lastinfo << "); check masses, timestep and controls";
-      throw RuntimeFault(out.str());
+  // MuJoCo resets a diverged simulation silently apart from this warning, whose info is the
+  // index of the first bad acceleration or velocity (a dof) or position (a qpos entry)
+  const char* what[] = {"acceleration", "velocity", "position"};
+  const int warnings[] = {mjWARN_BADQACC, mjWARN_BADQVEL, mjWARN_BADQPOS};
+  for (int i = 0; i < 3; ++i) {
+    const mjWarningStat& warning = d.warning[warnings[i]];
+    if (warning.number == 0) continue;
+    const int index = warning.lastinfo;
+    int joint = -1;
+    if (warnings[i] != mjWARN_BADQPOS && index >= 0 && index < m.nv) {
+      joint = m.dof_jntid[index];
     }
+    for (int j = 0; warnings[i] == mjWARN_BADQPOS && j < m.njnt; ++j) {
+      if (m.jnt_qposadr[j] <= index) joint = j;
+    }
+    std::ostringstream out;
+    out << "physics diverged at t=" << d.time << " s: the " << what[i] << " of ";
+    if (joint >= 0 && !model_.joint_places[joint].empty()) {
+      out << model_.joint_places[joint];
+    } else {
+      out << "degree of freedom " << index;
+    }
+    out << " became infinite or not a number; check masses, inertias, timestep and controls";
+    throw RuntimeFault(out.str());
   }
 }
 

@@ -60,6 +60,10 @@ struct Model {
   std::vector<std::string> rng_names;
   std::vector<BeamSpec> beams;
   std::vector<EarlyRead> early_reads;  ///< in signal order
+  /// Per MuJoCo joint id, what the robot file calls it and where, with the actuators on it:
+  /// "joint 'left_wheel' (robot.yaml:37:7), actuator 'left_motor' (robot.yaml:60:5)"; empty
+  /// for joints the robot file does not declare.
+  std::vector<std::string> joint_places;
   int component_state_size = 0;
 };
 

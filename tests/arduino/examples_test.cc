@@ -74,26 +74,34 @@ TEST(ArduinoExamplesTest, MicromouseExploresJapan2018AndSpeedRunsThePathOfCost10
 
 // UK Techfest 2022: a 16 x 16 half-size maze (said so with maze_class), its 2 x 2 goal off the
 // centre; the half-size robot; the firmware told 90 mm cells and the goal by the simulator. The
-// contest ends with the first run (max_runs=1): the run is the first trip of Adachi's method,
-// which the maze tools compute without physics. (Later trips go wrong: docs/mazes.md.)
-TEST(ArduinoExamplesTest, MicromouseCompletesAHalfSizeContestWithTheHalfSizeRobot) {
-  const ExampleRun r =
-      RunExample("micromouse",
-                 "micromouse --robot unimouse-half --maze UK-techfest-2022-a --set maze_class=half "
-                 "--set max_runs=1",
-                 "unimouse_example_half");
+// whole contest, as on japan2018: the first run is the first trip of Adachi's method, which the
+// maze tools compute without physics, and the speed run is the optimum `maze solve` finds.
+TEST(ArduinoExamplesTest, MicromouseSpeedRunsAHalfSizeContestOnTheOptimalPath) {
+  const ExampleRun r = RunExample("micromouse",
+                                  "micromouse --robot unimouse-half --maze UK-techfest-2022-a "
+                                  "--set maze_class=half --set end_on_log=done",
+                                  "unimouse_example_half");
   ASSERT_EQ(r.outcome.exit_code, 0) << r.outcome.output;
   const nlohmann::json& scenario = r.result["scenario"];
   EXPECT_EQ(scenario["status"], "passed") << scenario["reason"];
-  EXPECT_EQ(scenario["scores"]["runs"], 1);
   EXPECT_EQ(r.result["warnings"], nlohmann::json::array()) << r.result["warnings"].dump();
-  // the run's cost as the simulator saw the robot drive it: the explorer's first trip, forward
-  // moves plus quarter turns (41 + 16)
+  EXPECT_NE(r.outcome.output.find("link: done"), std::string::npos) << r.outcome.output;
+  // run 1 as the simulator saw the robot drive it: the explorer's first trip, forward moves
+  // plus quarter turns (41 + 16)
   const auto explored = testing::Unimouse("maze explore UK-techfest-2022-a --json");
   ASSERT_EQ(explored.exit_code, 0) << explored.output;
   const nlohmann::json trip = nlohmann::json::parse(explored.output)[0]["trips"][0];
-  EXPECT_EQ(scenario["scores"]["best_run_path_cost"],
-            trip["forward_moves"].get<int>() + trip["turns"].get<int>());
+  const nlohmann::json& runs = scenario["records"]["runs"];
+  ASSERT_GE(runs.size(), 2u) << scenario.dump();
+  EXPECT_EQ(runs[0]["path_cost"], trip["forward_moves"].get<int>() + trip["turns"].get<int>());
+  // the speed run, the last run, is the best: the turn-aware optimum (35 cells, 14 turns)
+  const auto solved = testing::Unimouse("maze solve UK-techfest-2022-a --json");
+  ASSERT_EQ(solved.exit_code, 0) << solved.output;
+  const int optimum = nlohmann::json::parse(solved.output)[0]["modified"]["cost"].get<int>();
+  EXPECT_EQ(optimum, 49);
+  EXPECT_EQ(runs.back()["path_cost"], optimum) << scenario.dump();
+  EXPECT_EQ(scenario["scores"]["best_run_path_cost"], optimum) << scenario.dump();
+  EXPECT_EQ(scenario["scores"]["best_run_s"], runs.back()["time_s"]) << scenario.dump();
   // it ended in the goal the maze marks, (7, 6) to (8, 7), of 90 mm cells: not the centre
   const double x_m = r.result["robot_pose"]["x_m"].get<double>();
   const double y_m = r.result["robot_pose"]["y_m"].get<double>();

@@ -4,12 +4,14 @@
 // 3.28 computed from its own wheel speeds.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
 #include "inline_assets.h"
 #include "plugin_rig.h"
 #include "text_file.h"
+#include "unimouse/errors.h"
 
 namespace unimouse {
 namespace {
@@ -105,6 +107,39 @@ TEST(HalfSizeRobotTest, DrivesAlongAHalfSizeCorridorWithoutTouchingItsWalls) {
   const Pose2D p = kernel->world().RobotPose(kernel->state().data());
   EXPECT_GT(p.y_m, 0.3);            // on its way north, several cells
   EXPECT_NEAR(p.x_m, 0.045, 0.01);  // still in the middle of the corridor
+}
+
+// without the armature its small wheels need (the robot file says why), the half-size robot's
+// physics blows up on the first step; the message names the joint and its motor in the file
+TEST(HalfSizeRobotTest, WithoutItsWheelsArmatureItDivergesNamingTheWheelAndMotorLines) {
+  std::string yaml = ReadTextFile(UNIMOUSE_SOURCE_DIR "/robots/unimouse-half.yaml");
+  const std::string armature = ", armature_kg_m2: 1.0e-6";
+  for (size_t at = yaml.find(armature); at != std::string::npos; at = yaml.find(armature)) {
+    yaml.erase(at, armature.size());
+  }
+  // where the file declares the left wheel's joint and its motor, line and column from 1
+  const auto place = [&yaml](const std::string& text) {
+    const size_t at = yaml.find(text);
+    const size_t line_start = yaml.rfind('\n', at) + 1;
+    return "robot.yaml:" + std::to_string(std::count(yaml.begin(), yaml.begin() + at, '\n') + 1) +
+           ":" + std::to_string(at - line_start - 1);  // the '{' before the text
+  };
+  const std::string joint = place("name: left_wheel, type: hinge");
+  const std::string motor = place("name: left_motor, joint: left_wheel");
+  auto kernel = MakeKernel(yaml);
+  SetSignal(*kernel, "left.command", 300);
+  SetSignal(*kernel, "right.command", 300);
+  try {
+    for (int i = 0; i < 100; ++i) kernel->Step();
+    FAIL() << "no divergence in 0.1 s";
+  } catch (const RuntimeFault& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "physics diverged at t=0.001 s: the acceleration of joint 'left_wheel' of body "
+              "'left_wheel' (" +
+                  joint + "), actuator 'left_motor' (" + motor +
+                  ") became infinite or not a number; check masses, inertias, timestep and "
+                  "controls");
+  }
 }
 
 }  // namespace

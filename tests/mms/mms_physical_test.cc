@@ -201,6 +201,35 @@ TEST_F(MmsPhysicalRunTest, WhatTheSensorsCannotSeeIsAnsweredFromTheMaze) {
   EXPECT_EQ(result["physical"]["wall_readings"]["sensed"], 0);
 }
 
+TEST_F(MmsPhysicalRunTest, WrongReadingsOfANoisySensorAreAnsweredLoggedAndCounted) {
+  // the bundled robot with a right sensor 32 times noisier than the part: along the open east
+  // side of column 0 it sometimes reads a wall
+  std::string robot = ReadTextFile(UNIMOUSE_SOURCE_DIR "/robots/unimouse.yaml");
+  const std::string right = "params: { site: tof_right, range_out: tof.right_m }";
+  ASSERT_NE(robot.find(right), std::string::npos);
+  robot.replace(robot.find(right), right.size(),
+                "params: { site: tof_right, range_out: tof.right_m, noise_cv: 0.9 }");
+  WriteTextFile(dir_ + "/noisy.yaml", robot);
+  const std::string client =
+      Client("for i in 1 2 3 4; do ask 'moveForward 1'; ask wallRight; ask wallLeft; done\n");
+  const nlohmann::json result =
+      Mms("--robot " + dir_ + "/noisy.yaml --maze " + open_maze_ + " -- " + client, 3);
+  ASSERT_TRUE(result.is_object()) << output_;
+  const std::string replies = Replies();
+  auto count = [](const std::string& text, const std::string& part) {
+    long n = 0;
+    for (size_t at = text.find(part); at != std::string::npos; at = text.find(part, at + 1)) ++n;
+    return n;
+  };
+  // every wrong reading is the answer the program got, a log line and a count
+  const long wrong = result["physical"]["wall_readings"]["wrong"].get<long>();
+  EXPECT_GE(wrong, 1);
+  EXPECT_EQ(count(replies, "wallRight true"), wrong);
+  EXPECT_EQ(count(replies, "wallLeft true"), 4);  // the left sensor is the part's
+  EXPECT_EQ(count(output_, "wrong wall reading: the sensors see a wall east of cell (0, "), wrong);
+  EXPECT_EQ(result["physical"]["wall_readings"]["sensed"], 8);
+}
+
 TEST_F(MmsPhysicalRunTest, TrueWallsAnswersFromTheMaze) {
   const std::string client = Client("ask 'moveForward 1'\nask wallLeft\n");
   const nlohmann::json result = Mms("--true-walls --maze " + open_maze_ + " -- " + client, 3);

@@ -244,6 +244,15 @@ int main(int argc, char** argv) {
       ->add_option("--connect-timeout-s", mms.connect_timeout_s,
                    "wall seconds a --port peer has for its first command line")
       ->capture_default_str();
+  mms_cmd->add_flag("--physical", mms.physical,
+                    "the physics tier: each move driven on the simulated robot in MuJoCo, the "
+                    "walls read by its sensors, the contest clock simulated time");
+  mms_cmd->add_flag("--true-walls", mms.true_walls,
+                    "with --physical: wall queries answered from the maze, not the sensors");
+  mms_cmd->add_option("--robot", mms.robot, "with --physical: robot file or bundled robot name")
+      ->capture_default_str();
+  mms_cmd->add_option("--seed", mms.seed, "with --physical: the sensors' noise")
+      ->capture_default_str();
 
   FirmwareBuildOptions firmware;
   CLI::App* firmware_cmd =

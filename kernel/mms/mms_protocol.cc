@@ -148,7 +148,8 @@ MmsResponse MmsWorld::Move(long half_steps) {
   MmsResponse response = Reply("ack");
   response.motion = true;
   ++moves_;
-  if (half_steps < 1) {
+  // a body moves whole cells only
+  if (half_steps < 1 || (body_ != nullptr && half_steps % 2 != 0)) {
     response.reply = "crash";
     response.crash = true;
     ++crashes_;
@@ -175,8 +176,14 @@ MmsResponse MmsWorld::Move(long half_steps) {
     py_ += kDy[direction_];
     ++moved;
   }
-  contest_time_s_ += double(moved) * timing_.cell_time_s / 2;
-  if (moved < half_steps) {
+  bool contact = false;
+  if (body_ == nullptr) {
+    contest_time_s_ += double(moved) * timing_.cell_time_s / 2;
+  } else if (moved > 0) {
+    // from a cell's centre, a wall stops the mouse at a centre too: `moved` is even
+    contact = BodyMoved(body_->Drive(moved / 2));
+  }
+  if (moved < half_steps || contact) {
     response.reply = "crash";
     response.crash = true;
     ++crashes_;
@@ -208,13 +215,62 @@ void MmsWorld::Stopped() {
 }
 
 MmsResponse MmsWorld::Turn(int eighths) {
-  direction_ = (direction_ + eighths + 8) % 8;
-  ++moves_;
-  ++stats_.total_turns;
-  if (stats_.in_run) ++stats_.current_run_turns;
-  contest_time_s_ += std::abs(eighths) * timing_.turn_time_s / 2;
   MmsResponse response = Reply("ack");
   response.motion = true;
+  ++moves_;
+  // a body turns by quarters only: a 45 degree turn is impossible, as a move into a wall
+  if (body_ != nullptr && eighths % 2 != 0) {
+    response.reply = "crash";
+    response.crash = true;
+    ++crashes_;
+    return response;
+  }
+  direction_ = (direction_ + eighths + 8) % 8;
+  ++stats_.total_turns;
+  if (stats_.in_run) ++stats_.current_run_turns;
+  if (body_ == nullptr) {
+    contest_time_s_ += std::abs(eighths) * timing_.turn_time_s / 2;
+  } else if (BodyMoved(body_->Turn(eighths / 2))) {
+    response.reply = "crash";
+    response.crash = true;
+    ++crashes_;
+  }
+  return response;
+}
+
+bool MmsWorld::BodyMoved(const MmsMotion& motion) {
+  contest_time_s_ += motion.time_s;
+  if (body_failure_.failure.empty()) body_failure_ = motion;
+  return motion.contact;
+}
+
+void MmsWorld::SetBody(MmsBody* body, bool true_walls) {
+  body_ = body;
+  true_walls_ = true_walls;
+}
+
+MmsResponse MmsWorld::WallQuery(int relative, long half_steps) {
+  const int direction = (direction_ + relative) % 8;
+  const bool maze = WallWithin(direction, half_steps);
+  if (body_ == nullptr || true_walls_) return Bool(maze);
+  // the sensors see the sides of the mouse's own cell, no farther and not diagonally
+  std::optional<bool> seen;
+  if (half_steps == 1 && relative % 2 == 0) seen = body_->SensedWall(relative / 2);
+  if (!seen) {
+    ++wall_counts_.unsensed;
+    return Bool(maze);
+  }
+  ++wall_counts_.sensed;
+  MmsResponse response = Bool(*seen);
+  if (*seen != maze) {
+    ++wall_counts_.wrong;
+    static const char* const kHeadings[8] = {"east", "north-east", "north", "north-west",
+                                             "west", "south-west", "south", "south-east"};
+    const Cell here = cell();
+    response.note = "wrong wall reading: the sensors " + std::string(*seen ? "see" : "miss") +
+                    " a wall " + kHeadings[direction] + " of cell (" + std::to_string(here.x) +
+                    ", " + std::to_string(here.y) + "); the maze has " + (maze ? "one" : "none");
+  }
   return response;
 }
 
@@ -239,7 +295,7 @@ MmsResponse MmsWorld::Handle(const std::string& raw) {
       {"wallBack", 4},  {"wallBackRight", 5}, {"wallRight", 6}, {"wallFrontRight", 7}};
   if (const auto query = kWallQueries.find(name); query != kWallQueries.end()) {
     if (!optional_count()) return Invalid("takes an optional integer number of half-cells");
-    return Bool(WallWithin((direction_ + query->second) % 8, count));
+    return WallQuery(query->second, count);
   }
   if (name == "moveForward" || name == "moveForwardHalf") {
     if (!optional_count()) return Invalid("takes an optional integer number of cells");
@@ -261,6 +317,7 @@ MmsResponse MmsWorld::Handle(const std::string& raw) {
     px_ = 1;
     py_ = 1;
     direction_ = 2;
+    if (body_ != nullptr) body_->Reset();
     if (stats_.in_run) stats_.in_run = false;
     stats_.reset_penalty_pending = true;
     return Reply("ack");

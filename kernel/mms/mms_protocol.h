@@ -12,6 +12,7 @@
 
 #include <map>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <utility>
 
@@ -37,6 +38,7 @@ struct MmsResponse {
   std::string problem;  ///< why the line was dropped (kInvalid)
   bool motion = false;  ///< a move or a turn
   bool crash = false;   ///< the move replied `crash`
+  std::string note;     ///< something the log should say, e.g. a wrong wall reading; or ""
 };
 
 /// mms's stats (getStat): distances in half-steps, -1 where no value exists yet.
@@ -63,6 +65,39 @@ struct MmsStats {
   nlohmann::json ToJson() const;
 };
 
+/// What carrying out one move on a body took.
+struct MmsMotion {
+  double time_s = 0;     ///< the contest time it took
+  bool contact = false;  ///< the robot touched a wall on the way: the move replies `crash`
+  /// "" when the move finished; else how the run ends ("stuck", "off_course", "error")
+  std::string failure;
+  std::string why;  ///< the failure's reason, for the log and result.json
+};
+
+/// A robot that carries out the moves the discrete world allows (the physics tier): the world
+/// keeps the mouse's cell, heading and stats, the body moves, senses and tells the time taken.
+class MmsBody {
+ public:
+  virtual ~MmsBody() = default;
+  /// Drives `cells` whole cells straight on, stopping at the last one's centre; the world has
+  /// checked that no wall is on the way.
+  virtual MmsMotion Drive(long cells) = 0;
+  /// Turns in place by `quarter_turns` (positive counter-clockwise: left).
+  virtual MmsMotion Turn(int quarter_turns) = 0;
+  /// Returns whether the robot's sensors see a wall on `side` of its cell (0 front, 1 left,
+  /// 2 back, 3 right), or nothing where it has no reading for that side.
+  virtual std::optional<bool> SensedWall(int side) = 0;
+  /// Puts the robot back at the start, at rest (ackReset).
+  virtual void Reset() = 0;
+};
+
+/// How the `wall*` answers of a body's sensors compared with the maze.
+struct MmsWallCounts {
+  long sensed = 0;    ///< answered from the sensors
+  long wrong = 0;     ///< of those, not what the maze has
+  long unsensed = 0;  ///< answered from the maze: no reading for that side or distance
+};
+
 class MmsWorld {
  public:
   /// Places the mouse at (0, 0) facing north in `maze`; the goal is the maze's goal cells.
@@ -82,6 +117,13 @@ class MmsWorld {
   Cell cell() const;
   /// Returns the heading in eighths of a turn counter-clockwise from east (2 is north).
   int direction() const { return direction_; }
+  /// Carries out the moves on `body` from now on (not owned): whole cells and quarter turns only,
+  /// the contest time is the body's. `true_walls`: `wall*` answers come from the maze, not the
+  /// body's sensors.
+  void SetBody(MmsBody* body, bool true_walls);
+  /// Returns the first move the body could not finish (its `failure` is "" while none).
+  const MmsMotion& body_failure() const { return body_failure_; }
+  const MmsWallCounts& wall_counts() const { return wall_counts_; }
   /// Returns the walls, colours and texts the program set: {"walls": [...], "colors": [...],
   /// "texts": [...]}, ordered by cell.
   nlohmann::json Display() const;
@@ -94,6 +136,9 @@ class MmsWorld {
   bool WallWithin(int direction, long half_steps) const;
   MmsResponse Move(long half_steps);
   MmsResponse Turn(int eighths);
+  // adds a body's move to the clock, keeps its first failure; returns whether it touched a wall
+  bool BodyMoved(const MmsMotion& motion);
+  MmsResponse WallQuery(int relative, long half_steps);
   MmsResponse Show(const std::vector<std::string>& tokens, const std::string& line);
   void Stopped();
 
@@ -107,6 +152,10 @@ class MmsWorld {
   double contest_time_s_ = 0;
   long moves_ = 0;
   long crashes_ = 0;
+  MmsBody* body_ = nullptr;
+  bool true_walls_ = false;
+  MmsMotion body_failure_;
+  MmsWallCounts wall_counts_;
   std::map<std::pair<int, int>, std::map<char, bool>> walls_;  // cell -> side -> set
   std::map<std::pair<int, int>, char> colors_;
   std::map<std::pair<int, int>, std::string> texts_;

@@ -18,6 +18,7 @@
 #include <thread>
 
 #include "install_paths.h"
+#include "mms_physical.h"
 #include "mms_picture.h"
 #include "result_record.h"
 #include "transport.h"
@@ -326,6 +327,15 @@ class Exchange {
       LogInvalid(line, response.problem, commands_);
       return std::nullopt;
     }
+    if (!response.note.empty()) {
+      std::fprintf(stderr, "mms: line %ld: %s\n", commands_, response.note.c_str());
+    }
+    if (const MmsMotion& failed = world_.body_failure(); !failed.failure.empty()) {
+      return Ending{
+          failed.failure,
+          failed.why + " (line " + std::to_string(commands_) + ": " + Printable(line) + ")",
+          failed.failure == "error" ? kExitRuntimeFault : kExitFailed};
+    }
     if (response.motion && options_.realtime) {
       std::this_thread::sleep_for(
           std::chrono::duration<double>(world_.contest_time_s() - paced_s_));
@@ -364,6 +374,7 @@ class Exchange {
 void CheckOptions(const MmsRunOptions& o) {
   UNIMOUSE_THROW_UNLESS(o.program.empty() != o.port.empty(),
                         "unimouse mms: name the program after --, or a --port, not both");
+  UNIMOUSE_THROW_UNLESS(o.physical || !o.true_walls, "--true-walls goes with --physical");
   auto positive = [](double v) { return std::isfinite(v) && v > 0; };
   auto non_negative = [](double v) { return std::isfinite(v) && v >= 0; };
   UNIMOUSE_THROW_UNLESS(positive(o.reply_timeout_s), "--reply-timeout-s must be positive");
@@ -378,7 +389,7 @@ void CheckOptions(const MmsRunOptions& o) {
 
 int RunMms(const MmsRunOptions& options) {
   nlohmann::json record = NewResultRecord("mms");
-  record["mode"] = "mms-logic";
+  record["mode"] = options.physical ? "mms-physical" : "mms-logic";
   record["program"] = options.program;
   if (!options.port.empty()) record["port"] = options.port;
   std::error_code ec;
@@ -392,6 +403,23 @@ int RunMms(const MmsRunOptions& options) {
     fs::create_directories(options.out_dir);
     signal(SIGPIPE, SIG_IGN);
     MmsWorld world(maze, options.timing);
+    // the physics tier: the same maze in MuJoCo, the robot driven by the controller; the run
+    // may take twice the contest time, so that the contest clock decides
+    std::unique_ptr<Session> session;
+    std::unique_ptr<MmsRobot> robot;
+    if (options.physical) {
+      SessionOptions run;
+      run.robot = options.robot;
+      run.maze = maze_file;
+      run.duration_s = 2 * options.time_limit_s + 60;
+      run.duration_given = true;
+      run.seed = options.seed;
+      run.out_dir = options.out_dir;
+      run.driven_by_caller = true;
+      session = Session::Open(run);
+      robot = std::make_unique<MmsRobot>(*session);
+      world.SetBody(robot.get(), options.true_walls);
+    }
     std::unique_ptr<Channel> channel;
     if (options.port.empty()) {
       channel = std::make_unique<Child>(options.program, options.program_dir);
@@ -410,6 +438,21 @@ int RunMms(const MmsRunOptions& options) {
     record["stats"] = world.stats().ToJson();
     record["score"] = world.stats().Score();
     record["display"] = world.Display();
+    if (session) {
+      const MmsWallCounts& walls = world.wall_counts();
+      record["physical"] = robot->Facts();
+      record["physical"]["wall_readings"] = {{"sensed", walls.sensed},
+                                             {"wrong", walls.wrong},
+                                             {"from_the_maze", walls.unsensed},
+                                             {"true_walls", options.true_walls}};
+      // what the run's own record says of the robot and the simulation
+      const nlohmann::json run = session->Finish().record;
+      for (const char* key : {"robot", "robot_sha256", "seed", "sim_time_s", "wall_time_s",
+                              "real_time_factor", "robot_pose", "pictures", "warnings"}) {
+        if (run.contains(key)) record["physical"][key] = run[key];
+      }
+      if (run.contains("error")) record["physical"]["error"] = run["error"];
+    }
     if (!options.no_pictures) WriteMmsPictures(maze, world, options.out_dir);
   } catch (const InputError& e) {
     ending = {"error", e.what(), kExitBadInput};

@@ -7,6 +7,7 @@
 #ifndef UNIMOUSE_MMS_MMS_RUN_H_
 #define UNIMOUSE_MMS_MMS_RUN_H_
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -21,19 +22,24 @@ struct MmsRunOptions {
   std::string port;                  ///< a board or relay: pty:LINK, serial:PATH@BAUD, tcp::PORT
   std::string out_dir = "out";
   MmsTiming timing;
-  double time_limit_s = 600;      ///< the contest clock: the micromouse contest's 10 minutes
-  double reply_timeout_s = 5;     ///< wall time the program has for each command line
-  double connect_timeout_s = 60;  ///< wall time a --port peer has for its first line
-  bool realtime = false;          ///< wait each move's contest time on the wall clock
-  bool until_exit = false;        ///< keep running after the goal until the program exits
-  bool end_on_crash = false;      ///< a move into a wall ends the run (contest rule)
-  long max_commands = 10000000;   ///< command lines before the run is stopped
-  bool no_pictures = false;       ///< no maze.png and maze.svg
+  double time_limit_s = 600;       ///< the contest clock: the micromouse contest's 10 minutes
+  double reply_timeout_s = 5;      ///< wall time the program has for each command line
+  double connect_timeout_s = 60;   ///< wall time a --port peer has for its first line
+  bool realtime = false;           ///< wait each move's contest time on the wall clock
+  bool until_exit = false;         ///< keep running after the goal until the program exits
+  bool end_on_crash = false;       ///< a move into a wall ends the run (contest rule)
+  long max_commands = 10000000;    ///< command lines before the run is stopped
+  bool physical = false;           ///< the physics tier: the moves on the simulated robot
+  bool true_walls = false;         ///< physics tier: `wall*` from the maze, not the sensors
+  std::string robot = "unimouse";  ///< physics tier: robot file or bundled robot name
+  uint64_t seed = 1;               ///< physics tier: the sensors' noise
+  bool no_pictures = false;        ///< no maze.png and maze.svg
 };
 
 /// Runs the program against the maze, writes out_dir/result.json, and returns the exit code:
-/// 0 goal reached, 1 not reached (crash, contest time out, command limit), 2 bad input, 3 the
-/// program failed (exited early, crashed, stopped sending commands).
+/// 0 goal reached, 1 not reached (crash, contest time out, command limit; physics tier: the
+/// robot stuck or off course), 2 bad input, 3 the program failed (exited early, crashed,
+/// stopped sending commands) or the simulation did.
 int RunMms(const MmsRunOptions& options);
 
 }  // namespace unimouse

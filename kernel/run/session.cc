@@ -273,7 +273,7 @@ void Session::Assemble() {
   if (scenario_) scenario_->Attach(*kernel_, o.controller);
   identity_["driver"] = DriverJson(o, robot_, *registry);
   // said at once, so that a run meant to test something does not pass quietly doing nothing
-  if (!scenario_ && o.link.empty()) {
+  if (!scenario_ && o.link.empty() && !o.driven_by_caller) {
     kernel_->Log(UNIMOUSE_LOG_WARNING, "run",
                  "nothing drives the robot (no --scenario, --controller or --link): it stands "
                  "still; `unimouse run` with no options runs the contest with the bundled "

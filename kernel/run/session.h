@@ -61,7 +61,8 @@ struct SessionOptions {
   std::vector<std::string> snapshot_on;  ///< scenario events that take a picture
   /// false: final.png whenever the machine can draw, though no picture was asked for
   bool only_asked_pictures = false;
-  bool console = true;  ///< every log line also to stderr, with its sim time
+  bool console = true;            ///< every log line also to stderr, with its sim time
+  bool driven_by_caller = false;  ///< the caller writes the robot's inputs between steps
 };
 
 /// Writes the result.json of a run that could not start (status "error"): why, the exit code,

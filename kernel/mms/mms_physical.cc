@@ -1,0 +1,278 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "mms_physical.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+
+#include "unimouse/errors.h"
+
+namespace unimouse {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+// the four headings, counter-clockwise from east, as cell steps
+constexpr int kDx[4] = {1, 0, -1, 0};
+constexpr int kDy[4] = {0, 1, 0, -1};
+constexpr const char* kHeadingNames[4] = {"east", "north", "west", "south"};
+
+// robots/unimouse.yaml at the classic maze's scale: 16 mm wheels, 358.32 counts a wheel turn,
+// 96 mm between the wheels
+constexpr double kWheelRadius_m = 0.016;
+constexpr double kCountsPerTurn = 358.32;
+constexpr double kTrack_m = 0.096;
+constexpr double kClassicCell_m = 0.18;
+constexpr double kSensorAhead_m = 0.06;  // the front sensor ahead of the axle
+
+// H-bridge commands: cruising, the last and first centimetres, turning; steering at most
+constexpr double kForward = 300;
+constexpr double kSlow = 150;
+constexpr double kTurn = 130;
+constexpr double kMaxCorrection = 120;
+constexpr double kSettle_s = 0.08;
+// how far the robot rolls on at kSlow once the wheels stop: a move ends this short of the centre
+constexpr double kCoast_m = 0.01;
+
+// a - b in (-pi, pi]
+double AngleDiff(double a, double b) { return std::remainder(a - b, 2 * kPi); }
+
+std::string Metres(double v) {
+  char text[32];
+  std::snprintf(text, sizeof(text), "%.3f", v);
+  return text;
+}
+
+}  // namespace
+
+MmsRobot::MmsRobot(Session& session, const MmsControl& control)
+    : session_(session), control_(control) {
+  const Kernel& kernel = session_.kernel();
+  auto signal = [&](const char* name) {
+    const int id = kernel.model().FindSignal(name);
+    UNIMOUSE_THROW_UNLESS(id >= 0, "mms --physical drives robots/unimouse.yaml's signals: robot '" +
+                                       session_.robot().name + "' has no signal '" + name + "'");
+    return id;
+  };
+  left_command_ = signal("left.command");
+  right_command_ = signal("right.command");
+  left_counts_ = signal("left.encoder_counts");
+  right_counts_ = signal("right.encoder_counts");
+  tof_left_ = signal("tof.left_m");
+  tof_front_ = signal("tof.front_m");
+  tof_right_ = signal("tof.right_m");
+  cell_m_ = kernel.world().maze_dimensions().cell_m;
+  // a half-size robot is the classic one at half scale
+  scale_ = cell_m_ / kClassicCell_m;
+  metres_per_count_ = 2 * kPi * kWheelRadius_m * scale_ / kCountsPerTurn;
+  track_m_ = kTrack_m * scale_;
+  const Pose2D spawn = kernel.world().spawn();
+  UNIMOUSE_THROW_UNLESS(
+      spawn.x_m < cell_m_ && spawn.y_m < cell_m_ &&
+          std::abs(AngleDiff(spawn.yaw_rad, kPi / 2)) < 0.1,
+      "mms --physical: the mms mouse starts in cell (0, 0) facing north, and this maze's start "
+      "is elsewhere");
+  Reset();
+}
+
+void MmsRobot::Reset() {
+  Kernel& kernel = session_.kernel();
+  const Pose2D spawn = kernel.world().spawn();
+  kernel.world().PlaceRobot(kernel.state().data(), spawn);
+  kernel.state().signals()[left_command_] = 0;
+  kernel.state().signals()[right_command_] = 0;
+  x_ = y_ = 0;
+  heading_ = 1;
+  est_x_m_ = spawn.x_m;
+  est_y_m_ = spawn.y_m;
+  est_yaw_rad_ = kPi / 2;
+  seen_ = {};
+  touching_ = false;
+}
+
+double MmsRobot::now_s() { return session_.kernel().state().data().time; }
+
+bool MmsRobot::Tick(double left, double right) {
+  Kernel& kernel = session_.kernel();
+  std::vector<double>& signals = kernel.state().signals();
+  signals[left_command_] = std::clamp(std::round(left), -1023.0, 1023.0);
+  signals[right_command_] = std::clamp(std::round(right), -1023.0, 1023.0);
+  session_.Step();
+  if (session_.Over()) return false;
+
+  // dead reckoning: the wheels' travel this tick, along the mean heading
+  const double left_m = signals[left_counts_] * metres_per_count_;
+  const double right_m = signals[right_counts_] * metres_per_count_;
+  const double travel_m = (left_m + right_m) / 2;
+  const double turn_rad = (right_m - left_m) / track_m_;
+  est_x_m_ += travel_m * std::cos(est_yaw_rad_ + turn_rad / 2);
+  est_y_m_ += travel_m * std::sin(est_yaw_rad_ + turn_rad / 2);
+  est_yaw_rad_ += turn_rad;
+
+  // a contact is counted when it begins, as the micromouse scenario counts them
+  const bool touching = kernel.world().RobotTouchesScenery(kernel.state().data());
+  if (touching && !touching_) {
+    ++wall_contacts_;
+    move_contact_ = true;
+  }
+  touching_ = touching;
+  return true;
+}
+
+bool MmsRobot::Settle() {
+  const double until_s = now_s() + kSettle_s;
+  while (now_s() < until_s) {
+    if (!Tick(0, 0)) return false;
+  }
+  return true;
+}
+
+MmsMotion MmsRobot::Drive(long cells) {
+  const double start_s = now_s();
+  move_contact_ = false;
+  const int dx = kDx[heading_];
+  const int dy = kDy[heading_];
+  const double target_x_m = (double(x_ + dx * cells) + 0.5) * cell_m_;
+  const double target_y_m = (double(y_ + dy * cells) + 0.5) * cell_m_;
+  auto to_go_m = [&] { return (target_x_m - est_x_m_) * dx + (target_y_m - est_y_m_) * dy; };
+  const double start_to_go_m = to_go_m();
+  const double budget_s = control_.move_budget_s + double(cells) * control_.cell_budget_s;
+  const double s = scale_;
+  const std::vector<double>& signals = session_.kernel().state().signals();
+  // the face of the wall that may close the last cell, from the front sensor
+  const double wall_face_m = cell_m_ / 2 -
+                             session_.kernel().world().maze_dimensions().wall_thickness_m / 2 -
+                             kSensorAhead_m * s;
+  double min_left_m = 9, min_right_m = 9, min_front_m = 9;
+  double last_front_m = signals[tof_front_];
+  for (;;) {
+    const double left_m = signals[tof_left_];
+    const double front_m = signals[tof_front_];
+    const double right_m = signals[tof_right_];
+    // a fresh reading of the wall ahead of the last cell tells how far its centre is: the
+    // encoders' estimate along the heading is put right by it
+    if (front_m != last_front_m && front_m < control_.front_wall_m * s &&
+        std::abs(front_m - wall_face_m - to_go_m()) < 0.05 * s) {
+      const double shift_m = to_go_m() - (front_m - wall_face_m);
+      est_x_m_ += shift_m * dx;
+      est_y_m_ += shift_m * dy;
+    }
+    last_front_m = front_m;
+    const double go_m = to_go_m();
+    // the last cell's side walls pass the 45-degree sensors about half a cell before its
+    // centre; its wall ahead is seen before the front sensor gets too near to see it
+    if (go_m < 0.11 * s && go_m > 0.07 * s) {
+      min_left_m = std::min(min_left_m, left_m);
+      min_right_m = std::min(min_right_m, right_m);
+    }
+    if (go_m < 0.09 * s && go_m > 0.04 * s) min_front_m = std::min(min_front_m, front_m);
+    if (go_m <= kCoast_m * s || front_m <= control_.front_stop_m * s) break;
+    if (now_s() - start_s > budget_s) {
+      session_.kernel().state().signals()[left_command_] = 0;
+      session_.kernel().state().signals()[right_command_] = 0;
+      const Pose2D p = session_.kernel().world().RobotPose(session_.kernel().state().data());
+      return {now_s() - start_s, move_contact_, "stuck",
+              "a move of " + std::to_string(cells) + " cell(s) " + kHeadingNames[heading_] +
+                  " from (" + std::to_string(x_) + ", " + std::to_string(y_) +
+                  ") did not finish in " + Metres(budget_s) +
+                  " s of simulated time; the robot is at (" + Metres(p.x_m) + ", " + Metres(p.y_m) +
+                  ") m"};
+    }
+
+    // positive steers left: held on the heading and, between side walls, centred on them
+    double correction = 300 * AngleDiff(heading_ * kPi / 2, est_yaw_rad_);
+    const double side_m = control_.side_wall_m * s;
+    if (left_m < side_m && right_m < side_m) {
+      correction += 800 / s * (left_m - right_m);
+    } else if (left_m < side_m) {
+      correction += 800 / s * (left_m - control_.centred_m * s);
+    } else if (right_m < side_m) {
+      correction += 800 / s * (control_.centred_m * s - right_m);
+    }
+    correction = std::clamp(correction, -kMaxCorrection, kMaxCorrection);
+    // a ramp over the first 3 cm, so that the wheels do not slip and fool the encoders
+    const double travelled_m = start_to_go_m - go_m;
+    double base = go_m < 0.03 * s ? kSlow : kForward;
+    if (travelled_m < 0.03 * s) {
+      base = kSlow + (kForward - kSlow) * std::max(0.0, travelled_m) / (0.03 * s);
+    }
+    if (!Tick(base - correction, base + correction)) return Ended(start_s);
+  }
+  x_ += dx * int(cells);
+  y_ += dy * int(cells);
+  seen_ = {};
+  seen_[heading_] = min_front_m < control_.front_wall_m * s;
+  seen_[(heading_ + 1) % 4] = min_left_m < control_.side_wall_m * s;
+  seen_[(heading_ + 3) % 4] = min_right_m < control_.side_wall_m * s;
+  seen_[(heading_ + 2) % 4] = false;  // it came in that way
+  if (!Settle()) return Ended(start_s);
+  return Arrived(start_s);
+}
+
+MmsMotion MmsRobot::Turn(int quarter_turns) {
+  const double start_s = now_s();
+  move_contact_ = false;
+  const int to = ((heading_ + quarter_turns) % 4 + 4) % 4;
+  for (;;) {
+    const double left_rad = AngleDiff(to * kPi / 2, est_yaw_rad_);
+    if (std::abs(left_rad) < 0.06) break;
+    if (now_s() - start_s > control_.move_budget_s) {
+      session_.kernel().state().signals()[left_command_] = 0;
+      session_.kernel().state().signals()[right_command_] = 0;
+      return {now_s() - start_s, move_contact_, "stuck",
+              "a turn in cell (" + std::to_string(x_) + ", " + std::to_string(y_) +
+                  ") did not finish in " + Metres(control_.move_budget_s) + " s of simulated time"};
+    }
+    const double c = std::abs(left_rad) < 0.3 ? kTurn / 2 : kTurn;
+    if (!Tick(left_rad > 0 ? -c : c, left_rad > 0 ? c : -c)) return Ended(start_s);
+  }
+  heading_ = to;
+  if (!Settle()) return Ended(start_s);
+  return Arrived(start_s);
+}
+
+MmsMotion MmsRobot::Ended(double start_s) {
+  const std::string verdict = session_.verdict();
+  return {
+      now_s() - start_s, move_contact_, "error",
+      verdict.empty() ? "the simulation ran out of time at " + Metres(now_s()) + " s" : verdict};
+}
+
+MmsMotion MmsRobot::Arrived(double start_s) {
+  // at rest the walls keep the robot in the corridor's middle, facing along it; along the
+  // heading the estimate stays, so that the next move makes good an overshoot
+  if (heading_ % 2 == 1) {
+    est_x_m_ = (x_ + 0.5) * cell_m_;
+  } else {
+    est_y_m_ = (y_ + 0.5) * cell_m_;
+  }
+  est_yaw_rad_ = heading_ * kPi / 2;
+
+  // the true pose: the mouse's cell and heading are where the robot really is, or the run ends
+  const Pose2D p = session_.kernel().world().RobotPose(session_.kernel().state().data());
+  const double offset_m = std::hypot(p.x_m - (x_ + 0.5) * cell_m_, p.y_m - (y_ + 0.5) * cell_m_);
+  const double yaw_error_rad = std::abs(AngleDiff(heading_ * kPi / 2, p.yaw_rad));
+  worst_offset_m_ = std::max(worst_offset_m_, offset_m);
+  worst_yaw_error_rad_ = std::max(worst_yaw_error_rad_, yaw_error_rad);
+  MmsMotion motion{now_s() - start_s, move_contact_, "", ""};
+  const bool in_cell =
+      int(std::floor(p.x_m / cell_m_)) == x_ && int(std::floor(p.y_m / cell_m_)) == y_;
+  if (!in_cell || yaw_error_rad > control_.off_course_rad) {
+    motion.failure = "off_course";
+    motion.why = "the robot came to rest at (" + Metres(p.x_m) + ", " + Metres(p.y_m) +
+                 ") m facing " + std::to_string(int(std::lround(p.yaw_rad * 180 / kPi))) +
+                 " degrees, not in cell (" + std::to_string(x_) + ", " + std::to_string(y_) +
+                 ") facing " + kHeadingNames[heading_];
+  }
+  return motion;
+}
+
+std::optional<bool> MmsRobot::SensedWall(int side) { return seen_[(heading_ + side) % 4]; }
+
+nlohmann::json MmsRobot::Facts() const {
+  return {{"wall_contacts", wall_contacts_},
+          {"worst_offset_m", worst_offset_m_},
+          {"worst_yaw_error_deg", worst_yaw_error_rad_ * 180 / kPi}};
+}
+
+}  // namespace unimouse

@@ -101,7 +101,7 @@ TEST_F(NativeLinkTest, TheRunCommandReportsAHungFirmwareWithExitCode3) {
 // a batch tells a crashed submission from a hung one by these words (docs/batch.md)
 TEST_F(NativeLinkTest, AFirmwareThatDiesOfASignalOrExitsIsReportedSoAtOnce) {
   for (const auto& [option, expected] :
-       {std::pair{" --crash-at 30", "the firmware crashed: SIGSEGV"},
+       {std::pair{" --crash-at 30", "the firmware crashed: SIGABRT"},
         std::pair{" --exit-at 30", "the firmware exited with code 4"}}) {
     // a lock-step timeout far longer than the test: the end is known, not waited for
     auto kernel = Make(option, 60);

@@ -4,7 +4,7 @@
 // step-done.
 //
 //   --hang-at N          stop answering at step N, as a hung firmware would
-//   --crash-at N         die of SIGSEGV at step N
+//   --crash-at N         die of SIGABRT at step N (which the sanitizers leave alone)
 //   --exit-at N          end with exit code 4 at step N
 //   --report ID:ENC,...  report every frame with one of these ids (ENC tof, i16 or f32: how it
 //                        reads) as a log line "rx ID STEP VALUE", STEP counting clock frames
@@ -149,7 +149,7 @@ int main(int argc, char** argv) {
       }
       if (pending[i] == UNIMOUSE_ID_TOF_FRONT) front = unimouse_get_u16(&pending[i + 1]);
       if (pending[i] == UNIMOUSE_ID_CLOCK) {
-        if (step == crash_at) ::raise(SIGSEGV);
+        if (step == crash_at) std::abort();
         if (step == exit_at)
           std::_Exit(4);  // no exit handlers: a sanitizer's would change the code
         if (step++ == hang_at) {

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <exception>
 #include <filesystem>
+#include <memory>
 
 #include "batch.h"
 #include "commands.h"
@@ -15,6 +16,7 @@
 #include "plugin_registry.h"
 #include "scenario.h"
 #include "unimouse/errors.h"
+#include "viewer.h"
 
 namespace {
 
@@ -253,6 +255,12 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   mms_cmd->add_option("--seed", mms.seed, "with --physical: the sensors' noise")
       ->capture_default_str();
+  bool mms_view = false;
+  int mms_view_frames = 0;
+  mms_cmd->add_flag("--view", mms_view,
+                    "with --physical: watch the robot in a window (the keys of run --view)");
+  mms_cmd->add_option("--view-frames", mms_view_frames,
+                      "close the window after so many frames, saving the last as view.png");
 
   FirmwareBuildOptions firmware;
   CLI::App* firmware_cmd =
@@ -349,7 +357,26 @@ int main(int argc, char** argv) {
                                   UNIMOUSE_VERSION);
       }
     }
-    if (mms_cmd->parsed()) return RunMms(mms);
+    if (mms_cmd->parsed()) {
+      // the window opens with the robot's first step, so that a run without a display still
+      // leaves its result.json
+      std::unique_ptr<Viewer> viewer;
+      if (mms_view) {
+        mms.watch = [&](Session& session) {
+          if (!viewer) {
+            const std::string program = mms.program.empty() ? mms.port : mms.program[0];
+            viewer =
+                std::make_unique<Viewer>("unimouse: mms " + program, mms.out_dir, mms_view_frames);
+          }
+          viewer->Watch(session);
+        };
+        mms.watch_end = [&](Session& session, const std::string& ending) {
+          if (viewer) viewer->Linger(session, ending);
+        };
+      }
+      InstallInterruptHandlers();
+      return RunMms(mms);
+    }
     if (firmware_build_cmd->parsed()) return FirmwareBuild(firmware);
     if (check_cmd->parsed()) {
       check.plugin_path = plugin_path;

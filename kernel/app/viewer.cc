@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <thread>
 
 #include "png_file.h"
 #include "scene_renderer.h"
@@ -91,7 +92,7 @@ void Viewer::SaveScreenshot(const std::string& file) {
   std::printf("  screenshot: %s\n", path.c_str());
 }
 
-void Viewer::Draw(Session& run) {
+void Viewer::Draw(Session& run, const std::string& state) {
   int width = 0, height = 0;
   glfwGetFramebufferSize(window_, &width, &height);
   const mjrRect viewport{0, 0, width, height};
@@ -112,16 +113,11 @@ void Viewer::Draw(Session& run) {
   mjr_setBuffer(mjFB_WINDOW, &renderer_->context());
   renderer_->Draw(viewport, camera_, draw);
 
-  const bool over = run.Over();
-  const std::string verdict = run.verdict();
-  std::string state = over ? "run over" + (verdict.empty() ? "" : ": " + verdict) + "\n"
-                      : controls_.paused ? "paused\n"
-                                         : "";
   char speed[64];
   std::snprintf(speed, sizeof(speed), "%s%gx real time%s", controls_.follow ? "following; " : "",
                 controls_.speed, controls_.help ? "" : "; H: help");
-  state += speed;
-  mjr_overlay(mjFONT_NORMAL, mjGRID_BOTTOMRIGHT, viewport, state.c_str(), nullptr,
+  const std::string corner = state + speed;
+  mjr_overlay(mjFONT_NORMAL, mjGRID_BOTTOMRIGHT, viewport, corner.c_str(), nullptr,
               &renderer_->context());
   if (controls_.help) {
     mjr_overlay(mjFONT_NORMAL, mjGRID_TOPRIGHT, viewport, ViewerControls::HelpKeys(),
@@ -129,17 +125,45 @@ void Viewer::Draw(Session& run) {
   }
 }
 
-void Viewer::Show(Session& run) {
-  controls_.restart = false;
+std::string Viewer::State(Session& run) const {
+  if (run.Over()) {
+    const std::string verdict = run.verdict();
+    return "run over" + (verdict.empty() ? "" : ": " + verdict) + "\n";
+  }
+  return controls_.paused ? "paused\n" : "";
+}
+
+bool Viewer::Frame(Session& run, const std::string& state) {
+  glfwMakeContextCurrent(window_);
+  Draw(run, state);
+  ++frames_;
+  const bool last_frame = max_frames_ > 0 && frames_ >= max_frames_;
+  if (controls_.screenshot || last_frame) {
+    SaveScreenshot(last_frame ? "view.png" : "view_" + std::to_string(++screenshots_) + ".png");
+    controls_.screenshot = false;
+  }
+  glfwSwapBuffers(window_);
+  glfwMakeContextCurrent(nullptr);
+  glfwPollEvents();
+  if (last_frame) controls_.quit = true;
+  return !glfwWindowShouldClose(window_) && !controls_.quit;
+}
+
+void Viewer::Begin(Session& run) {
   glfwMakeContextCurrent(window_);
   renderer_ = std::make_unique<SceneRenderer>(run.kernel(), mjFONTSCALE_150);
   glfwMakeContextCurrent(nullptr);
   if (frames_ == 0) controls_.preset = "free";
+}
+
+void Viewer::Show(Session& run) {
+  controls_.restart = false;
+  Begin(run);
   using Clock = std::chrono::steady_clock;
   auto last = Clock::now();
   double behind_s = 0;  // sim time owed to the wall clock
   const double dt = run.kernel().timestep_s();
-  while (!glfwWindowShouldClose(window_) && !controls_.quit && !controls_.restart) {
+  while (!controls_.restart) {
     const auto now = Clock::now();
     const double wall_s = std::chrono::duration<double>(now - last).count();
     last = now;
@@ -159,18 +183,68 @@ void Viewer::Show(Session& run) {
         if (behind_s > 0.1 * controls_.speed) behind_s = 0;
       }
     }
-    glfwMakeContextCurrent(window_);
-    Draw(run);
-    ++frames_;
-    const bool last_frame = max_frames_ > 0 && frames_ >= max_frames_;
-    if (controls_.screenshot || last_frame) {
-      SaveScreenshot(last_frame ? "view.png" : "view_" + std::to_string(++screenshots_) + ".png");
-      controls_.screenshot = false;
+    if (!Frame(run, State(run))) break;
+  }
+  glfwMakeContextCurrent(window_);
+  renderer_.reset();
+  glfwMakeContextCurrent(nullptr);
+}
+
+void Viewer::Watch(Session& run) {
+  using Clock = std::chrono::steady_clock;
+  constexpr auto kFrame = std::chrono::milliseconds(33);
+  if (!renderer_) {
+    Begin(run);
+    last_frame_ = Clock::now() - kFrame;
+  }
+  const double sim_s = run.kernel().state().data().time;
+  for (;;) {
+    // the caller runs the program: it cannot start again from here
+    controls_.restart = false;
+    const Clock::time_point now = Clock::now();
+    // a frame's time after the last one was drawn: on a slow renderer the run still advances
+    if (now - last_frame_ >= kFrame) {
+      const bool open = Frame(run, State(run));
+      last_frame_ = Clock::now();
+      if (!open) {
+        run.Stop("the viewer's window was closed");
+        return;
+      }
+      continue;
     }
-    glfwSwapBuffers(window_);
-    glfwMakeContextCurrent(nullptr);
-    glfwPollEvents();
-    if (last_frame) controls_.quit = true;
+    if (controls_.paused) {
+      pace_speed_ = 0;  // the pace starts again from here
+      if (controls_.steps_wanted > 0) {
+        --controls_.steps_wanted;
+        return;
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+      continue;
+    }
+    // sim time runs at speed x the wall clock from the last change of speed; a slow machine
+    // shows the run slower, not in jumps
+    const double late_s = std::chrono::duration<double>(now - pace_wall_).count() -
+                          (sim_s - pace_sim_s_) / controls_.speed;
+    if (pace_speed_ != controls_.speed || late_s > 0.25) {
+      pace_speed_ = controls_.speed;
+      pace_wall_ = now;
+      pace_sim_s_ = sim_s;
+      return;
+    }
+    if (late_s >= 0) return;
+    std::this_thread::sleep_for(std::min(
+        std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(-late_s)),
+        Clock::duration(kFrame)));
+  }
+}
+
+void Viewer::Linger(Session& run, const std::string& ending) {
+  if (!renderer_) Begin(run);
+  controls_.restart = false;
+  while (!glfwWindowShouldClose(window_) && !controls_.quit &&
+         Frame(run, "run over: " + ending + "\n")) {
+    controls_.restart = false;
+    std::this_thread::sleep_for(std::chrono::milliseconds(30));
   }
   glfwMakeContextCurrent(window_);
   renderer_.reset();

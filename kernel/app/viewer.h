@@ -6,6 +6,7 @@
 #ifndef UNIMOUSE_APP_VIEWER_H_
 #define UNIMOUSE_APP_VIEWER_H_
 
+#include <chrono>
 #include <functional>
 #include <memory>
 #include <string>
@@ -34,13 +35,27 @@ class Viewer {
   /// the run is to start again (see restart_requested()).
   void Show(Session& session);
 
+  /// For a run its caller steps (`unimouse mms --physical --view`): called after every step, it
+  /// draws a frame when one is due and holds the run to the chosen speed or while paused. A
+  /// closed window or Q stops the run (Session::Stop).
+  void Watch(Session& session);
+  /// Shows the ended run, saying how it ended, until the window is closed or Q is pressed.
+  void Linger(Session& session, const std::string& ending);
+
   bool restart_requested() const { return controls_.restart; }
   /// Frames drawn since the window opened.
   int frames() const { return frames_; }
 
  private:
   void OnMouseMove(double x, double y);
-  void Draw(Session& session);
+  void Draw(Session& session, const std::string& state);
+  // draws one frame, saves a screenshot if asked, and takes the window's events; false when the
+  // window is to close
+  bool Frame(Session& session, const std::string& state);
+  // the renderer for this run's model, made when its first frame is drawn
+  void Begin(Session& session);
+  // the run's state line for the corner: over, paused or running
+  std::string State(Session& session) const;
   void SaveScreenshot(const std::string& file);
 
   GLFWwindow* window_ = nullptr;
@@ -51,6 +66,10 @@ class Viewer {
   ViewerControls controls_;
   std::unique_ptr<SceneRenderer> renderer_;
   mjvCamera camera_{};
+  // Watch: when the last frame was drawn, and the wall and sim time the pace counts from
+  std::chrono::steady_clock::time_point last_frame_, pace_wall_;
+  double pace_sim_s_ = 0;
+  double pace_speed_ = 0;
   // the mouse
   bool left_down_ = false, right_down_ = false;
   double last_x_ = 0, last_y_ = 0;

@@ -245,8 +245,9 @@ class Device final : public Channel {
 // the protocol session: reads command lines, answers them, decides when the run ends
 class Exchange {
  public:
-  Exchange(const MmsRunOptions& options, MmsWorld& world, Channel& channel)
-      : options_(options), world_(world), channel_(channel) {}
+  /// `session`: the physics tier's run, which draws what the program displays; or nullptr.
+  Exchange(const MmsRunOptions& options, MmsWorld& world, Channel& channel, Session* session)
+      : options_(options), world_(world), channel_(channel), session_(session) {}
 
   Ending Run() {
     const auto reply_timeout = std::chrono::duration_cast<Clock::duration>(
@@ -255,6 +256,11 @@ class Exchange {
     std::string partial;
     bool discarding = false;  // inside an over-long line
     for (;;) {
+      if (const int signal = InterruptSignal(); signal != 0) {
+        return {"interrupted",
+                std::string("interrupted by ") + (signal == SIGINT ? "SIGINT" : "SIGTERM"),
+                kExitRuntimeFault};
+      }
       const auto left =
           std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now());
       if (left.count() < 0) {
@@ -323,6 +329,7 @@ class Exchange {
                                          std::to_string(options_.max_commands) + " command lines"};
     }
     const MmsResponse response = world_.Handle(line);
+    if (session_ != nullptr) session_->ShowDisplay(world_.Beliefs(), Hud());
     if (response.kind == MmsResponse::Kind::kInvalid) {
       LogInvalid(line, response.problem, commands_);
       return std::nullopt;
@@ -334,7 +341,8 @@ class Exchange {
       return Ending{
           failed.failure,
           failed.why + " (line " + std::to_string(commands_) + ": " + Printable(line) + ")",
-          failed.failure == "error" ? kExitRuntimeFault : kExitFailed};
+          failed.failure == "error" || failed.failure == "interrupted" ? kExitRuntimeFault
+                                                                       : kExitFailed};
     }
     if (response.motion && options_.realtime) {
       std::this_thread::sleep_for(
@@ -362,9 +370,22 @@ class Exchange {
     return std::nullopt;
   }
 
+  // what the pictures and the viewer show over the robot: the program, the moves, the clock
+  std::vector<std::string> Hud() const {
+    const std::string& program = options_.program.empty() ? options_.port : options_.program[0];
+    char clock[64];
+    std::snprintf(clock, sizeof(clock), "contest time %6.1f s%s", world_.contest_time_s(),
+                  world_.goal_reached() ? "  goal reached" : "");
+    return {
+        "mms: " + fs::path(program).filename().string(),
+        "moves " + std::to_string(world_.moves()) + "  crashes " + std::to_string(world_.crashes()),
+        clock};
+  }
+
   const MmsRunOptions& options_;
   MmsWorld& world_;
   Channel& channel_;
+  Session* session_;
   std::string pending_;
   long commands_ = 0;
   long invalid_ = 0;
@@ -375,6 +396,8 @@ void CheckOptions(const MmsRunOptions& o) {
   UNIMOUSE_THROW_UNLESS(o.program.empty() != o.port.empty(),
                         "unimouse mms: name the program after --, or a --port, not both");
   UNIMOUSE_THROW_UNLESS(o.physical || !o.true_walls, "--true-walls goes with --physical");
+  UNIMOUSE_THROW_UNLESS(o.physical || !o.watch, "--view goes with --physical");
+  UNIMOUSE_THROW_UNLESS(!o.watch || !o.realtime, "--view paces the run itself: drop --realtime");
   auto positive = [](double v) { return std::isfinite(v) && v > 0; };
   auto non_negative = [](double v) { return std::isfinite(v) && v >= 0; };
   UNIMOUSE_THROW_UNLESS(positive(o.reply_timeout_s), "--reply-timeout-s must be positive");
@@ -416,7 +439,9 @@ int RunMms(const MmsRunOptions& options) {
       run.seed = options.seed;
       run.out_dir = options.out_dir;
       run.driven_by_caller = true;
+      run.paced_by_caller = bool(options.watch);
       session = Session::Open(run);
+      if (options.watch) session->SetStepWatcher(options.watch);
       robot = std::make_unique<MmsRobot>(*session);
       world.SetBody(robot.get(), options.true_walls);
     }
@@ -426,9 +451,12 @@ int RunMms(const MmsRunOptions& options) {
     } else {
       channel = std::make_unique<Device>(options.port, options.connect_timeout_s);
     }
-    Exchange exchange(options, world, *channel);
+    Exchange exchange(options, world, *channel, session.get());
     ending = exchange.Run();
     channel.reset();
+    if (session && options.watch_end) {
+      options.watch_end(*session, ending.status + ": " + ending.reason);
+    }
     record["commands"] = exchange.commands();
     record["invalid_commands"] = exchange.invalid();
     record["goal_reached"] = world.goal_reached();

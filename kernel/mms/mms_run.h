@@ -8,12 +8,15 @@
 #define UNIMOUSE_MMS_MMS_RUN_H_
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
 #include "mms_protocol.h"
 
 namespace unimouse {
+
+class Session;
 
 struct MmsRunOptions {
   std::string maze = "japan2018";    ///< maze file or bundled maze name
@@ -34,6 +37,11 @@ struct MmsRunOptions {
   std::string robot = "unimouse";  ///< physics tier: robot file or bundled robot name
   uint64_t seed = 1;               ///< physics tier: the sensors' noise
   bool no_pictures = false;        ///< no maze.png and maze.svg
+  /// physics tier: a live viewer, called after every simulated step (Session::SetStepWatcher),
+  /// and once more when the run has ended, with its status and reason, before the run's record
+  /// is written; it paces the run itself
+  std::function<void(Session&)> watch;
+  std::function<void(Session&, const std::string&)> watch_end;
 };
 
 /// Runs the program against the maze, writes out_dir/result.json, and returns the exit code:

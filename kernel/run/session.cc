@@ -297,8 +297,8 @@ void Session::Assemble() {
       pictures_ = std::make_unique<RunPictures>(*kernel_, o.pictures, &beliefs_, o.out_dir);
     }
   }
+  pictures_->SetHudSource([this] { return hud(); });
   if (scenario_) {
-    pictures_->SetHudSource([this] { return scenario_->hud(); });
     scenario_->SetPictureTaker(
         [this](const std::string& file, const std::string& camera, int width, int height) {
           return pictures_->Save(file, camera, width, height);
@@ -324,6 +324,7 @@ void Session::Step() {
     fault_ = e.what();
     return;
   }
+  if (watcher_) watcher_(*this);
   // firmware in lock-step sets the pace itself, unless the wall clock was asked for to watch it
   if (pace_ && (options_.realtime || !kernel_->firmware_paced())) {
     pacer_->Wait(kernel_->state().step());
@@ -331,16 +332,24 @@ void Session::Step() {
 }
 
 bool Session::Over() const {
-  return !fault_.empty() || InterruptSignal() != 0 || kernel_->state().step() >= steps_ ||
-         (scenario_ && scenario_->finished());
+  return !fault_.empty() || !stopped_.empty() || InterruptSignal() != 0 ||
+         kernel_->state().step() >= steps_ || (scenario_ && scenario_->finished());
 }
 
-std::vector<std::string> Session::hud() const {
-  return scenario_ ? scenario_->hud() : std::vector<std::string>{};
+std::vector<std::string> Session::hud() const { return scenario_ ? scenario_->hud() : shown_hud_; }
+
+void Session::ShowDisplay(FirmwareBeliefs beliefs, std::vector<std::string> hud) {
+  beliefs_ = std::move(beliefs);
+  shown_hud_ = std::move(hud);
+}
+
+void Session::Stop(const std::string& why) {
+  if (stopped_.empty()) stopped_ = why;
 }
 
 std::string Session::verdict() const {
   if (!fault_.empty()) return "error: " + fault_;
+  if (!stopped_.empty()) return "interrupted: " + stopped_;
   if (InterruptSignal() != 0) return "interrupted";
   if (!scenario_) return "";
   const ScenarioOutcome& o = scenario_->outcome();
@@ -381,7 +390,9 @@ SessionResult Session::Finish(const nlohmann::json& extra) {
   finished_ = true;
   // a signal stops the run between two steps: what the result says, and exit code 3
   const int signal = InterruptSignal();
-  if (signal != 0 && fault_.empty()) {
+  if (!stopped_.empty() && fault_.empty()) {
+    interrupted_ = stopped_ + " at " + Seconds3(kernel_->state().data().time) + " s";
+  } else if (signal != 0 && fault_.empty()) {
     interrupted_ = std::string("interrupted by ") + (signal == SIGINT ? "SIGINT" : "SIGTERM") +
                    " at " + Seconds3(kernel_->state().data().time) + " s";
   }

@@ -12,6 +12,7 @@
 #include <chrono>
 #include <cstdint>
 #include <cstdio>
+#include <functional>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -100,8 +101,17 @@ class Session {
   const RobotSpec& robot() const { return robot_; }
   /// What the firmware reported of the maze so far.
   const FirmwareBeliefs& beliefs() const { return beliefs_; }
-  /// The scenario's HUD lines; empty without a scenario.
+  /// The HUD lines: the scenario's, or what a driver showed (ShowDisplay); else none.
   std::vector<std::string> hud() const;
+  /// For a run driven by its caller (the mms physics tier): what the driver displays in place
+  /// of a firmware's reports and a scenario's HUD. The pictures and the viewer draw it.
+  void ShowDisplay(FirmwareBeliefs beliefs, std::vector<std::string> hud);
+  /// Ends the run at this step boundary, as a signal would (status "interrupted", exit code 3),
+  /// saying why: e.g. the viewer's window was closed.
+  void Stop(const std::string& why);
+  /// Calls `watcher` after every step from now on: a live viewer of a run that its caller steps
+  /// (the mms physics tier) draws, paces and may Stop the run there.
+  void SetStepWatcher(std::function<void(Session&)> watcher) { watcher_ = std::move(watcher); }
   /// The scenario's status and reason, or "" without a scenario.
   std::string verdict() const;
   /// Where the run takes place, for a console line: "in scenario x", "in maze y (16x16)".
@@ -136,6 +146,9 @@ class Session {
   bool pace_ = false;
   std::string fault_;
   std::string interrupted_;  // by which signal, when
+  std::string stopped_;      // why the caller stopped the run
+  std::vector<std::string> shown_hud_;
+  std::function<void(Session&)> watcher_;
   std::string no_pictures_;  // why not even final.png could be drawn
   bool finished_ = false;
   std::chrono::steady_clock::time_point start_;

@@ -6,10 +6,12 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <set>
 
 #include "png_file.h"
 #include "run_program.h"
+#include "text_file.h"
 #include "viewer_controls.h"
 
 namespace unimouse {
@@ -82,6 +84,35 @@ TEST(ViewerTest, OpensUnderXvfbDrawsFramesAndItsScreenshotShowsTheMaze) {
   }
   EXPECT_GT(colours.size(), 100u);
   EXPECT_GT(white, 5000);
+}
+
+TEST(ViewerTest, AnMmsProgramOnTheRobotIsShownUntilTheWindowClosesWhichInterruptsTheRun) {
+  if (!HaveXvfb()) GTEST_SKIP() << "xvfb-run is not installed (apt install xvfb xauth)";
+  const std::string out = (std::filesystem::temp_directory_path() / "viewer_mms").string();
+  const auto o =
+      testing::Unimouse("mms --physical --maze japan2018 --view --view-frames 20 --out " + out +
+                            " -- " UNIMOUSE_MMS_FLOODFILL,
+                        "xvfb-run -a -s '-screen 0 1280x1024x24' ");
+  // the run goes at real time while the window is open: 20 frames are some seconds of it
+  EXPECT_EQ(o.exit_code, 3) << o.output;
+  const nlohmann::json r = nlohmann::json::parse(ReadTextFile(out + "/result.json"));
+  EXPECT_EQ(r["status"], "interrupted");
+  EXPECT_NE(r["reason"].get<std::string>().find("the viewer's window was closed"),
+            std::string::npos)
+      << r["reason"];
+  const double sim_s = r["physical"]["sim_time_s"].get<double>();
+  EXPECT_GT(sim_s, 0.2);
+  EXPECT_LT(sim_s, 30);
+  int width = 0, height = 0;
+  const std::vector<uint8_t> rgb = ReadPng(out + "/view.png", &width, &height);
+  EXPECT_EQ(width, 1200);
+  EXPECT_EQ(height, 900);
+  // the client colours each cell it stands on cyan ('c'): the start cell's tile is in the window
+  int cyan = 0;
+  for (size_t i = 0; i < rgb.size(); i += 3) {
+    cyan += rgb[i + 1] > rgb[i] + 60 && rgb[i + 2] > rgb[i] + 60;
+  }
+  EXPECT_GT(cyan, 100);
 }
 
 TEST(ViewerTest, WithoutADisplayItIsBadInput) {

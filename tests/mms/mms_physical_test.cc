@@ -12,6 +12,7 @@
 
 #include "inline_assets.h"
 #include "plugin_rig.h"
+#include "png_file.h"
 #include "run_program.h"
 #include "text_file.h"
 
@@ -261,6 +262,35 @@ TEST_F(MmsPhysicalRunTest, AMoveIntoAWallIsRepliedCrashAndTheRobotStops) {
   EXPECT_EQ(Replies(), "turnRight ack\nmoveForward 1 crash\n");
   EXPECT_EQ(result["crashes"], 1);
   EXPECT_EQ(result["physical"]["wall_contacts"], 0);
+}
+
+TEST_F(MmsPhysicalRunTest, WhatTheProgramDisplayedIsOnTheFloorOfFinalPng) {
+  // the same move twice, once with every cell of the 5 x 5 maze coloured red first
+  const std::string move = Client("ask 'moveForward 1'\n");
+  const nlohmann::json plain = Mms("--maze " + open_maze_ + " -- " + move, 3);
+  ASSERT_TRUE(plain.is_object()) << output_;
+  if (!plain["physical"]["pictures"].contains("renderer")) {
+    GTEST_SKIP() << "no offscreen rendering on this machine: " << plain["physical"]["pictures"];
+  }
+  int width = 0, height = 0;
+  const std::vector<uint8_t> without = ReadPng(out_ + "/final.png", &width, &height);
+  const std::string painter = Client(
+      "for x in 0 1 2 3 4; do for y in 0 1 2 3 4; do echo \"setColor $x $y r\"; done; "
+      "done\nask 'moveForward 1'\n");
+  const nlohmann::json painted = Mms("--maze " + open_maze_ + " -- " + painter, 3);
+  ASSERT_TRUE(painted.is_object()) << output_;
+  EXPECT_EQ(painted["display"]["colors"].size(), 25u);
+  const std::vector<uint8_t> with = ReadPng(out_ + "/final.png", &width, &height);
+  ASSERT_EQ(with.size(), without.size());
+  auto red = [](const std::vector<uint8_t>& rgb) {
+    long n = 0;
+    for (size_t i = 0; i < rgb.size(); i += 3)
+      n += rgb[i] > rgb[i + 1] + 60 && rgb[i] > rgb[i + 2] + 60;
+    return n;
+  };
+  // the floor of 25 cells: a large share of the picture, where there was next to no red before
+  EXPECT_GT(red(with), long(with.size() / 3 / 10));
+  EXPECT_LT(red(without), red(with) / 10);
 }
 
 TEST_F(MmsPhysicalRunTest, TheSameSeedGivesTheSameRun) {

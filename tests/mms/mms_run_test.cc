@@ -229,6 +229,22 @@ TEST_F(MmsRunTest, AProgramThatIsKilledIsAProgramError) {
   EXPECT_EQ(run.result["status"], "program_crashed");
 }
 
+TEST_F(MmsRunTest, AnInterruptedRunWritesItsResultAndExitsWithCode3) {
+  // a program thinking for a long time; the signal once it has asked its first question
+  const std::string client =
+      ShellClient("ask mazeWidth\necho asked > " + dir_ + "/asked\nsleep 30\n");
+  const testing::Outcome o = testing::Unimouse(
+      "mms --reply-timeout-s 60 --out " + out_ + " --maze " + open_maze_ + " -- " + client +
+      " >/dev/null 2>&1 & pid=$!; while [ ! -e " + dir_ +
+      "/asked ]; do sleep 0.05; done; kill -INT $pid; wait $pid; echo exit=$?; true");
+  EXPECT_NE(o.output.find("exit=3"), std::string::npos) << o.output;
+  const nlohmann::json result = nlohmann::json::parse(ReadTextFile(out_ + "/result.json"));
+  EXPECT_EQ(result["status"], "interrupted");
+  EXPECT_EQ(result["reason"], "interrupted by SIGINT");
+  EXPECT_EQ(result["exit_code"], 3);
+  EXPECT_EQ(result["commands"], 1);
+}
+
 TEST_F(MmsRunTest, AFloodOfGarbageIsLoggedWithACapAndEndsByTheCommandLimit) {
   const std::string client = ShellClient(
       "head -c 300000 /dev/zero\nyes 'no such command' | head -n 50000\n"
@@ -240,6 +256,13 @@ TEST_F(MmsRunTest, AFloodOfGarbageIsLoggedWithACapAndEndsByTheCommandLimit) {
   EXPECT_NE(run.outcome.output.find("longer than 4096 bytes"), std::string::npos);
   EXPECT_NE(run.outcome.output.find("more invalid commands are dropped"), std::string::npos);
   EXPECT_LT(run.outcome.output.size(), 10000u);
+}
+
+TEST_F(MmsRunTest, TheViewerGoesWithThePhysicsTierOnly) {
+  const MmsOutcome run = Mms("--view --maze " + open_maze_ + " -- " + kFloodFill);
+  EXPECT_EQ(run.outcome.exit_code, 2);
+  EXPECT_EQ(run.result["status"], "error");
+  EXPECT_EQ(run.result["reason"], "--view goes with --physical");
 }
 
 TEST_F(MmsRunTest, BadInputExitsTwoAndReplacesAStaleResult) {

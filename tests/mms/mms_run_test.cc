@@ -329,6 +329,70 @@ TEST_F(MmsRunTest, FloodFillClientReachesTheGoalOfEverySolvableClassicMaze) {
   EXPECT_EQ(reached, solvable);
 }
 
+// What the left-wall client must do in `maze`, worked out here on the maze itself: its moves
+// (turns included) until it stops in a goal cell, or until the contest clock (0.5 s a move or
+// turn) has passed `limit_s`. Returns the moves and whether it reached the goal.
+std::pair<long, bool> LeftWallFollower(const Maze& maze, double limit_s) {
+  const int dx[4] = {1, 0, -1, 0};
+  const int dy[4] = {0, 1, 0, -1};
+  Cell at{0, 0};
+  int heading = 1;  // north
+  long moves = 0;
+  auto wall = [&](int h) { return maze.HasWall(at, Heading(h)); };
+  auto over = [&] { return 0.5 * double(moves) > limit_s; };
+  while (!over()) {
+    if (!wall((heading + 1) % 4)) {
+      heading = (heading + 1) % 4;
+      ++moves;
+    } else {
+      while (wall(heading) && !over()) {
+        heading = (heading + 3) % 4;
+        ++moves;
+      }
+    }
+    if (over()) break;
+    at = {at.x + dx[heading], at.y + dy[heading]};
+    ++moves;
+    for (const Cell& goal : maze.goals()) {
+      if (at == goal) return {moves, true};
+    }
+  }
+  return {moves, false};
+}
+
+TEST_F(MmsRunTest, LeftWallPythonClientDoesWhatALeftWallFollowerDoesInEverySolvableClassicMaze) {
+  if (!HavePython()) GTEST_SKIP() << "no python3";
+  const std::string shared = testing::SharedMazesDir();
+  if (shared.empty())
+    GTEST_SKIP() << "the maze collection (../shared/mazes) is not beside the project";
+  std::vector<fs::path> files;
+  for (const auto& entry : fs::directory_iterator(shared + "/classic")) {
+    if (entry.path().extension() == ".txt") files.push_back(entry.path());
+  }
+  std::sort(files.begin(), files.end());
+  int solvable = 0, reached = 0;
+  for (const fs::path& file : files) {
+    const Maze maze = LoadMaze(file.string());
+    if (!Solvable(maze)) continue;
+    ++solvable;
+    const auto [moves, goal] = LeftWallFollower(maze, 60);
+    const MmsOutcome run =
+        Mms("--no-pictures --time-limit-s 60 --maze " + file.string() + " -- python3 " + kLeftWall);
+    ASSERT_TRUE(run.result.is_object()) << file << ": " << run.outcome.output;
+    EXPECT_EQ(run.result["status"], goal ? "goal_reached" : "time_out") << file;
+    EXPECT_EQ(run.result["moves"], moves) << file;
+    EXPECT_EQ(run.result["crashes"], 0) << file;
+    reached += goal ? 1 : 0;
+  }
+  std::printf("left-wall follower over %d solvable classic mazes: %d reached the goal\n", solvable,
+              reached);
+  EXPECT_GT(solvable, 500);
+  // a wall follower reaches the centre of a few mazes only: those whose goal touches a wall
+  // connected to the outside
+  EXPECT_GT(reached, 0);
+  EXPECT_LT(reached, solvable);
+}
+
 // --- the same protocol from a board or relay: a pty, a serial port, TCP ---
 
 // a port no one listens on now

@@ -209,7 +209,9 @@ JobOutcome ClassifyJob(const ProcessEnd& end, const nlohmann::json& result,
       return {"bad_input", error};
     case kExitRuntimeFault: {
       if (mms) {
-        const bool crashed = Get<std::string>(result, P("/status"), "") == "program_crashed";
+        // the program killed by a signal, or the run stopped by one from outside the batch
+        const std::string status = Get<std::string>(result, P("/status"), "");
+        const bool crashed = status == "program_crashed" || status == "interrupted";
         return {crashed ? "crashed" : "firmware_error", reason};
       }
       // a firmware ended by a fatal signal is named by the link ("the firmware crashed: SIGSEGV");

@@ -63,6 +63,7 @@ TEST(ClassifyJobTest, AnMmsRunIsClassifiedFromItsOwnStatusAndReason) {
   EXPECT_EQ(ClassifyJob(Exited(1), mms("time_out"), limits).status, "failed");
   EXPECT_EQ(ClassifyJob(Exited(2), mms("error"), limits).reason, "why: error");
   EXPECT_EQ(ClassifyJob(Exited(3), mms("program_crashed"), limits).status, "crashed");
+  EXPECT_EQ(ClassifyJob(Exited(3), mms("interrupted"), limits).status, "crashed");
   EXPECT_EQ(ClassifyJob(Exited(3), mms("program_hang"), limits).status, "firmware_error");
   EXPECT_EQ(ClassifyJob(Exited(3), mms("program_exited"), limits).status, "firmware_error");
 }

@@ -301,21 +301,28 @@ bool Solvable(const Maze& maze) {
   return false;
 }
 
-TEST_F(MmsRunTest, FloodFillClientReachesTheGoalOfEverySolvableClassicMaze) {
+// the solvable classic mazes of the collection beside the project, sorted; and how many it has
+std::vector<fs::path> SolvableClassicMazes(size_t* all = nullptr) {
   const std::string shared = testing::SharedMazesDir();
-  if (shared.empty())
-    GTEST_SKIP() << "the maze collection (../shared/mazes) is not beside the project";
   std::vector<fs::path> files;
+  if (shared.empty()) return files;
   for (const auto& entry : fs::directory_iterator(shared + "/classic")) {
     if (entry.path().extension() == ".txt") files.push_back(entry.path());
   }
   std::sort(files.begin(), files.end());
-  int solvable = 0;
+  if (all != nullptr) *all = files.size();
+  std::erase_if(files, [](const fs::path& file) { return !Solvable(LoadMaze(file.string())); });
+  return files;
+}
+
+TEST_F(MmsRunTest, FloodFillClientReachesTheGoalOfEverySolvableClassicMaze) {
+  size_t all = 0;
+  const std::vector<fs::path> mazes = SolvableClassicMazes(&all);
+  if (mazes.empty())
+    GTEST_SKIP() << "the maze collection (../shared/mazes) is not beside the project";
   int reached = 0;
   const auto start = std::chrono::steady_clock::now();
-  for (const fs::path& file : files) {
-    if (!Solvable(LoadMaze(file.string()))) continue;
-    ++solvable;
+  for (const fs::path& file : mazes) {
     const MmsOutcome run = Mms("--maze " + file.string() + " -- " + kFloodFill);
     const bool ok = run.outcome.exit_code == 0 && run.result["status"] == "goal_reached";
     EXPECT_TRUE(ok) << file << ": " << run.outcome.output;
@@ -323,10 +330,10 @@ TEST_F(MmsRunTest, FloodFillClientReachesTheGoalOfEverySolvableClassicMaze) {
   }
   const double took_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  std::printf("flood fill over %d solvable classic mazes of %zu: %d reached, %.1f s\n", solvable,
-              files.size(), reached, took_s);
-  EXPECT_GT(solvable, 500);
-  EXPECT_EQ(reached, solvable);
+  std::printf("flood fill over %zu solvable classic mazes of %zu: %d reached, %.1f s\n",
+              mazes.size(), all, reached, took_s);
+  EXPECT_GT(mazes.size(), 500u);
+  EXPECT_EQ(reached, int(mazes.size()));
 }
 
 // What the left-wall client must do in `maze`, worked out here on the maze itself: its moves
@@ -362,19 +369,12 @@ std::pair<long, bool> LeftWallFollower(const Maze& maze, double limit_s) {
 
 TEST_F(MmsRunTest, LeftWallPythonClientDoesWhatALeftWallFollowerDoesInEverySolvableClassicMaze) {
   if (!HavePython()) GTEST_SKIP() << "no python3";
-  const std::string shared = testing::SharedMazesDir();
-  if (shared.empty())
+  const std::vector<fs::path> mazes = SolvableClassicMazes();
+  if (mazes.empty())
     GTEST_SKIP() << "the maze collection (../shared/mazes) is not beside the project";
-  std::vector<fs::path> files;
-  for (const auto& entry : fs::directory_iterator(shared + "/classic")) {
-    if (entry.path().extension() == ".txt") files.push_back(entry.path());
-  }
-  std::sort(files.begin(), files.end());
-  int solvable = 0, reached = 0;
-  for (const fs::path& file : files) {
+  int reached = 0;
+  for (const fs::path& file : mazes) {
     const Maze maze = LoadMaze(file.string());
-    if (!Solvable(maze)) continue;
-    ++solvable;
     const auto [moves, goal] = LeftWallFollower(maze, 60);
     const MmsOutcome run =
         Mms("--no-pictures --time-limit-s 60 --maze " + file.string() + " -- python3 " + kLeftWall);
@@ -384,13 +384,13 @@ TEST_F(MmsRunTest, LeftWallPythonClientDoesWhatALeftWallFollowerDoesInEverySolva
     EXPECT_EQ(run.result["crashes"], 0) << file;
     reached += goal ? 1 : 0;
   }
-  std::printf("left-wall follower over %d solvable classic mazes: %d reached the goal\n", solvable,
-              reached);
-  EXPECT_GT(solvable, 500);
+  std::printf("left-wall follower over %zu solvable classic mazes: %d reached the goal\n",
+              mazes.size(), reached);
+  EXPECT_GT(mazes.size(), 500u);
   // a wall follower reaches the centre of a few mazes only: those whose goal touches a wall
   // connected to the outside
   EXPECT_GT(reached, 0);
-  EXPECT_LT(reached, solvable);
+  EXPECT_LT(reached, int(mazes.size()));
 }
 
 // --- the same protocol from a board or relay: a pty, a serial port, TCP ---

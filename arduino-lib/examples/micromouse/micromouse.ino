@@ -38,12 +38,12 @@ FFSolver<kMaxSide, kMaxSide> solver(maze);
 PathManager<kMaxSide, kMaxSide> paths(solver, 0, 0, Direction::North, 7, 7, 8, 8);
 
 // the classic maze's distances, scaled to the maze's cell by setupMaze()
-float kCell = 0.18f;        // m
-float kSideWall = 0.10f;    // m, a 45-degree reading below this is a side wall
-float kFrontWall = 0.15f;   // m, a front reading below this, half a cell before the centre
-float kFrontStop = 0.035f;  // m, stop here before a wall (the sensor is blind below 0.03)
-float kCentred = 0.0509f;   // m, a 45-degree reading when centred between walls
-float kScale = 1;           // the cell over the classic cell
+float kCell = 0.18f;                 // m
+float kSideWall = 0.10f;             // m, a 45-degree reading below this is a side wall
+float kFrontWall = 0.15f;            // m, a front reading below this, half a cell before the centre
+float kFrontStop = 0.035f;           // m, stop here before a wall (the sensor is blind below 0.03)
+float kCentred = 0.0509f;            // m, a 45-degree reading when centred between walls
+float kScale = 1;                    // the cell over the classic cell
 const bool kTraceDecisions = false;  // log "at x y heading do action" for every decision
 const int kForward = 300, kSlow = 150, kTurn = 130;
 
@@ -52,7 +52,8 @@ Mode mode = Mode::AwaitMaze;
 uint8_t x = 0, y = 0;
 Direction heading = Direction::North;
 Action action = Action::None;
-float targetX = 0, targetY = 0, startToGo = 0, targetTheta = 0, minLeft = 9, minRight = 9, minFront = 9;
+float targetX = 0, targetY = 0, startToGo = 0, targetTheta = 0, minLeft = 9, minRight = 9,
+      minFront = 9;
 uint32_t settleUntil = 0;
 uint8_t turnRetries = 0;  // corrections of the quarter turn under way
 uint16_t speedRuns = 0;
@@ -171,8 +172,7 @@ void loop() {
           !paths.towardsGoal()) {
         // a speed run reached the goal
         char line[40];
-        snprintf(line, sizeof(line), "speed run %u: path cost %u", ++speedRuns,
-                 paths.closedCost());
+        snprintf(line, sizeof(line), "speed run %u: path cost %u", ++speedRuns, paths.closedCost());
         robot.log(line);
         robot.log("done");
         mode = Mode::Done;
@@ -191,7 +191,8 @@ void loop() {
         minLeft = minRight = minFront = 9;
         mode = Mode::Forward;
       } else {
-        targetTheta = headingAngle(action == Action::TurnLeft ? turnLeft(heading) : turnRight(heading));
+        targetTheta =
+            headingAngle(action == Action::TurnLeft ? turnLeft(heading) : turnRight(heading));
         mode = Mode::Turn;
       }
       break;
@@ -206,7 +207,8 @@ void loop() {
         minRight = fminf(minRight, robot.rightDistance());
       }
       // the wall ahead of the cell, seen before the sensor gets too near to see it
-      if (toGo < 0.09f * kScale && toGo > 0.04f * kScale) minFront = fminf(minFront, robot.frontDistance());
+      if (toGo < 0.09f * kScale && toGo > 0.04f * kScale)
+        minFront = fminf(minFront, robot.frontDistance());
       const bool wallAhead = minFront < kFrontWall;
       if (toGo <= 0.002f * kScale || (robot.frontDistance() <= kFrontStop)) {
         x = static_cast<uint8_t>(x + stepX(heading));

@@ -3,8 +3,11 @@
 // do a speed run along the best path found, one cell or one quarter turn at a time.
 //  - Moving one cell (algorithm 6): both motors forward, the pose estimated from the encoders
 //    (eq. 3.29-3.31); the heading is held on the estimate and, between two side walls, centred on
-//    them; the move ends at the next cell's centre, or near enough a wall ahead. At rest the
-//    estimate is put back in the middle of the corridor, facing straight along it.
+//    them; the move ends at the next cell's centre, or near enough a wall ahead. A wall ahead,
+//    while the front sensor still sees it, corrects the estimated distance to the centre, and
+//    the motors stop as far short of the centre as the robot rolls on: a quarter turn needs the
+//    robot within 7 mm of the centre, or its corners scrape the walls and the wheels slip. At
+//    rest the estimate is put back in the middle of the corridor, facing straight along it.
 //  - Turning (algorithm 5): the motors opposite until the estimated heading has turned 90 degrees;
 //    stopped, if it is more than 2 degrees off, the rest is turned again (up to 3 times).
 //  - Walls: while crossing into a cell, the 45-degree sensors see its side walls and the front
@@ -43,7 +46,15 @@ float kSideWall = 0.10f;    // m, a 45-degree reading below this is a side wall
 float kFrontWall = 0.15f;   // m, a front reading below this, half a cell before the centre
 float kFrontStop = 0.035f;  // m, stop here before a wall (the sensor is blind below 0.03)
 float kCentred = 0.0509f;   // m, a 45-degree reading when centred between walls
-float kScale = 1;           // the cell over the classic cell
+float kSideNear = 0.07f;    // m, a 45-degree reading below this is this cell's side wall
+// m, the front reading at the centre with a wall ahead: the wall's face is 84 mm ahead, the
+// sensor 60 mm; blind there, but further back a reading tells how far the centre is
+float kFrontAtCentre = 0.024f;
+// m, how far the robot rolls on after the motors stop from the slow speed: stopping this much
+// short of the centre leaves it there, where a quarter turn needs it; the corners sweep 77 mm
+// from the axle's middle, the walls stand 84 mm away, so 7 mm past the centre a turn scrapes
+float kCoast = 0.009f;
+float kScale = 1;                    // the cell over the classic cell
 const bool kTraceDecisions = false;  // log "at x y heading do action" for every decision
 const int kForward = 300, kSlow = 150, kTurn = 130;
 
@@ -52,7 +63,8 @@ Mode mode = Mode::AwaitMaze;
 uint8_t x = 0, y = 0;
 Direction heading = Direction::North;
 Action action = Action::None;
-float targetX = 0, targetY = 0, startToGo = 0, targetTheta = 0, minLeft = 9, minRight = 9, minFront = 9;
+float targetX = 0, targetY = 0, startToGo = 0, targetTheta = 0, minLeft = 9, minRight = 9,
+      minFront = 9;
 uint32_t settleUntil = 0;
 uint8_t turnRetries = 0;  // corrections of the quarter turn under way
 uint16_t speedRuns = 0;
@@ -126,6 +138,9 @@ void setupMaze() {
   kFrontWall *= kScale;
   kFrontStop *= kScale;
   kCentred *= kScale;
+  kSideNear *= kScale;
+  kFrontAtCentre *= kScale;
+  kCoast *= kScale;
   // the robot at the same scale: wheels and track
   spec.leftWheelRadius *= kScale;
   spec.rightWheelRadius *= kScale;
@@ -171,8 +186,7 @@ void loop() {
           !paths.towardsGoal()) {
         // a speed run reached the goal
         char line[40];
-        snprintf(line, sizeof(line), "speed run %u: path cost %u", ++speedRuns,
-                 paths.closedCost());
+        snprintf(line, sizeof(line), "speed run %u: path cost %u", ++speedRuns, paths.closedCost());
         robot.log(line);
         robot.log("done");
         mode = Mode::Done;
@@ -191,7 +205,8 @@ void loop() {
         minLeft = minRight = minFront = 9;
         mode = Mode::Forward;
       } else {
-        targetTheta = headingAngle(action == Action::TurnLeft ? turnLeft(heading) : turnRight(heading));
+        targetTheta =
+            headingAngle(action == Action::TurnLeft ? turnLeft(heading) : turnRight(heading));
         mode = Mode::Turn;
       }
       break;
@@ -206,9 +221,24 @@ void loop() {
         minRight = fminf(minRight, robot.rightDistance());
       }
       // the wall ahead of the cell, seen before the sensor gets too near to see it
-      if (toGo < 0.09f * kScale && toGo > 0.04f * kScale) minFront = fminf(minFront, robot.frontDistance());
+      if (toGo < 0.09f * kScale && toGo > 0.04f * kScale)
+        minFront = fminf(minFront, robot.frontDistance());
       const bool wallAhead = minFront < kFrontWall;
-      if (toGo <= 0.002f * kScale || (robot.frontDistance() <= kFrontStop)) {
+      // a wall ahead measures the distance to the centre better than the wheels, which slip
+      // and overshoot: each new front reading that agrees with the estimate (within 3 cm)
+      // puts the estimate where the wall says
+      if (robot.frontSensor().hasNewData()) {
+        const float f = robot.frontDistance();
+        const float wallToGo = f - kFrontAtCentre;
+        if (f > kFrontStop && f < 0.1f * kScale && fabsf(wallToGo - toGo) < 0.03f * kScale) {
+          Pose q = p;
+          q.x -= (wallToGo - toGo) * stepX(heading);
+          q.y -= (wallToGo - toGo) * stepY(heading);
+          pose.setPose(q, robot.leftEncoderTotal(), robot.rightEncoderTotal());
+          break;  // the next loop goes on from the corrected estimate
+        }
+      }
+      if (toGo <= kCoast || (robot.frontDistance() <= kFrontStop)) {
         x = static_cast<uint8_t>(x + stepX(heading));
         y = static_cast<uint8_t>(y + stepY(heading));
         recordWall(turnLeft(heading), minLeft < kSideWall);
@@ -219,13 +249,18 @@ void loop() {
         break;
       }
       float correction = 300 * angleDiff(headingAngle(heading), p.theta);
+      // only this cell's own side walls centre the robot: where one is missing, the 45-degree
+      // sensor sees through the gap a post or a wall beyond at 6-10 cm, and steering on that
+      // turns the robot off its heading; in the last 1.5 cm the sensors reach the next posts
+      const bool centring = toGo > 0.015f * kScale;
       const float left = robot.leftDistance(), right = robot.rightDistance();
+      const bool leftWall = centring && left < kSideNear, rightWall = centring && right < kSideNear;
       // positive turns left: nearer the left wall, the left sensor reads less, so turn right
-      if (left < kSideWall && right < kSideWall) {
+      if (leftWall && rightWall) {
         correction += 800 / kScale * (left - right);
-      } else if (left < kSideWall) {
+      } else if (leftWall) {
         correction += 800 / kScale * (left - kCentred);
-      } else if (right < kSideWall) {
+      } else if (rightWall) {
         correction += 800 / kScale * (kCentred - right);
       }
       if (correction > 120) correction = 120;

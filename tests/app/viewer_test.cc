@@ -124,5 +124,18 @@ TEST(ViewerTest, WithoutADisplayItIsBadInput) {
   EXPECT_NE(r.output.find("--view needs a display"), std::string::npos) << r.output;
 }
 
+TEST(ViewerTest, WithoutADisplayAnMmsRunIsBadInputAndSaysSoInItsResult) {
+  const std::string out =
+      (std::filesystem::temp_directory_path() / "viewer_mms_nodisplay").string();
+  const auto r = testing::Unimouse(
+      "mms --physical --view --maze japan2018 --out " + out + " -- " UNIMOUSE_MMS_FLOODFILL,
+      "env -u DISPLAY -u WAYLAND_DISPLAY ");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  const nlohmann::json result = nlohmann::json::parse(ReadTextFile(out + "/result.json"));
+  EXPECT_EQ(result["status"], "error");
+  EXPECT_EQ(result["reason"].get<std::string>().rfind("--view needs a display", 0), 0u)
+      << result["reason"];
+}
+
 }  // namespace
 }  // namespace unimouse

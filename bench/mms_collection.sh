@@ -24,13 +24,13 @@ report() {  # label, start time, statuses
 echo "machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs)"
 echo "mazes: ${#mazes[@]} classic"
 start=$(now)
-for maze in "${mazes[@]}"; do
-  "$unimouse" mms --no-pictures --maze "$maze" --out "$work/one" -- "$client" > /dev/null 2>&1 ||
-    true # an unsolvable maze is a run too
-  python3 -c 'import json, sys; print(json.load(open(sys.argv[1]))["status"])' \
-    "$work/one/result.json" >> "$work/statuses"
+for i in "${!mazes[@]}"; do
+  "$unimouse" mms --no-pictures --maze "${mazes[$i]}" --out "$work/one/$i" -- "$client" \
+    > /dev/null 2>&1 || true # an unsolvable maze is a run too
 done
-report "one run at a time:" "$start" "$(sort "$work/statuses" | uniq -c | xargs)"
+statuses=$(python3 -c 'import json, sys
+for f in sys.argv[1:]: print(json.load(open(f))["status"])' "$work"/one/*/result.json)
+report "one run at a time:" "$start" "$(sort <<<"$statuses" | uniq -c | xargs)"
 
 echo "submissions: [{name: floodfill, mms: '$client'}]" > "$work/manifest.yaml"
 echo "mazes: ['$collection/']" >> "$work/manifest.yaml"

@@ -232,14 +232,11 @@ MmsMotion MmsRobot::Turn(int quarter_turns) {
 }
 
 MmsMotion MmsRobot::Ended(double start_s) {
-  const std::string verdict = session_.verdict();
   // a signal or the viewer's window ended the run, not the robot
-  const std::string interrupted = "interrupted";
-  if (verdict.rfind(interrupted, 0) == 0) {
-    return {now_s() - start_s, move_contact_, interrupted,
-            verdict == interrupted ? "interrupted by a signal"
-                                   : verdict.substr(interrupted.size() + 2)};
+  if (const std::string why = session_.interruption(); !why.empty()) {
+    return {now_s() - start_s, move_contact_, "interrupted", why};
   }
+  const std::string verdict = session_.verdict();
   return {
       now_s() - start_s, move_contact_, "error",
       verdict.empty() ? "the simulation ran out of time at " + Metres(now_s()) + " s" : verdict};

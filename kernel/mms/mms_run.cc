@@ -256,10 +256,8 @@ class Exchange {
     std::string partial;
     bool discarding = false;  // inside an over-long line
     for (;;) {
-      if (const int signal = InterruptSignal(); signal != 0) {
-        return {"interrupted",
-                std::string("interrupted by ") + (signal == SIGINT ? "SIGINT" : "SIGTERM"),
-                kExitRuntimeFault};
+      if (const std::string why = InterruptedBySignal(); !why.empty()) {
+        return {"interrupted", why, kExitRuntimeFault};
       }
       const auto left =
           std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now());

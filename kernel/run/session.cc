@@ -143,6 +143,11 @@ void InstallInterruptHandlers() {
 
 int InterruptSignal() { return interrupt_signal; }
 
+std::string InterruptedBySignal() {
+  if (interrupt_signal == 0) return "";
+  return std::string("interrupted by ") + (interrupt_signal == SIGINT ? "SIGINT" : "SIGTERM");
+}
+
 void WriteErrorResult(const SessionOptions& options, const std::string& error, int exit_code,
                       const std::string& traceback) {
   nlohmann::json record = NewResultRecord("run");
@@ -347,6 +352,10 @@ void Session::Stop(const std::string& why) {
   if (stopped_.empty()) stopped_ = why;
 }
 
+std::string Session::interruption() const {
+  return stopped_.empty() ? InterruptedBySignal() : stopped_;
+}
+
 std::string Session::verdict() const {
   if (!fault_.empty()) return "error: " + fault_;
   if (!stopped_.empty()) return "interrupted: " + stopped_;
@@ -389,12 +398,8 @@ SessionResult Session::Finish(const nlohmann::json& extra) {
   UNIMOUSE_DEMAND(!finished_);
   finished_ = true;
   // a signal stops the run between two steps: what the result says, and exit code 3
-  const int signal = InterruptSignal();
-  if (!stopped_.empty() && fault_.empty()) {
-    interrupted_ = stopped_ + " at " + Seconds3(kernel_->state().data().time) + " s";
-  } else if (signal != 0 && fault_.empty()) {
-    interrupted_ = std::string("interrupted by ") + (signal == SIGINT ? "SIGINT" : "SIGTERM") +
-                   " at " + Seconds3(kernel_->state().data().time) + " s";
+  if (const std::string why = interruption(); !why.empty() && fault_.empty()) {
+    interrupted_ = why + " at " + Seconds3(kernel_->state().data().time) + " s";
   }
   try {
     if (scenario_ && fault_.empty() && interrupted_.empty()) scenario_->Finish();

@@ -38,6 +38,9 @@ void InstallInterruptHandlers();
 /// The signal that asked runs to stop, or 0.
 int InterruptSignal();
 
+/// "interrupted by SIGINT" (or SIGTERM) once a signal asked runs to stop, else "".
+std::string InterruptedBySignal();
+
 /// Everything a run is made of; what `unimouse run` takes, parsed.
 struct SessionOptions {
   std::string robot = "unimouse";  ///< robot file or bundled robot name
@@ -109,6 +112,8 @@ class Session {
   /// Ends the run at this step boundary, as a signal would (status "interrupted", exit code 3),
   /// saying why: e.g. the viewer's window was closed.
   void Stop(const std::string& why);
+  /// Why the run was interrupted (Stop, or a signal), or "" while it was not.
+  std::string interruption() const;
   /// Calls `watcher` after every step from now on: a live viewer of a run that its caller steps
   /// (the mms physics tier) draws, paces and may Stop the run there.
   void SetStepWatcher(std::function<void(Session&)> watcher) { watcher_ = std::move(watcher); }

@@ -19,6 +19,8 @@ packages=(
   # tests start its daemons on one node, from their own config)
   libgtest-dev libgmock-dev libbenchmark-dev clang libclang-rt-14-dev python3-jsonschema
   chromium slurmctld slurmd slurm-client
+  # counting a run's system calls (tests/run/step_system_calls_test.cc)
+  strace
   # batch runs: a submission's sandbox, and GNU parallel for running a batch's plan
   bubblewrap parallel
   # firmware: AVR builds and emulation

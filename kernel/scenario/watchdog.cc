@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "watchdog.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 
@@ -15,7 +16,7 @@ Watchdog::~Watchdog() {
     const std::lock_guard<std::mutex> lock(mutex_);
     stop_ = true;
   }
-  changed_.notify_one();
+  stopping_.notify_one();
   thread_.join();
 }
 
@@ -25,38 +26,33 @@ void Watchdog::Configure(double limit_s, Expiry expiry) {
   expiry_ = std::move(expiry);
 }
 
-void Watchdog::Arm(const char* what) {
-  {
-    const std::lock_guard<std::mutex> lock(mutex_);
-    armed_ = true;
-    what_ = what;
-    deadline_ = std::chrono::steady_clock::now() +
-                std::chrono::duration_cast<std::chrono::steady_clock::duration>(limit_);
-  }
-  changed_.notify_one();
-}
-
-void Watchdog::Disarm() {
-  const std::lock_guard<std::mutex> lock(mutex_);
-  armed_ = false;
-}
-
 void Watchdog::Watch() {
+  using Clock = std::chrono::steady_clock;
   std::unique_lock<std::mutex> lock(mutex_);
+  uint64_t seen = 0;  // the armed stretch last looked at, 0 for none
+  Clock::time_point seen_since;
   for (;;) {
+    const auto period = std::clamp<std::chrono::duration<double>>(
+        limit_ / 20, std::chrono::milliseconds(10), std::chrono::milliseconds(100));
+    stopping_.wait_for(lock, period, [this] { return stop_; });
     if (stop_) return;
-    if (!armed_) {
-      changed_.wait(lock);
-    } else if (changed_.wait_until(lock, deadline_) == std::cv_status::timeout && armed_ &&
-               std::chrono::steady_clock::now() >= deadline_) {
+    const uint64_t stretch = stretch_.load(std::memory_order_acquire);
+    const Clock::time_point now = Clock::now();
+    if (stretch % 2 == 0) {
+      seen = 0;
+    } else if (stretch != seen) {
+      // a stretch began since the last look: counted from now, it is never cut short
+      seen = stretch;
+      seen_since = now;
+    } else if (now - seen_since >= limit_) {
       break;
     }
   }
   char seconds[32];
   std::snprintf(seconds, sizeof(seconds), "%g", limit_.count());
   const std::string reason =
-      std::string("the scenario's ") + what_ + " ran longer than " + seconds +
-      " s of wall time in one call (work inside Lua's library that no count sees)";
+      std::string("the scenario's ") + what_.load(std::memory_order_relaxed) + " ran longer than " +
+      seconds + " s of wall time in one call (work inside Lua's library that no count sees)";
   if (expiry_) {
     expiry_(reason);
   } else {

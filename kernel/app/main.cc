@@ -15,6 +15,7 @@
 #include "mms_run.h"
 #include "plugin_registry.h"
 #include "scenario.h"
+#include "transport_spec.h"
 #include "unimouse/errors.h"
 #include "viewer.h"
 
@@ -240,8 +241,10 @@ int main(int argc, char** argv) {
   mms_cmd->add_option("--program-dir", mms.program_dir,
                       "the program's working directory (mms's Directory setting)");
   mms_cmd->add_option("--port", mms.port,
-                      "instead of a program: a board or relay speaking the protocol on pty or "
-                      "pty:LINK, serial:PATH@BAUD or tcp::PORT, its log on lines starting 'log '");
+                      std::string("instead of a program: a board or relay speaking the "
+                                  "protocol on ") +
+                          unimouse::link::TransportUsages(/*boards_only=*/true) +
+                          ", its log on lines starting 'log '");
   mms_cmd
       ->add_option("--connect-timeout-s", mms.connect_timeout_s,
                    "wall seconds a --port peer has for its first command line")
@@ -268,8 +271,8 @@ int main(int argc, char** argv) {
   firmware_cmd->require_subcommand(1);
   CLI::App* firmware_build_cmd = firmware_cmd->add_subcommand(
       "build",
-      "build a sketch for the PC (a program for --link native: and a module for --link "
-      "inproc:) or for the emulated board (an image for --link avr:), docs/firmware.md");
+      "build a sketch for the PC (a program and a module, each run in lock-step by --link) or "
+      "for the emulated board (an image for --link), docs/firmware.md");
   firmware_build_cmd->add_option("sketch", firmware.sketch, "sketch folder or .ino file")
       ->required();
   firmware_build_cmd
@@ -338,7 +341,8 @@ int main(int argc, char** argv) {
       if (!chosen) {
         run.scenario = "micromouse";
         run.sets = {"end_on_log=done"};
-        run.link = "inproc:" + FirmwareDirectory() + "/micromouse.so";
+        run.link = link::BundledFirmwareSpec(link::FirmwareHost::kInProcess, FirmwareDirectory(),
+                                             "micromouse");
       }
       return RunCommand(run);
     }

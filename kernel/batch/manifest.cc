@@ -10,6 +10,7 @@
 #include "install_paths.h"
 #include "maze.h"
 #include "scenario.h"
+#include "transport_spec.h"
 #include "unimouse/errors.h"
 
 namespace unimouse::batch {
@@ -81,23 +82,22 @@ const YamlNode& ListOf(const YamlNode& node, const std::string& what) {
   return node;
 }
 
-// "native:fw/alice --fast" with the program found beside the manifest; transports without a
-// file as given
+// a link spec with its firmware's file (a program, module or image) found beside the manifest;
+// transports without a file as given
 std::string LinkSpec(const YamlNode& node, const fs::path& dir) {
-  const std::string& spec = node.AsString("link");
-  const size_t colon = spec.find(':');
-  const std::string kind = spec.substr(0, colon);
-  if (colon == std::string::npos || (kind != "native" && kind != "avr" && kind != "inproc")) {
-    return spec;
+  const std::string& text = node.AsString("link");
+  link::TransportSpec spec;
+  try {
+    spec = link::ParseTransportSpec(text);
+  } catch (const InputError& e) {
+    node.Fail(std::string("link: ") + e.what());
   }
-  const std::string rest = spec.substr(colon + 1);
-  const size_t space = kind == "native" ? rest.find(' ') : std::string::npos;
-  const std::string file = rest.substr(0, space);
-  if (file.empty()) node.Fail("link " + spec + ": name the file, like " + kind + ":PATH");
+  if (spec.kind->firmware == link::FirmwareHost::kBoard) return text;
+  if (spec.firmware.empty())
+    node.Fail("link " + text + ": name the file, like " + spec.kind->usage);
   // a file beside the manifest, else as given (a bundled firmware's name)
-  const std::string beside = FromManifest(dir, file);
-  return kind + ":" + (fs::exists(beside) ? beside : file) +
-         (space == std::string::npos ? "" : rest.substr(space));
+  const std::string beside = FromManifest(dir, spec.firmware);
+  return fs::exists(beside) ? spec.WithFirmware(beside) : text;
 }
 
 // "python3 main.py" as words; no shell in between, as for a native link

@@ -19,12 +19,6 @@ std::string FirmwareDirectory();
 /// sketch against the Arduino library.
 std::string FirmwareCMakeDirectory();
 
-/// Returns a link transport spec with a bundled firmware's name replaced by its file:
-/// "native:micromouse" -> "native:<FirmwareDirectory()>/micromouse", "inproc:NAME" -> NAME.so,
-/// "avr:NAME" -> NAME.elf. A name is bundled when it has no '/', is not a file in the working
-/// directory, and the bundled file exists; any other spec is returned unchanged.
-std::string ResolveBundledFirmware(const std::string& link_spec);
-
 /// Returns `name` if it is an existing file; otherwise the bundled file
 /// DataDirectory()/folder/name[extension]. Throws InputError naming both places when neither
 /// exists.

@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "component_config.h"
+#include "mujoco_guard.h"
 #include "unimouse/errors.h"
 
 namespace unimouse {
@@ -21,18 +22,6 @@ constexpr int kOutsideWriter = -2;
 
 using Clock = std::chrono::steady_clock;
 double Seconds(Clock::duration d) { return std::chrono::duration<double>(d).count(); }
-
-// MuJoCo would otherwise print to stdout, write MUJOCO_LOG.TXT into the working directory and,
-// on errors, exit(1); an error becomes a fault of the run, which still writes its result
-void InstallMujocoHandlers() {
-  static std::once_flag once;
-  std::call_once(once, [] {
-    mju_user_warning = [](const char* message) { std::cerr << "MuJoCo: " << message << "\n"; };
-    mju_user_error = [](const char* message) {
-      throw RuntimeFault(std::string("MuJoCo error: ") + message);
-    };
-  });
-}
 
 std::string Names(const mjModel& m, mjtObj type, int count) {
   std::string out;
@@ -139,6 +128,8 @@ std::vector<std::string> JointPlaces(const RobotSpec& robot, const mjModel& m) {
 std::unique_ptr<Kernel> Kernel::Create(const RobotSpec& robot, const Maze* maze,
                                        const PluginRegistry& registry,
                                        const KernelOptions& options) {
+  // MuJoCo would otherwise print to stdout, write MUJOCO_LOG.TXT into the working directory
+  // and, on errors, exit(1); an error becomes a fault of the run, which still writes its result
   InstallMujocoHandlers();
   std::unique_ptr<Kernel> k(new Kernel(options));
   k->model_.world = World::Build(robot, maze, options.spawn, options.boxes);
@@ -293,6 +284,9 @@ void Kernel::BindComponent(int index) {
     }
     model.beams.push_back({site, length_signal, range_max_m});
   };
+  b.declare_traits = [](void* ctx, int traits) {
+    static_cast<BindSession*>(ctx)->kernel->model_.traits |= traits;
+  };
 
   char error[512] = "";
   const int failed = c.type->bind(c.self, &b, error, sizeof(error));
@@ -342,7 +336,13 @@ void Kernel::RunHook(int index, void (*hook)(const void*, const unimouse_tick*))
   };
   t.ray_cast = [](void* ctx, const double origin[3], const double direction[3], double max_m) {
     Kernel& k = *static_cast<HookContext*>(ctx)->kernel;
-    return k.model_.world->CastRay(k.state_->data(), origin, direction, max_m);
+    // no exception crosses back into the component: the fault ends the run after its hook
+    try {
+      return k.model_.world->CastRay(k.state_->data(), origin, direction, max_m);
+    } catch (const RuntimeFault& e) {
+      if (k.fault_.empty()) k.fault_ = e.what();
+      return -1.0;
+    }
   };
   t.log = [](void* ctx, int level, const char* message) {
     auto* h = static_cast<HookContext*>(ctx);
@@ -361,7 +361,13 @@ void Kernel::RunHook(int index, void (*hook)(const void*, const unimouse_tick*))
     h->kernel->firmware_paced_ = paced != 0;
     h->kernel->pace_setter_ = paced != 0 ? h->component : -1;
   };
-  hook(c.self, &t);
+  // a component's own call into MuJoCo (a plugin may make them) is guarded at its hook, and its
+  // error is the component's, as one it logged
+  try {
+    GuardMujoco([&] { hook(c.self, &t); });
+  } catch (const RuntimeFault& e) {
+    Emit(UNIMOUSE_LOG_ERROR, c.name, e.what());
+  }
 }
 
 void Kernel::Emit(int level, const std::string& component, const std::string& message) {
@@ -454,10 +460,12 @@ void Kernel::ThrowIfFaulted() {
 void Kernel::Reset() {
   const mjModel& m = mj_model();
   mjData& d = state_->data();
-  mj_resetData(&m, &d);
-  model_.world->PlaceRobot(d, model_.world->spawn());
-  model_.world->UpdateCollisionProxies(d);
-  mj_forward(&m, &d);
+  GuardMujoco([&] {
+    mj_resetData(&m, &d);
+    model_.world->PlaceRobot(d, model_.world->spawn());
+    model_.world->UpdateCollisionProxies(d);
+    mj_forward(&m, &d);
+  });
 
   std::fill(state_->component_state().begin(), state_->component_state().end(), 0.0);
   std::fill(state_->signals().begin(), state_->signals().end(), 0.0);
@@ -505,8 +513,10 @@ void Kernel::Step() {
   const auto start = Clock::now();
   if (boundary_hook_) boundary_hook_();
   const auto scenario_done = Clock::now();
-  model_.world->UpdateCollisionProxies(d);
-  mj_step1(&m, &d);
+  GuardMujoco([&] {
+    model_.world->UpdateCollisionProxies(d);
+    mj_step1(&m, &d);
+  });
   const auto step1_done = Clock::now();
 
   double pace_setter_s = RunPhase(step, &unimouse_component_type::sense);
@@ -515,7 +525,7 @@ void Kernel::Step() {
   ThrowIfFaulted();
   const auto hooks_done = Clock::now();
 
-  mj_step2(&m, &d);
+  GuardMujoco([&] { mj_step2(&m, &d); });
   const auto step2_done = Clock::now();
   tick_times_.scenario_s += Seconds(scenario_done - start);
   tick_times_.physics_s += Seconds(step1_done - scenario_done) + Seconds(step2_done - hooks_done);

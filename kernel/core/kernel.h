@@ -107,6 +107,8 @@ class Kernel {
   void AddReportListener(ReportSink listener) { report_listeners_.push_back(std::move(listener)); }
   /// Whether a component said that the firmware sets the pace (lock-step) since the last reset.
   bool firmware_paced() const { return firmware_paced_; }
+  /// Whether a component declared `trait` (UNIMOUSE_TRAIT_*) at bind.
+  bool declared(int trait) const { return (model_.traits & trait) != 0; }
   /// Returns where the wall time of the ticks since the last reset went.
   const TickTimes& tick_times() const { return tick_times_; }
 

@@ -65,6 +65,8 @@ struct Model {
   /// for joints the robot file does not declare.
   std::vector<std::string> joint_places;
   int component_state_size = 0;
+  /// What the components declared themselves to be: UNIMOUSE_TRAIT_* bits of all, or-ed.
+  int traits = 0;
 };
 
 }  // namespace unimouse

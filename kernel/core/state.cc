@@ -1,13 +1,18 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "state.h"
 
+#include "mujoco_guard.h"
 #include "unimouse/errors.h"
 
 namespace unimouse {
 
 State::State(const mjModel& model, int component_state_size, int signal_count)
     : model_(&model),
-      data_(mj_makeData(&model)),
+      data_([&model] {
+        mjData* d = nullptr;
+        GuardMujoco([&] { d = mj_makeData(&model); });
+        return d;
+      }()),
       component_state_(static_cast<size_t>(component_state_size), 0.0),
       signals_(static_cast<size_t>(signal_count), 0.0) {
   UNIMOUSE_DEMAND(data_ != nullptr);

@@ -9,6 +9,7 @@
 #include <numbers>
 #include <sstream>
 
+#include "mujoco_guard.h"
 #include "text_file.h"
 #include "unimouse/errors.h"
 
@@ -168,7 +169,8 @@ mjModel* CompileMjcf(const std::string& mjcf, const std::string& what) {
   const int index = mj_findFileVFS(&vfs, name);
   std::memcpy(vfs.filedata[index], mjcf.data(), mjcf.size());
   char error[1024] = "";
-  mjModel* m = mj_loadXML(name, &vfs, error, sizeof(error));
+  mjModel* m = nullptr;
+  GuardMujoco([&] { m = mj_loadXML(name, &vfs, error, sizeof(error)); });
   mj_deleteVFS(&vfs);
   if (m == nullptr) {
     std::string reason(error);
@@ -345,7 +347,8 @@ std::unique_ptr<World> World::Build(const RobotSpec& robot, const Maze* maze,
   // find the resting height and reach of the robot from its geometry: lift it to 1 m, then see
   // how far its lowest contact geom hangs below and how far any geom sticks out sideways
   {
-    std::unique_ptr<mjData, DataDeleter> d(mj_makeData(&m));
+    std::unique_ptr<mjData, DataDeleter> d;
+    GuardMujoco([&] { d.reset(mj_makeData(&m)); });
     d->qpos[w->robot_qpos_ + 2] = 1;
     mj_kinematics(&m, d.get());
     double lowest = std::numeric_limits<double>::infinity();
@@ -373,7 +376,7 @@ std::unique_ptr<World> World::Build(const RobotSpec& robot, const Maze* maze,
   for (const auto& b : w->scenery_) WriteBoxGeom(s, b, "contype='0' conaffinity='0'", kGroupWorld);
   s << "</worldbody>\n</mujoco>\n";
   w->scenery_model_.reset(CompileMjcf(s.str(), "scenery"));
-  w->scenery_data_.reset(mj_makeData(w->scenery_model_.get()));
+  GuardMujoco([&] { w->scenery_data_.reset(mj_makeData(w->scenery_model_.get())); });
   mj_kinematics(w->scenery_model_.get(), w->scenery_data_.get());
   return w;
 }

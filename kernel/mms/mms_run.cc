@@ -205,10 +205,8 @@ class Device final : public Channel {
   Device(const std::string& spec, double connect_timeout_s)
       : connect_timeout_(std::chrono::duration_cast<Clock::duration>(
             std::chrono::duration<double>(connect_timeout_s))) {
-    const std::string scheme = spec.substr(0, spec.find(':'));
-    if (scheme != "pty" && scheme != "serial" && scheme != "tcp") {
-      throw InputError("--port " + spec +
-                       ": a pty or pty:LINK, serial:PATH@BAUD, or tcp::PORT / tcp:HOST:PORT");
+    if (link::ParseTransportSpec(spec).kind->firmware != link::FirmwareHost::kBoard) {
+      throw InputError("--port " + spec + ": " + link::TransportUsages(/*boards_only=*/true));
     }
     transport_ = link::OpenTransport(spec);
     std::fprintf(stderr, "mms: waiting for the program on the %s\n",

@@ -8,6 +8,7 @@
 #include <numbers>
 #include <optional>
 
+#include "mujoco_guard.h"
 #include "unimouse/errors.h"
 
 namespace unimouse {
@@ -34,15 +35,16 @@ void CheckCameraName(const std::string& name) {
 
 SceneRenderer::SceneRenderer(const Kernel& kernel, int font_scale)
     : kernel_(kernel), font_scale_(font_scale) {
-  model_ = mj_copyModel(nullptr, &kernel.mj_model());
-  model_->vis.quality.shadowsize = 1;  // no shadows (below): no 64 MB shadow map either
-  data_ = mj_makeData(model_);
   const mjModel& scenery = kernel.world().scenery_model();
-  scenery_data_ = mj_makeData(&scenery);
-  mj_kinematics(&scenery, scenery_data_);
-
   mjv_defaultScene(&scene_);
-  mjv_makeScene(model_, &scene_, model_->ngeom + scenery.ngeom + kExtraGeoms);
+  GuardMujoco([&] {
+    model_ = mj_copyModel(nullptr, &kernel.mj_model());
+    model_->vis.quality.shadowsize = 1;  // no shadows (below): no 64 MB shadow map either
+    data_ = mj_makeData(model_);
+    scenery_data_ = mj_makeData(&scenery);
+    mj_kinematics(&scenery, scenery_data_);
+    mjv_makeScene(model_, &scene_, model_->ngeom + scenery.ngeom + kExtraGeoms);
+  });
   mjv_defaultOption(&option_);
   // the light is straight above, so shadows add little to a picture and cost a software
   // renderer 40 ms of a 640x480 picture's 70 (docs/performance.md)
@@ -84,7 +86,7 @@ void SceneRenderer::MakeContext(int width, int height) {
   mjr_freeContext(&context_);
   model_->vis.global.offwidth = width;
   model_->vis.global.offheight = height;
-  mjr_makeContext(model_, &context_, font_scale_);
+  GuardMujoco([&] { mjr_makeContext(model_, &context_, font_scale_); });
 }
 
 mjvCamera SceneRenderer::Camera(const std::string& name, double aspect) const {

@@ -13,6 +13,7 @@
 #include "maze_plot.h"
 #include "result_record.h"
 #include "sha256.h"
+#include "transport_spec.h"
 #include "unimouse/errors.h"
 #include "unimouse/plugin_abi.h"
 
@@ -107,18 +108,14 @@ nlohmann::json DriverJson(const SessionOptions& options, const RobotSpec& robot,
     if (c.type != "unimouse.link") continue;
     const std::string spec = LastScalar(c.params, "transport");
     const std::string profile = LastScalar(c.params, "profile");
-    const size_t colon = spec.find(':');
-    const std::string transport = spec.substr(0, colon);
-    const std::string rest = colon == std::string::npos ? "" : spec.substr(colon + 1);
-    // the program is the first word of a native command; a board's firmware is not on this PC
-    const std::string firmware = transport == "native" ? rest.substr(0, rest.find(' '))
-                                 : transport == "avr" || transport == "inproc" ? rest
-                                                                               : "";
+    // a board's firmware is not on this PC
+    const link::TransportSpec parsed = link::ParseTransportSpec(spec);
     driver["link"] = {
-        {"transport", transport},
+        {"transport", parsed.kind->scheme},
         {"spec", spec},
         {"profile", profile.empty() ? DefaultOf(registry, c.type, "profile") : profile},
-        {"firmware", firmware.empty() ? nlohmann::json(nullptr) : FileIdentity(firmware)}};
+        {"firmware",
+         parsed.firmware.empty() ? nlohmann::json(nullptr) : FileIdentity(parsed.firmware)}};
   }
   return driver;
 }
@@ -193,7 +190,8 @@ void Session::Assemble() {
                         "--link-set and --firmware-profile go with --link");
   if (!o.link.empty()) {
     robot_.components.push_back(
-        LinkComponent(ResolveBundledFirmware(o.link), o.firmware_profile, o.link_sets));
+        LinkComponent(link::ResolveBundledFirmware(o.link, FirmwareDirectory()), o.firmware_profile,
+                      o.link_sets));
   }
 
   // a scenario builds its own world
@@ -277,16 +275,19 @@ void Session::Assemble() {
   });
   if (scenario_) scenario_->Attach(*kernel_, o.controller);
   identity_["driver"] = DriverJson(o, robot_, *registry);
-  // said at once, so that a run meant to test something does not pass quietly doing nothing
-  if (!scenario_ && o.link.empty() && !o.driven_by_caller) {
+  // what drives the robot is what its components declared, wherever they came from (--link or
+  // the robot file); said at once, so that a run meant to test something does not pass quietly
+  // doing nothing
+  const bool firmware = kernel_->declared(UNIMOUSE_TRAIT_FIRMWARE);
+  if (!scenario_ && !firmware && !o.driven_by_caller) {
     kernel_->Log(UNIMOUSE_LOG_WARNING, "run",
                  "nothing drives the robot (no --scenario, --controller or --link): it stands "
                  "still; `unimouse run` with no options runs the contest with the bundled "
                  "firmware");
-  } else if (!o.controller.empty() && !o.link.empty()) {
+  } else if (!o.controller.empty() && firmware) {
     kernel_->Log(UNIMOUSE_LOG_WARNING, "run",
-                 "both --controller and --link drive the robot: the firmware's commands "
-                 "overwrite the controller's whenever they arrive");
+                 "both --controller and a firmware link drive the robot: the firmware's "
+                 "commands overwrite the controller's whenever they arrive");
   }
 
   // the pictures asked for; without any, final.png whenever the machine can draw
@@ -314,8 +315,9 @@ void Session::Assemble() {
   }
 
   steps_ = std::llround(duration_s_ / kernel_->timestep_s());
-  // hardware runs on the wall clock; firmware in lock-step sets the pace itself
-  pace_ = !o.paced_by_caller && (o.realtime || !o.link.empty());
+  // a board lives on the wall clock, from --link or the robot file alike; firmware in lock-step
+  // sets the pace itself
+  pace_ = !o.paced_by_caller && (o.realtime || kernel_->declared(UNIMOUSE_TRAIT_WALL_CLOCK));
   pacer_ = std::make_unique<RealTimePacer>(kernel_->timestep_s());
   start_ = std::chrono::steady_clock::now();
 }
@@ -409,7 +411,8 @@ SessionResult Session::Finish(const nlohmann::json& extra) {
   pictures_->Finish();
   kernel_->Finish();
   // drawn only from what a firmware reported: no connection, no picture of its beliefs
-  const bool firmware_maze = maze_ && !options_.link.empty() && !beliefs_.empty();
+  const bool firmware_maze =
+      maze_ && kernel_->declared(UNIMOUSE_TRAIT_FIRMWARE) && !beliefs_.empty();
   if (firmware_maze) DrawFirmwareMaze();
   const double wall_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();

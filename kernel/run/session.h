@@ -53,7 +53,7 @@ struct SessionOptions {
   std::string out_dir = "out";
   std::string plugin_path;                   ///< extra plugin directories, ':'-separated
   const PluginRegistry* registry = nullptr;  ///< default: the plugins on the search path
-  std::string link;                          ///< transport spec ("pty", "native:PROGRAM"); "" none
+  std::string link;                          ///< transport spec (transport_spec.h); "" none
   std::vector<std::string> link_sets;        ///< link parameters, "name=value"
   std::string firmware_profile;  ///< what the firmware expects ("unimousesim-0.1"); "" default
   bool realtime = false;  ///< pace to the wall clock, even a firmware in lock-step (to watch)

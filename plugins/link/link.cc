@@ -57,16 +57,16 @@ std::string Sides(uint8_t bits) {
 Link::Link(Params params) : p_(WithProfile(std::move(params))) {
   // a robot file is data: it may name a port or a server, never a program to run or a path to
   // make, which only the person running the simulator chooses
+  const TransportSpec spec = ParseTransportSpec(p_.transport);
   if (param::Given(p_.from_data_file, "transport")) {
-    const std::string scheme = p_.transport.substr(0, p_.transport.find(':'));
-    const bool runs = scheme == "native" || scheme == "inproc" || scheme == "avr";
-    if (runs || (scheme == "pty" && scheme != p_.transport)) {
-      throw InputError("transport '" + p_.transport.substr(0, 200) + "' " +
-                       (runs ? "runs a firmware" : "makes a path") +
+    if (const std::string refused = spec.RefusedInDataFile(); !refused.empty()) {
+      throw InputError("transport '" + p_.transport.substr(0, 200) + "' " + refused +
                        ": a robot file may not ask for that; give it on the command line "
                        "(--link) instead");
     }
   }
+  // what the run needs to know of the peer, declared at bind
+  traits_ = UNIMOUSE_TRAIT_FIRMWARE | (spec.kind->wall_clock ? UNIMOUSE_TRAIT_WALL_CLOCK : 0);
   // a wrong table is bad input now, before anything is bound or opened
   for (TableEntry& e : ParseSendTable(p_.send)) send_.push_back({std::move(e), {}, 1});
   for (TableEntry& e : ParseReceiveTable(p_.receive)) {
@@ -90,6 +90,7 @@ void Link::Bind(BindContext& ctx) {
   ctx.SetStateSize(kStateSize);
   if (!p_.beliefs_out.empty()) beliefs_path_ = ctx.OutputFile(p_.beliefs_out);
   maze_ = ctx.maze();
+  ctx.DeclareTraits(traits_);
 }
 
 void Link::Start() {

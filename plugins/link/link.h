@@ -26,7 +26,7 @@
 namespace unimouse::link {
 
 struct LinkParams {
-  std::string transport = "pty";
+  std::string transport = kDefaultTransportSpec;
   std::string send = kOriginalSend;
   std::string receive = kOriginalReceive;
   double tof_full_scale_m = UNIMOUSE_TOF_FULL_SCALE_M;
@@ -79,9 +79,9 @@ struct LinkParams {
       "answer the extension manager codes (lock-step, 'I repeat my commands'); false: the "
       "original's protocol only, they are ignored");
     v("mcu", mcu,
-      "avr: the emulated part, unless the image names its own (simavr's AVR_MCU section)",
+      "the emulated board's part, unless the image names its own (simavr's AVR_MCU section)",
       param::OneOf{"atmega2560|atmega328p"});
-    v("f_cpu_hz", f_cpu_hz, "avr: the emulated clock, unless the image names its own",
+    v("f_cpu_hz", f_cpu_hz, "the emulated board's clock, unless the image names its own",
       param::Range{1e6, 32e6});
   }
 };
@@ -154,6 +154,7 @@ class Link final : public Component {
   double bytes_per_step_ = 0;
   std::string beliefs_path_;
   BindContext::MazeInfo maze_;  // what a firmware is told when it asks for the maze
+  int traits_ = 0;              // what the link is to the run (UNIMOUSE_TRAIT_*)
   // the connection is a resource, opened by Start, never part of a snapshot
   std::unique_ptr<Transport> transport_;
 

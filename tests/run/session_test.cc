@@ -3,16 +3,24 @@
 // result that says why, and a result.json that always belongs to the run that wrote it.
 #include "session.h"
 
+#include <arpa/inet.h>
 #include <gtest/gtest.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <unistd.h>
 
+#include <atomic>
 #include <filesystem>
 #include <string>
+#include <thread>
 #include <vector>
 
+#include "inline_assets.h"
 #include "plugin_rig.h"
 #include "probe_components.h"
 #include "text_file.h"
 #include "unimouse/errors.h"
+#include "unimouse_protocol.h"
 
 namespace unimouse {
 namespace {
@@ -136,6 +144,80 @@ TEST_F(SessionTest, RealTimeIsAskedForEvenWhenTheFirmwareSetsThePace) {
   // 0.3 s of steps on the wall clock (unpaced, this firmware runs them in about 0.02 s)
   EXPECT_GT(result.record["wall_time_s"].get<double>(), 0.25);
   EXPECT_TRUE(result.record.contains("real_time_pacing"));
+}
+
+// a board on Wi-Fi, as a lab has one: it dials the simulator's TCP server and commands both
+// motors forward every 20 ms until told to stop
+class TcpBoard {
+ public:
+  explicit TcpBoard(int port)
+      : thread_([this, port] {
+          int s = -1;
+          while (!stop_ && s < 0) {
+            s = ::socket(AF_INET, SOCK_STREAM, 0);
+            sockaddr_in a{};
+            a.sin_family = AF_INET;
+            a.sin_port = htons(static_cast<uint16_t>(port));
+            a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+            if (::connect(s, reinterpret_cast<sockaddr*>(&a), sizeof(a)) != 0) {
+              ::close(s);
+              s = -1;
+              std::this_thread::sleep_for(std::chrono::milliseconds(5));
+            }
+          }
+          uint8_t f[6] = {UNIMOUSE_ID_MOTOR_LEFT, 0, 0, UNIMOUSE_ID_MOTOR_RIGHT, 0, 0};
+          unimouse_put_u16(&f[1], 600);
+          unimouse_put_u16(&f[4], 600);
+          while (!stop_) {
+            if (::write(s, f, sizeof(f)) != sizeof(f)) break;
+            std::this_thread::sleep_for(std::chrono::milliseconds(20));
+          }
+          if (s >= 0) ::close(s);
+        }) {}
+  ~TcpBoard() {
+    stop_ = true;
+    thread_.join();
+  }
+
+ private:
+  std::atomic<bool> stop_ = false;
+  std::thread thread_;
+};
+
+TEST_F(SessionTest, ABoardLinkFromTheRobotFileIsPacedToTheWallClockLikeOneFromTheCommandLine) {
+  // the same TCP link, once declared by the robot file and once given as --link: a board lives
+  // in real time either way, so both runs take their simulated time on the wall clock
+  options_.maze = "none";
+  options_.duration_s = 1.5;
+  const int port = 20000 + ::getpid() % 20000;
+  const std::string spec = "tcp:127.0.0.1:" + std::to_string(port);
+  const std::string robot = (fs::temp_directory_path() / "tcp_robot.yaml").string();
+  WriteTextFile(robot, testing::ReadBundledRobot() +
+                           "  - { type: unimouse.link, name: link, params: { transport: '" + spec +
+                           "' } }\n");
+  for (const bool from_robot_file : {true, false}) {
+    SCOPED_TRACE(from_robot_file ? "link in the robot file" : "--link");
+    options_.robot = from_robot_file ? robot : "unimouse";
+    options_.link = from_robot_file ? "" : spec;
+    std::unique_ptr<Session> session = Session::Open(options_);
+    SessionResult result;
+    {
+      const TcpBoard board(port);
+      while (!session->Over()) session->Step();
+      result = session->Finish();
+    }
+    const nlohmann::json& r = result.record;
+    ASSERT_EQ(result.exit_code, kExitPassed) << r.dump();
+    EXPECT_TRUE(r.contains("real_time_pacing")) << r.dump();
+    // unpaced, this robot runs 1.5 s in well under 0.1 s of wall time
+    const double wall_s = r["wall_time_s"].get<double>();
+    EXPECT_GE(wall_s, 0.9 * 1.5);
+    // a host too busy to keep up says so; otherwise the run keeps to real time within 10 %
+    if (!r["real_time_pacing"]["fell_behind"].get<bool>()) EXPECT_LE(wall_s, 1.1 * 1.5);
+    // the board drove the robot forward (north)
+    EXPECT_GT(r["robot_pose"]["y_m"].get<double>() - 0.09, 0.05) << r.dump();
+    EXPECT_EQ(r["driver"]["link"]["transport"], "tcp");
+  }
 }
 
 // a Lua file of the test's own in the scratch directory

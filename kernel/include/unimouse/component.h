@@ -109,6 +109,12 @@ class BindContext {
       b_.declare_beam(b_.ctx, site, length.index, range_max_m);
     }
   }
+  /// Declares what the component is to the run: UNIMOUSE_TRAIT_* bits, or-ed.
+  void DeclareTraits(int traits) const {
+    if (UNIMOUSE_HAS_FIELD(&b_, unimouse_bind, declare_traits)) {
+      b_.declare_traits(b_.ctx, traits);
+    }
+  }
 
  private:
   // the kernel has already recorded why; an empty message tells the adapter to use that

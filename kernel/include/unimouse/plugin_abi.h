@@ -100,7 +100,18 @@ typedef struct unimouse_bind {
   double maze_cell_m;
   int maze_goal_x0, maze_goal_y0, maze_goal_x1, maze_goal_y1;
   int maze_goal_is_rectangle;
+  /* appended in 0.5: what the component is to the run, declared once: a bitwise or of
+   * UNIMOUSE_TRAIT_*. The host decides pacing, warnings and pictures from these, never from where
+   * a component came from (a robot file or the command line). */
+  void (*declare_traits)(void* ctx, int traits);
 } unimouse_bind;
+
+/* what a component can declare about itself at bind (appended in 0.5) */
+enum {
+  UNIMOUSE_TRAIT_FIRMWARE = 1,  /* a firmware drives the robot through it and reports to it */
+  UNIMOUSE_TRAIT_WALL_CLOCK = 2 /* its peer lives in real time (a board): the run keeps to the
+                                   wall clock while the firmware does not set the pace */
+};
 
 /* A text line a component logged (a firmware's log channel, for one), with when and who. */
 typedef struct unimouse_message {

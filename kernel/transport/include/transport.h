@@ -2,9 +2,11 @@
 // Byte transports for the link: a pseudo-terminal whose path a board emulator or terminal
 // program opens, a real serial port, a TCP server, a firmware process on this machine. All
 // non-blocking: the simulation never waits on a board except in lock-step, and then only up to a
-// timeout. One table lists them (transports.cc); each lives in its own source file.
-#ifndef UNIMOUSE_PLUGINS_LINK_TRANSPORT_H_
-#define UNIMOUSE_PLUGINS_LINK_TRANSPORT_H_
+// timeout. One table lists them (transports.cc, transport_spec.h); each lives in its own source
+// file. This library is the link plugin's, and the host's where it needs to know a transport
+// (a run's record, batch manifests, mms's boards).
+#ifndef UNIMOUSE_TRANSPORT_TRANSPORT_H_
+#define UNIMOUSE_TRANSPORT_TRANSPORT_H_
 
 #include <chrono>
 #include <cstdint>
@@ -12,6 +14,8 @@
 #include <span>
 #include <string>
 #include <vector>
+
+#include "transport_spec.h"
 
 namespace unimouse::link {
 
@@ -62,23 +66,6 @@ struct TransportSettings {
   double f_cpu_hz = 0;  ///< avr: the clock, unless the image names its own
 };
 
-/// One kind of transport, an entry of the link's transport table.
-struct TransportKind {
-  const char* scheme;   ///< what its spec starts with: "tcp"
-  const char* usage;    ///< how a spec is written: "tcp::PORT or tcp:HOST:PORT"
-  const char* summary;  ///< what it is, in a sentence for the docs
-  /// Opens it from what follows "scheme:" ("" for the bare scheme); throws InputError.
-  std::unique_ptr<Transport> (*open)(const std::string& rest);
-};
-
-/// Returns every transport the link knows, in the order the help lists them.
-std::span<const TransportKind> Transports();
-
-/// Returns the usages of every transport, "pty or pty:LINK, serial:PATH@BAUD, ...", for the
-/// `transport` parameter's documentation and the error for an unknown one; lives for the
-/// program.
-const char* TransportUsages();
-
 /// Returns a signal that ended a firmware, named for a student: "SIGFPE (division by zero?)".
 std::string FirmwareSignalText(int sig);
 
@@ -87,4 +74,4 @@ std::unique_ptr<Transport> OpenTransport(const std::string& spec);
 
 }  // namespace unimouse::link
 
-#endif  // UNIMOUSE_PLUGINS_LINK_TRANSPORT_H_
+#endif  // UNIMOUSE_TRANSPORT_TRANSPORT_H_

@@ -13,6 +13,7 @@
 
 #include "bundled_components.h"
 #include "kernel.h"
+#include "maze_generator.h"
 #include "unimouse/component.h"
 
 namespace {
@@ -179,6 +180,43 @@ BENCHMARK(BM_BareRobotJapan2018)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 void BM_BareRobotOpenFloor(benchmark::State& bench) { RunSixtySeconds(bench, nullptr); }
 BENCHMARK(BM_BareRobotOpenFloor)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// the full robot spinning in place in the start cell of a generated maze of `side` cells a side
+// (classic dimensions at every size, so that the robot and what its sensors see are the same):
+// the real-time factor of 10 simulated seconds, and the seconds the world took to build. With
+// the floor's index, neither the proxies nor the rays visit the walls far away: the step costs
+// the same at every size
+void BM_FullRobotInGeneratedMaze(benchmark::State& bench) {
+  GenerateOptions options;
+  options.width = options.height = static_cast<int>(bench.range(0));
+  options.seed = 1;
+  Maze maze = GenerateMaze(options);
+  maze.set_class(MazeClass::kClassic);
+  const PluginRegistry registry = BenchRegistry();
+  const auto start = std::chrono::steady_clock::now();
+  auto full = FullRobot(maze, registry);
+  const double build_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  double best_s = 1e9;
+  for (auto _ : bench) {
+    full->Reset();
+    Command(*full, 500, -500);
+    const auto t0 = std::chrono::steady_clock::now();
+    for (int i = 0; i < 10000; ++i) full->Step();
+    best_s = std::min(best_s,
+                      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+  }
+  bench.counters["real_time_factor"] = 10 / best_s;
+  bench.counters["world_build_s"] = build_s;
+  bench.counters["scenery_boxes"] = static_cast<double>(full->world().scenery().size());
+}
+BENCHMARK(BM_FullRobotInGeneratedMaze)
+    ->Arg(16)
+    ->Arg(32)
+    ->Arg(64)
+    ->Arg(128)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(3);
 
 }  // namespace
 

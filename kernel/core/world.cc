@@ -9,6 +9,7 @@
 #include <numbers>
 #include <sstream>
 
+#include "floor_grid.h"
 #include "mujoco_guard.h"
 #include "text_file.h"
 #include "unimouse/errors.h"
@@ -31,6 +32,7 @@ constexpr int kProxyCount = 8;
 constexpr double kProxyMargin_m = 0.01;
 constexpr double kParkedZ_m = -10;
 constexpr double kRestClearance_m = 1e-4;
+constexpr size_t kSceneryChunkBoxes = 500;
 
 class Mjcf {
  public:
@@ -139,6 +141,20 @@ double FloorDistance(const StaticBox& b, const std::array<double, 2>& cos_sin, d
   const double lx = std::max(std::fabs(c * dx + s * dy) - b.half_m[0], 0.0);
   const double ly = std::max(std::fabs(-s * dx + c * dy) - b.half_m[1], 0.0);
   return std::hypot(lx, ly);
+}
+
+// a box's footprint on the floor as an axis-aligned rectangle
+FloorRect Footprint(const StaticBox& b) {
+  const double c = std::fabs(std::cos(b.yaw_rad)), s = std::fabs(std::sin(b.yaw_rad));
+  const double hx = c * b.half_m[0] + s * b.half_m[1], hy = s * b.half_m[0] + c * b.half_m[1];
+  return {b.center_m[0] - hx, b.center_m[1] - hy, b.center_m[0] + hx, b.center_m[1] + hy};
+}
+
+FloorGrid IndexOf(const std::vector<StaticBox>& boxes, double square_m) {
+  std::vector<FloorRect> footprints;
+  footprints.reserve(boxes.size());
+  for (const StaticBox& b : boxes) footprints.push_back(Footprint(b));
+  return FloorGrid(footprints, square_m);
 }
 
 // how far a geom reaches below its centre, from its orientation
@@ -301,10 +317,14 @@ std::unique_ptr<World> World::Build(const RobotSpec& robot, const Maze* maze,
     floor_half_m = std::max(floor_half_m, reach);
   }
 
-  // the proxies look for shapes near the robot at every step: their axes are worked out once
+  // the proxies look for shapes near the robot at every step, and rays for walls along their
+  // way: both through an index of squares a maze cell wide, and the shapes' axes worked out once
   for (const StaticBox& b : w->collision_shapes_) {
     w->shape_cos_sin_.push_back({std::cos(b.yaw_rad), std::sin(b.yaw_rad)});
   }
+  const double square_m = maze != nullptr ? maze->dimensions().cell_m : MazeDimensions{}.cell_m;
+  w->collision_grid_ = IndexOf(w->collision_shapes_, square_m);
+  w->scenery_grid_ = IndexOf(w->scenery_, square_m);
 
   // physics: floor, proxies, robot
   Mjcf x;
@@ -368,16 +388,36 @@ std::unique_ptr<World> World::Build(const RobotSpec& robot, const Maze* maze,
     w->robot_radius_m_ = reach;
   }
 
-  // scenery: every static box, for rays and pictures
-  Mjcf s;
-  s << "<mujoco model='scenery'>\n";
-  WriteAssets(s);
-  s << "<worldbody>\n";
-  for (const auto& b : w->scenery_) WriteBoxGeom(s, b, "contype='0' conaffinity='0'", kGroupWorld);
-  s << "</worldbody>\n</mujoco>\n";
-  w->scenery_model_.reset(CompileMjcf(s.str(), "scenery"));
-  GuardMujoco([&] { w->scenery_data_.reset(mj_makeData(w->scenery_model_.get())); });
-  mj_kinematics(w->scenery_model_.get(), w->scenery_data_.get());
+  // scenery: every static box, for rays and pictures, in models of a few hundred boxes each:
+  // MuJoCo's compiler takes time that grows with the square of a model's geoms (38 s for the
+  // 33 000 boxes of a 128 x 128 maze in one model), and linearly over pieces
+  for (size_t first = 0; first < w->scenery_.size(); first += kSceneryChunkBoxes) {
+    const size_t end = std::min(w->scenery_.size(), first + kSceneryChunkBoxes);
+    Mjcf s;
+    s << "<mujoco model='scenery'>\n";
+    WriteAssets(s);
+    s << "<worldbody>\n";
+    for (size_t i = first; i < end; ++i) {
+      WriteBoxGeom(s, w->scenery_[i], "contype='0' conaffinity='0'", kGroupWorld);
+    }
+    s << "</worldbody>\n</mujoco>\n";
+    SceneryChunk chunk;
+    chunk.first_box = static_cast<int>(first);
+    chunk.model.reset(CompileMjcf(s.str(), "scenery"));
+    GuardMujoco([&] { chunk.data.reset(mj_makeData(chunk.model.get())); });
+    mj_kinematics(chunk.model.get(), chunk.data.get());
+    // what a ray cast tests of each box, as MuJoCo placed it
+    const mjModel& cm = *chunk.model;
+    const mjData& cd = *chunk.data;
+    for (int g = 0; g < cm.ngeom; ++g) {
+      RayBox box;
+      std::copy_n(cd.geom_xpos + 3 * g, 3, box.pos);
+      std::copy_n(cd.geom_xmat + 9 * g, 9, box.mat);
+      std::copy_n(cm.geom_size + 3 * g, 3, box.size);
+      w->ray_boxes_.push_back(box);
+    }
+    w->scenery_chunks_.push_back(std::move(chunk));
+  }
   return w;
 }
 
@@ -406,8 +446,11 @@ void World::UpdateCollisionProxies(const mjData& d) {
   const mjtNum* p = d.qpos + robot_qpos_;
   const double reach = robot_radius_m_ + kProxyMargin_m;
 
+  // the shapes within reach, in index order: those of the squares around the robot, filtered
+  near_.clear();
+  collision_grid_.ShapesNear({p[0] - reach, p[1] - reach, p[0] + reach, p[1] + reach}, near_);
   candidates_.clear();
-  for (int i = 0; i < static_cast<int>(collision_shapes_.size()); ++i) {
+  for (const int i : near_) {
     if (FloorDistance(collision_shapes_[i], shape_cos_sin_[i], p[0], p[1]) < reach) {
       candidates_.push_back(i);
     }
@@ -474,9 +517,14 @@ double World::CastRay(const mjData& d, const double origin[3], const double dire
   const mjtByte world_only[mjNGROUP] = {1, 0, 0, 0, 0, 0};
   int geom = -1;
   double best = mj_ray(model_.get(), &d, origin, direction, world_only, 1, -1, &geom);
-  if (!scenery_.empty()) {
-    const double wall =
-        mj_ray(scenery_model_.get(), scenery_data_.get(), origin, direction, nullptr, 1, -1, &geom);
+  // the walls along the ray's way on the floor, each tested as MuJoCo's ray cast tests a geom:
+  // the nearest of them is the nearest of all
+  ray_shapes_.clear();
+  scenery_grid_.ShapesAlong(origin[0], origin[1], direction[0], direction[1],
+                            max_m * std::hypot(direction[0], direction[1]), ray_shapes_);
+  for (const int i : ray_shapes_) {
+    const RayBox& b = ray_boxes_[static_cast<size_t>(i)];
+    const double wall = mju_rayGeom(b.pos, b.mat, b.size, origin, direction, mjGEOM_BOX);
     if (wall >= 0 && (best < 0 || wall < best)) best = wall;
   }
   return best >= 0 && best <= max_m ? best : -1;

@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "floor_grid.h"
 #include "maze.h"
 #include "robot_spec.h"
 
@@ -72,8 +73,14 @@ class World {
 
   /// Walls, posts and obstacles as drawn and as seen by rays.
   const std::vector<StaticBox>& scenery() const { return scenery_; }
-  const mjModel& scenery_model() const { return *scenery_model_; }
-  const mjData& scenery_data() const { return *scenery_data_; }
+  /// The scenery as MuJoCo models of a few hundred boxes each (with their data, placed), in the
+  /// order of scenery(): what pictures draw.
+  struct SceneryChunk {
+    std::unique_ptr<mjModel, void (*)(mjModel*)> model{nullptr, &mj_deleteModel};
+    std::unique_ptr<mjData, void (*)(mjData*)> data{nullptr, &mj_deleteData};
+    int first_box = 0;  ///< index in scenery() of its first geom
+  };
+  const std::vector<SceneryChunk>& scenery_chunks() const { return scenery_chunks_; }
 
   Pose2D spawn() const { return spawn_; }
   /// The maze the world was built from, or null on an open floor.
@@ -118,8 +125,12 @@ class World {
   std::vector<StaticBox> scenery_;
   std::vector<StaticBox> collision_shapes_;
   std::vector<std::array<double, 2>> shape_cos_sin_;  // of each collision shape's yaw
-  std::unique_ptr<mjModel, ModelDeleter> scenery_model_;
-  std::unique_ptr<mjData, DataDeleter> scenery_data_;
+  std::vector<SceneryChunk> scenery_chunks_;
+  // each scenery box as a ray cast tests it: placed by MuJoCo, in the order of scenery_
+  struct RayBox {
+    double pos[3], mat[9], size[3];
+  };
+  std::vector<RayBox> ray_boxes_;
   Pose2D spawn_;
   std::optional<Maze> maze_;
   int robot_body_ = -1;
@@ -129,8 +140,12 @@ class World {
   double robot_radius_m_ = 0;
   int first_proxy_ = -1;
   int proxy_count_ = 0;
-  std::vector<int> proxy_shape_;  // shape index per proxy slot, -1 when parked
-  std::vector<int> candidates_;   // scratch for UpdateCollisionProxies
+  std::vector<int> proxy_shape_;         // shape index per proxy slot, -1 when parked
+  FloorGrid collision_grid_;             // where the collision shapes are
+  FloorGrid scenery_grid_;               // where the scenery's boxes are
+  std::vector<int> near_;                // scratch for UpdateCollisionProxies
+  std::vector<int> candidates_;          // scratch for UpdateCollisionProxies
+  mutable std::vector<int> ray_shapes_;  // scratch for CastRay
   long proxy_overflows_ = 0;
 };
 

@@ -35,15 +35,19 @@ void CheckCameraName(const std::string& name) {
 
 SceneRenderer::SceneRenderer(const Kernel& kernel, int font_scale)
     : kernel_(kernel), font_scale_(font_scale) {
-  const mjModel& scenery = kernel.world().scenery_model();
   mjv_defaultScene(&scene_);
   GuardMujoco([&] {
     model_ = mj_copyModel(nullptr, &kernel.mj_model());
     model_->vis.quality.shadowsize = 1;  // no shadows (below): no 64 MB shadow map either
     data_ = mj_makeData(model_);
-    scenery_data_ = mj_makeData(&scenery);
-    mj_kinematics(&scenery, scenery_data_);
-    mjv_makeScene(model_, &scene_, model_->ngeom + scenery.ngeom + kExtraGeoms);
+    int scenery_geoms = 0;
+    for (const World::SceneryChunk& chunk : kernel.world().scenery_chunks()) {
+      mjData* d = mj_makeData(chunk.model.get());
+      mj_kinematics(chunk.model.get(), d);
+      scenery_data_.push_back(d);
+      scenery_geoms += chunk.model->ngeom;
+    }
+    mjv_makeScene(model_, &scene_, model_->ngeom + scenery_geoms + kExtraGeoms);
   });
   mjv_defaultOption(&option_);
   // the light is straight above, so shadows add little to a picture and cost a software
@@ -75,7 +79,7 @@ SceneRenderer::SceneRenderer(const Kernel& kernel, int font_scale)
 SceneRenderer::~SceneRenderer() {
   mjr_freeContext(&context_);
   mjv_freeScene(&scene_);
-  mj_deleteData(scenery_data_);
+  for (mjData* d : scenery_data_) mj_deleteData(d);
   mj_deleteData(data_);
   mj_deleteModel(model_);
 }
@@ -237,8 +241,10 @@ void SceneRenderer::Draw(const mjrRect& viewport, const mjvCamera& camera,
   CopyState();
   mjvCamera cam = camera;
   mjv_updateScene(model_, data_, &option_, &perturb_, &cam, mjCAT_ALL, &scene_);
-  mjv_addGeoms(&kernel_.world().scenery_model(), scenery_data_, &option_, &perturb_, mjCAT_ALL,
-               &scene_);
+  const auto& chunks = kernel_.world().scenery_chunks();
+  for (size_t i = 0; i < chunks.size(); ++i) {
+    mjv_addGeoms(chunks[i].model.get(), scenery_data_[i], &option_, &perturb_, mjCAT_ALL, &scene_);
+  }
   if (options.beams) AddBeams();
   if (options.beliefs && options.firmware != nullptr) AddBeliefs(*options.firmware);
   mjr_render(viewport, &scene_, &context_);

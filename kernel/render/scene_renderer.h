@@ -88,7 +88,7 @@ class SceneRenderer {
   int font_scale_;
   mjModel* model_ = nullptr;  // a copy of the physics model, with a larger offscreen buffer
   mjData* data_ = nullptr;
-  mjData* scenery_data_ = nullptr;
+  std::vector<mjData*> scenery_data_;  // one for each of the world's scenery chunks
   mjvScene scene_;
   mjvOption option_;
   mjvPerturb perturb_;

@@ -145,7 +145,9 @@ class WorldTest : public ::testing::Test {
 };
 
 TEST_F(WorldTest, SceneryHoldsEveryWallAndPostWhilePhysicsHoldsOnlyProxies) {
-  EXPECT_EQ(kernel_->world().scenery_model().ngeom, 12 + 13);
+  int scenery_geoms = 0;
+  for (const auto& chunk : kernel_->world().scenery_chunks()) scenery_geoms += chunk.model->ngeom;
+  EXPECT_EQ(scenery_geoms, 12 + 13);
   // floor, proxies and the robot's 6 geoms
   EXPECT_EQ(kernel_->mj_model().ngeom, 1 + kernel_->world().proxy_count() + 6);
 }

@@ -111,7 +111,6 @@ class AvrBoard {
   static uint64_t FeedByte(avr_t* avr, uint64_t when, void* param);
   static uint64_t StepEnd(avr_t* avr, uint64_t when, void* param);
   static void Logger(avr_t* avr, int level, const char* format, va_list ap);
-  void ReadSymbols(const std::string& elf_path);
   // frees the MCU and forgets it
   void Release();
   // cycles one 8N1 byte takes on the line as the firmware configured it (simavr's word size)

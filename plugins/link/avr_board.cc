@@ -4,8 +4,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <ctime>
+#include <new>
 
 #include "avr_image.h"
 #include "unimouse/errors.h"
@@ -37,6 +39,31 @@ double ThreadCpu_s() {
   timespec t{};
   ::clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
   return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
+// simavr 1.6 reports a write beyond RAMEND as a crash and then makes it all the same, and reads
+// (and, by SPM, writes) the flash at whatever address a jump, a return or Z names: the data
+// space gets all the 64 KiB a 16-bit address reaches and the flash the 32 MiB a 24-bit word
+// address reaches, so that a firmware that goes astray stops with its crash instead of writing
+// over the simulator's memory. The pages beyond the part's own stay untouched, so unallocated.
+void WidenMemories(avr_t* avr) {
+  constexpr size_t kDataSpace_bytes = size_t{1} << 16;
+  // and the two words of the longest instruction read at the last address
+  constexpr size_t kFlashSpace_bytes = (size_t{1} << 25) + 4;
+  auto* data = static_cast<uint8_t*>(std::calloc(kDataSpace_bytes, 1));
+  auto* flash = static_cast<uint8_t*>(std::calloc(kFlashSpace_bytes, 1));
+  if (data == nullptr || flash == nullptr) {
+    std::free(data);
+    std::free(flash);
+    throw std::bad_alloc();
+  }
+  std::memcpy(data, avr->data, avr->ramend + 1u);
+  // avr_init puts an opcode that stops the core just past the flash's end
+  std::memcpy(flash, avr->flash, avr->flashend + 3u);
+  std::free(avr->data);
+  std::free(avr->flash);
+  avr->data = data;
+  avr->flash = flash;
 }
 
 // avr_terminate frees the peripherals but not the MCU that avr_make_mcu_by_name allocated, the
@@ -155,6 +182,7 @@ AvrBoard::AvrBoard(const std::string& elf_path, const Options& options) : option
   } undo{this};
   avr_init(avr_);
   avr_->log = LOG_ERROR;
+  WidenMemories(avr_);
   // simavr aborts on an image larger than the part's flash, copies fuses unchecked, and the
   // symbols below say where to read RAM
   CheckAvrImageFits(image,

@@ -114,6 +114,11 @@ void ReadMcuSection(const Reader& r, std::span<const uint8_t> mmcu, AvrImage& im
     switch (tag) {
       case AVR_MMCU_TAG_NAME:
         image.mcu = text(0, kMcuName_bytes, "part name");
+        // the board's UART and the link's `mcu` parameter know these two parts only
+        if (image.mcu != "atmega2560" && image.mcu != "atmega328p") {
+          r.Fail("the .mmcu section names the part '" + image.mcu +
+                 "'; the emulated board is an atmega2560 or an atmega328p");
+        }
         break;
       case AVR_MMCU_TAG_FREQUENCY:
         need(4, "clock");

@@ -156,6 +156,16 @@ TEST(AvrImageTest, AnMcuTagLongerThanItsSectionOrANameWithoutItsEndIsRefused) {
             "damaged.elf: the .mmcu section's part name does not end inside its tag");
 }
 
+TEST(AvrImageTest, AnMcuSectionNamingAPartTheBoardDoesNotKnowIsRefused) {
+  FIRMWARE_OR_SKIP(image, "names_its_mcu");
+  const auto mmcu = Get<Elf32_Shdr>(image, SectionHeaderAt(image, ".mmcu"));
+  // "atmega328p" becomes "atmega8", a part simavr knows but whose UART sits elsewhere
+  std::memcpy(image.data() + mmcu.sh_offset + 10, "atmega8\0", 8);
+  EXPECT_EQ(RefusalOf(image),
+            "damaged.elf: the .mmcu section names the part 'atmega8'; the emulated board is an "
+            "atmega2560 or an atmega328p");
+}
+
 TEST(AvrImageTest, AnMcuClockOutsideTheLinksRangeIsRefused) {
   FIRMWARE_OR_SKIP(image, "names_its_mcu");
   const auto mmcu = Get<Elf32_Shdr>(image, SectionHeaderAt(image, ".mmcu"));

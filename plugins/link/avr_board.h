@@ -75,7 +75,8 @@ class AvrBoard {
   };
 
   /// Loads `elf_path` onto a fresh MCU, held at reset until the first RunUntil. Throws
-  /// InputError when the file is no AVR image or names a part simavr does not know.
+  /// InputError when the file fails the image check (avr_image.h), names a part simavr does not
+  /// know, or does not fit the part's memories.
   AvrBoard(const std::string& elf_path, const Options& options);
   AvrBoard(const AvrBoard&) = delete;
   AvrBoard& operator=(const AvrBoard&) = delete;

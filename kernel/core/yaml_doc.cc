@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "yaml_doc.h"
 
+#include <yaml-cpp/depthguard.h>
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
@@ -20,11 +21,36 @@ SourceLocation At(const std::string& file, const YAML::Mark& mark) {
   return {file, mark.line + 1, mark.column + 1};
 }
 
-// aliases let a short file name a node many times over: count what the tree would hold
+// aliases let a short file name a node many times over: count what the tree would hold; an
+// alias inside its own anchor makes a cycle, and a deep tree a deep recursion here and in every
+// reader after us: follow at most kMaxYamlDepth levels, and name a cycle as such
 struct Budget {
   const std::string& file;
   size_t nodes_left = kMaxYamlNodes;
+  std::vector<YAML::Node> open;  // the nodes from the root to the one being converted
 };
+
+YamlNode Convert(const YAML::Node& in, Budget& budget);
+
+std::string TooDeep() {
+  return "values nested more than " + std::to_string(kMaxYamlDepth) +
+         " levels deep; no robot file or manifest nests that deep (docs/limits.md)";
+}
+
+YamlNode ConvertChild(const YAML::Node& in, Budget& budget) {
+  const std::string& file = budget.file;
+  for (const YAML::Node& ancestor : budget.open) {
+    if (in.is(ancestor)) {
+      throw InputError(At(file, in.Mark()).ToString() +
+                       ": this list or map holds an alias of itself (a cycle); a value cannot "
+                       "contain itself");
+    }
+  }
+  if (budget.open.size() >= kMaxYamlDepth) {
+    throw InputError(At(file, in.Mark()).ToString() + ": " + TooDeep());
+  }
+  return Convert(in, budget);
+}
 
 YamlNode Convert(const YAML::Node& in, Budget& budget) {
   const std::string& file = budget.file;
@@ -36,6 +62,7 @@ YamlNode Convert(const YAML::Node& in, Budget& budget) {
   }
   YamlNode out;
   out.location = At(file, in.Mark());
+  budget.open.push_back(in);
   switch (in.Type()) {
     case YAML::NodeType::Scalar:
       out.kind = YamlNode::Kind::kScalar;
@@ -44,7 +71,7 @@ YamlNode Convert(const YAML::Node& in, Budget& budget) {
     case YAML::NodeType::Sequence:
       out.kind = YamlNode::Kind::kSequence;
       for (const auto& item : in) {
-        out.items.push_back(Convert(item, budget));
+        out.items.push_back(ConvertChild(item, budget));
       }
       break;
     case YAML::NodeType::Map: {
@@ -52,7 +79,7 @@ YamlNode Convert(const YAML::Node& in, Budget& budget) {
       // key -> its line, so that a map of many keys is checked in n log n
       std::map<std::string, int, std::less<>> lines;
       for (const auto& entry : in) {
-        YamlNode key = Convert(entry.first, budget);
+        YamlNode key = ConvertChild(entry.first, budget);
         if (key.kind != YamlNode::Kind::kScalar) {
           key.Fail("map keys must be plain words");
         }
@@ -60,13 +87,14 @@ YamlNode Convert(const YAML::Node& in, Budget& budget) {
           key.Fail("duplicate key '" + key.scalar + "' (first given at line " +
                    std::to_string(seen->second) + ")");
         }
-        out.entries.emplace_back(std::move(key), Convert(entry.second, budget));
+        out.entries.emplace_back(std::move(key), ConvertChild(entry.second, budget));
       }
       break;
     }
     default:
       out.kind = YamlNode::Kind::kNull;
   }
+  budget.open.pop_back();
   return out;
 }
 
@@ -144,12 +172,16 @@ const std::string& YamlNode::AsString(std::string_view what) const {
 
 YamlNode ParseYaml(const std::string& text, const std::string& file) {
   try {
-    Budget budget{file};
+    Budget budget{file, kMaxYamlNodes, {}};
     YamlNode root = Convert(YAML::Load(text), budget);
     if (root.kind == YamlNode::Kind::kNull) {
       root.location = {file, 1, 1};
     }
     return root;
+  } catch (const YAML::DeepRecursion& e) {
+    // the parser's own bound, far beyond ours, is met before the conversion sees the tree; its
+    // message says only "bad file"
+    throw InputError(At(file, e.mark).ToString() + ": " + TooDeep());
   } catch (const YAML::Exception& e) {
     throw InputError(At(file, e.mark).ToString() + ": " + e.msg);
   }

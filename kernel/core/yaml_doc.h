@@ -69,6 +69,12 @@ class YamlNode {
 /// expanded: a robot file has a few hundred.
 inline constexpr size_t kMaxYamlNodes = 100000;
 
+/// Most levels of values a YAML document may hold, its top value being level 1 (`[[7]]` has
+/// three): a robot file has 8. A document deeper, or with an alias inside its own anchor (a
+/// cycle), is refused before it is converted further, so that neither the conversion nor any
+/// reader after it can run out of stack.
+inline constexpr size_t kMaxYamlDepth = 64;
+
 /// A key of a map and its value, named as std::pair names them (a pair of an incomplete type
 /// cannot be a member of that type for every compiler).
 struct YamlEntry {

@@ -31,34 +31,6 @@ YamlNode Scalar(const std::string& text, const std::string& option) {
   return node;
 }
 
-// the firmware link's component, as a robot file would declare it, from the command line (the
-// transport itself says whether it runs in lock-step from the first step); --link-set values
-// are validated like a robot file's, and win over earlier ones
-ComponentSpec LinkComponent(const std::string& transport, const std::string& profile,
-                            const std::vector<std::string>& sets) {
-  ComponentSpec link;
-  link.type = "unimouse.link";
-  link.name = "link";
-  link.location = {"--link " + transport, 0, 0};
-  link.params.kind = YamlNode::Kind::kMap;
-  link.params.location = link.location;
-  const std::string option = link.location.file;
-  link.params.entries.emplace_back(Scalar("transport", option), Scalar(transport, option));
-  if (!profile.empty()) {
-    const std::string where = "--firmware-profile " + profile;
-    link.params.entries.emplace_back(Scalar("profile", where), Scalar(profile, where));
-  }
-  for (const std::string& set : sets) {
-    const size_t eq = set.find('=');
-    UNIMOUSE_THROW_UNLESS(eq != std::string::npos && eq > 0,
-                          "--link-set " + set + ": write name=value");
-    const std::string where = "--link-set " + set;
-    link.params.entries.emplace_back(Scalar(set.substr(0, eq), where),
-                                     Scalar(set.substr(eq + 1), where));
-  }
-  return link;
-}
-
 // seconds with the three decimals of a stopwatch
 std::string Seconds3(double seconds) {
   char text[32];
@@ -129,6 +101,31 @@ void OnInterrupt(int signal) {
 }
 
 }  // namespace
+
+ComponentSpec LinkComponent(const std::string& transport, const std::string& profile,
+                            const std::vector<std::string>& sets) {
+  ComponentSpec link;
+  link.type = "unimouse.link";
+  link.name = "link";
+  link.location = {"--link " + transport, 0, 0};
+  link.params.kind = YamlNode::Kind::kMap;
+  link.params.location = link.location;
+  const std::string option = link.location.file;
+  link.params.entries.emplace_back(Scalar("transport", option), Scalar(transport, option));
+  if (!profile.empty()) {
+    const std::string where = "--firmware-profile " + profile;
+    link.params.entries.emplace_back(Scalar("profile", where), Scalar(profile, where));
+  }
+  for (const std::string& set : sets) {
+    const size_t eq = set.find('=');
+    UNIMOUSE_THROW_UNLESS(eq != std::string::npos && eq > 0,
+                          "--link-set " + set + ": write name=value");
+    const std::string where = "--link-set " + set;
+    link.params.entries.emplace_back(Scalar(set.substr(0, eq), where),
+                                     Scalar(set.substr(eq + 1), where));
+  }
+  return link;
+}
 
 void InstallInterruptHandlers() {
   struct sigaction action = {};

@@ -69,6 +69,12 @@ struct SessionOptions {
   bool driven_by_caller = false;  ///< the caller writes the robot's inputs between steps
 };
 
+/// Returns the firmware link's component as a robot file would declare it, from the command
+/// line (`--link`, `--firmware-profile`, `--link-set name=value`); its values are checked when
+/// it is bound, as a robot file's are, and a later `--link-set` of a name wins.
+ComponentSpec LinkComponent(const std::string& transport, const std::string& profile,
+                            const std::vector<std::string>& sets);
+
 /// Writes the result.json of a run that could not start (status "error"): why, the exit code,
 /// and the traceback of a script error. An output directory that cannot be written is left
 /// alone: the error itself is the one to report.

@@ -1,19 +1,15 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "avr_board.h"
 
-#include <fcntl.h>
-#include <gelf.h>
-#include <libelf.h>
-#include <unistd.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <ctime>
-#include <filesystem>
-#include <set>
+#include <new>
 
+#include "avr_image.h"
 #include "unimouse/errors.h"
 #include "unimouse_protocol.h"
 
@@ -45,12 +41,29 @@ double ThreadCpu_s() {
   return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
 }
 
-// SRAM starts after the extended I/O space: 0x200 on the parts with many ports, else 0x100
-uint32_t RamStart(const std::string& mcu) {
-  for (const char* big : {"atmega640", "atmega1280", "atmega1281", "atmega2560", "atmega2561"}) {
-    if (mcu == big) return 0x200;
+// simavr 1.6 reports a write beyond RAMEND as a crash and then makes it all the same, and reads
+// (and, by SPM, writes) the flash at whatever address a jump, a return or Z names: the data
+// space gets all the 64 KiB a 16-bit address reaches and the flash the 32 MiB a 24-bit word
+// address reaches, so that a firmware that goes astray stops with its crash instead of writing
+// over the simulator's memory. The pages beyond the part's own stay untouched, so unallocated.
+void WidenMemories(avr_t* avr) {
+  constexpr size_t kDataSpace_bytes = size_t{1} << 16;
+  // and the two words of the longest instruction read at the last address
+  constexpr size_t kFlashSpace_bytes = (size_t{1} << 25) + 4;
+  auto* data = static_cast<uint8_t*>(std::calloc(kDataSpace_bytes, 1));
+  auto* flash = static_cast<uint8_t*>(std::calloc(kFlashSpace_bytes, 1));
+  if (data == nullptr || flash == nullptr) {
+    std::free(data);
+    std::free(flash);
+    throw std::bad_alloc();
   }
-  return 0x100;
+  std::memcpy(data, avr->data, avr->ramend + 1u);
+  // avr_init puts an opcode that stops the core just past the flash's end
+  std::memcpy(flash, avr->flash, avr->flashend + 3u);
+  std::free(avr->data);
+  std::free(avr->flash);
+  avr->data = data;
+  avr->flash = flash;
 }
 
 // avr_terminate frees the peripherals but not the MCU that avr_make_mcu_by_name allocated, the
@@ -72,26 +85,6 @@ void FreeMcu(avr_t* avr) {
   }
   std::free(pool.irq);
   std::free(avr);
-}
-
-// the names of an ELF file's sections; none when it cannot be read as ELF
-std::set<std::string> SectionNames(const std::string& elf_path) {
-  std::set<std::string> names;
-  if (elf_version(EV_CURRENT) == EV_NONE) return names;
-  const int fd = ::open(elf_path.c_str(), O_RDONLY);
-  if (fd < 0) return names;
-  Elf* elf = elf_begin(fd, ELF_C_READ, nullptr);
-  size_t strings = 0;
-  if (elf && elf_getshdrstrndx(elf, &strings) == 0) {
-    for (Elf_Scn* scn = nullptr; (scn = elf_nextscn(elf, scn)) != nullptr;) {
-      GElf_Shdr shdr;
-      if (gelf_getshdr(scn, &shdr) == nullptr) continue;
-      if (const char* name = elf_strptr(elf, strings, shdr.sh_name)) names.insert(name);
-    }
-  }
-  if (elf) elf_end(elf);
-  ::close(fd);
-  return names;
 }
 
 }  // namespace
@@ -158,9 +151,8 @@ std::vector<std::pair<std::string, double>> AvrBoardStats::Named() const {
 }
 
 AvrBoard::AvrBoard(const std::string& elf_path, const Options& options) : options_(options) {
-  std::error_code ec;
-  UNIMOUSE_THROW_UNLESS(std::filesystem::is_regular_file(elf_path, ec),
-                        elf_path + ": no such firmware image");
+  // simavr's reader trusts every size and offset in the file: it sees only a checked image
+  const AvrImage image = ReadAvrImage(elf_path);
   // what elf_read_firmware allocates, freed however the constructor ends
   struct Image : elf_firmware_t {
     Image() : elf_firmware_t{} {}
@@ -174,17 +166,9 @@ AvrBoard::AvrBoard(const std::string& elf_path, const Options& options) : option
     }
   } fw;
   avr_global_logger_set(&Logger);
-  // simavr 1.6 dereferences a null pointer when an image has lock bits but no fuses
-  const std::set<std::string> sections = SectionNames(elf_path);
-  UNIMOUSE_THROW_UNLESS(sections.count(".lock") == 0 || sections.count(".fuse") == 1,
-                        elf_path +
-                            ": lock bits (.lock) without fuses (.fuse), which the emulated board "
-                            "cannot load: give the part's fuses too, or leave the lock bits out");
-  UNIMOUSE_THROW_UNLESS(elf_read_firmware(elf_path.c_str(), &fw) == 0 && fw.flashsize > 0,
-                        elf_path + ": not an AVR .elf image");
   // the image's own AVR_MCU section wins over the link's parameters
-  stats_.mcu = fw.mmcu[0] ? fw.mmcu : options.mcu;
-  stats_.f_cpu_hz = fw.frequency ? fw.frequency : options.f_cpu_hz;
+  stats_.mcu = image.mcu.empty() ? options.mcu : image.mcu;
+  stats_.f_cpu_hz = image.f_cpu_hz ? image.f_cpu_hz : options.f_cpu_hz;
   avr_ = avr_make_mcu_by_name(stats_.mcu.c_str());
   UNIMOUSE_THROW_UNLESS(avr_ != nullptr,
                         elf_path + ": simavr does not know the MCU '" + stats_.mcu + "'");
@@ -198,15 +182,18 @@ AvrBoard::AvrBoard(const std::string& elf_path, const Options& options) : option
   } undo{this};
   avr_init(avr_);
   avr_->log = LOG_ERROR;
+  WidenMemories(avr_);
+  // simavr aborts on an image larger than the part's flash, copies fuses unchecked, and the
+  // symbols below say where to read RAM
+  CheckAvrImageFits(image,
+                    {stats_.mcu, avr_->flashend + 1u, avr_->ioend + 1u, avr_->ramend,
+                     avr_->e2end + 1u, static_cast<uint32_t>(sizeof(avr_->fuse))},
+                    elf_path);
+  UNIMOUSE_THROW_UNLESS(elf_read_firmware(elf_path.c_str(), &fw) == 0 && fw.flashsize > 0,
+                        elf_path + ": not an AVR .elf image");
   fw.frequency = stats_.f_cpu_hz;
-  // simavr aborts on an image larger than the part's flash, and copies fuses unchecked
-  const uint64_t flash_bytes = uint64_t{avr_->flashend} + 1;
-  UNIMOUSE_THROW_UNLESS(uint64_t{fw.flashbase} + fw.flashsize <= flash_bytes,
-                        elf_path + ": an image of " + std::to_string(fw.flashsize) +
-                            " bytes does not fit the " + std::to_string(flash_bytes) +
-                            " bytes of flash of the " + stats_.mcu);
-  UNIMOUSE_THROW_UNLESS(fw.fusesize <= sizeof(avr_->fuse),
-                        elf_path + ": more fuse bytes than the " + stats_.mcu + " has");
+  // a trace (VCD) would be a file written outside the run's directory
+  fw.tracecount = 0;
   avr_load_firmware(avr_, &fw);
   avr_->frequency = stats_.f_cpu_hz;
 
@@ -226,10 +213,16 @@ AvrBoard::AvrBoard(const std::string& elf_path, const Options& options) : option
   avr_irq_register_notify(avr_io_getirq(avr_, AVR_IOCTL_UART_GETIRQ('0'), UART_IRQ_OUT_XOFF),
                           &OnXoff, this);
 
-  ReadSymbols(elf_path);
+  for (const AvrImage::Symbol& symbol : image.symbols) {
+    if (symbol.function) {
+      functions_[symbol.value] = {symbol.size, symbol.name};
+    } else if (symbol.value >= kDataOffset && symbol.value < kDataOffset + 0x10000) {
+      data_symbols_[symbol.name] = symbol.value - kDataOffset;
+    }
+  }
   ram_end_ = avr_->ramend;
   const int64_t data_start = DataSymbol("__data_start");
-  ram_start_ = data_start >= 0 ? static_cast<uint32_t>(data_start) : RamStart(stats_.mcu);
+  ram_start_ = data_start >= 0 ? static_cast<uint32_t>(data_start) : avr_->ioend + 1u;
   // without symbols, the image's sizes say where the data ends
   int64_t heap_start = DataSymbol("__heap_start");
   if (heap_start < 0) heap_start = DataSymbol("_end");
@@ -247,33 +240,6 @@ void AvrBoard::Release() {
   std::erase_if(Boards(), [this](const auto& b) { return b.second == this; });
   if (avr_ != nullptr) FreeMcu(avr_);
   avr_ = nullptr;
-}
-
-void AvrBoard::ReadSymbols(const std::string& elf_path) {
-  if (elf_version(EV_CURRENT) == EV_NONE) return;
-  const int fd = ::open(elf_path.c_str(), O_RDONLY);
-  if (fd < 0) return;
-  Elf* elf = elf_begin(fd, ELF_C_READ, nullptr);
-  for (Elf_Scn* scn = nullptr; elf && (scn = elf_nextscn(elf, scn)) != nullptr;) {
-    GElf_Shdr shdr;
-    if (gelf_getshdr(scn, &shdr) == nullptr || shdr.sh_type != SHT_SYMTAB) continue;
-    Elf_Data* data = elf_getdata(scn, nullptr);
-    const size_t n = shdr.sh_entsize ? shdr.sh_size / shdr.sh_entsize : 0;
-    for (size_t i = 0; data && i < n; ++i) {
-      GElf_Sym sym;
-      if (gelf_getsym(data, static_cast<int>(i), &sym) == nullptr) continue;
-      const char* name = elf_strptr(elf, shdr.sh_link, sym.st_name);
-      if (name == nullptr || name[0] == '\0') continue;
-      const auto value = static_cast<uint32_t>(sym.st_value);
-      if (GELF_ST_TYPE(sym.st_info) == STT_FUNC) {
-        functions_[value] = {static_cast<uint32_t>(sym.st_size), name};
-      } else if (value >= kDataOffset && value < kDataOffset + 0x10000) {
-        data_symbols_[name] = value - kDataOffset;
-      }
-    }
-  }
-  if (elf) elf_end(elf);
-  ::close(fd);
 }
 
 std::string AvrBoard::FunctionAt(uint32_t pc) const {

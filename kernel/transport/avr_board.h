@@ -7,8 +7,8 @@
 // run. It also watches what a real board would only show by misbehaving: how deep the stack got
 // against the data below it, lost bytes, the latency from sensor frames to motor commands, and a
 // crash, a watchdog reset or a sleep with interrupts off, which end its run.
-#ifndef UNIMOUSE_PLUGINS_LINK_AVR_BOARD_H_
-#define UNIMOUSE_PLUGINS_LINK_AVR_BOARD_H_
+#ifndef UNIMOUSE_TRANSPORT_AVR_BOARD_H_
+#define UNIMOUSE_TRANSPORT_AVR_BOARD_H_
 
 #include <cstdarg>
 #include <cstdint>
@@ -75,7 +75,8 @@ class AvrBoard {
   };
 
   /// Loads `elf_path` onto a fresh MCU, held at reset until the first RunUntil. Throws
-  /// InputError when the file is no AVR image or names a part simavr does not know.
+  /// InputError when the file fails the image check (avr_image.h), names a part simavr does not
+  /// know, or does not fit the part's memories.
   AvrBoard(const std::string& elf_path, const Options& options);
   AvrBoard(const AvrBoard&) = delete;
   AvrBoard& operator=(const AvrBoard&) = delete;
@@ -111,7 +112,6 @@ class AvrBoard {
   static uint64_t FeedByte(avr_t* avr, uint64_t when, void* param);
   static uint64_t StepEnd(avr_t* avr, uint64_t when, void* param);
   static void Logger(avr_t* avr, int level, const char* format, va_list ap);
-  void ReadSymbols(const std::string& elf_path);
   // frees the MCU and forgets it
   void Release();
   // cycles one 8N1 byte takes on the line as the firmware configured it (simavr's word size)
@@ -162,4 +162,4 @@ class AvrBoard {
 
 }  // namespace unimouse::link
 
-#endif  // UNIMOUSE_PLUGINS_LINK_AVR_BOARD_H_
+#endif  // UNIMOUSE_TRANSPORT_AVR_BOARD_H_

@@ -2,8 +2,8 @@
 // What every transport shares: one Asio stream descriptor, read and written without blocking,
 // a wait for bytes with a timeout, and the bookkeeping of a peer that comes and goes. A
 // transport adds how it opens, how it gets a lost peer back and how it lets one go.
-#ifndef UNIMOUSE_PLUGINS_LINK_STREAM_TRANSPORT_H_
-#define UNIMOUSE_PLUGINS_LINK_STREAM_TRANSPORT_H_
+#ifndef UNIMOUSE_TRANSPORT_STREAM_TRANSPORT_H_
+#define UNIMOUSE_TRANSPORT_STREAM_TRANSPORT_H_
 
 // clang-format off
 // Boost 1.74's asio uses std::exchange without including <utility> in C++20
@@ -56,4 +56,4 @@ class StreamTransport : public Transport {
 
 }  // namespace unimouse::link
 
-#endif  // UNIMOUSE_PLUGINS_LINK_STREAM_TRANSPORT_H_
+#endif  // UNIMOUSE_TRANSPORT_STREAM_TRANSPORT_H_

@@ -285,6 +285,25 @@ scenarios: [micromouse]
   EXPECT_FALSE(fs::exists(dir + "/out/jobs"));
 }
 
+TEST(BatchCommandTest, AManifestWhoseAliasHoldsItselfIsBadInputWithFileLineAndColumn) {
+  const std::string dir = FreshDirectory("batch_cycle");
+  const std::string head =
+      "submissions: [{name: amy, controller: amy.lua}]\n"
+      "scenarios: [micromouse]\n";
+  for (const std::string key : {"seeds", "jobs"}) {
+    const std::string manifest = WriteFile(dir, key + ".yaml", head + key + ": {a: &b [*b]}\n");
+    for (const std::string command : {"run", "plan"}) {
+      const Outcome o = Unimouse("batch " + command + " " + manifest + " --out " + dir + "/out");
+      EXPECT_EQ(o.exit_code, 2) << key << " " << command << ": " << o.output;
+      EXPECT_NE(o.output.find(manifest + ":3:" + std::to_string(key.size() + 7) +
+                              ": this list or map holds an alias of itself (a cycle)"),
+                std::string::npos)
+          << o.output;
+    }
+  }
+  EXPECT_FALSE(fs::exists(dir + "/out/jobs"));
+}
+
 // whether any process's command line holds this text
 bool ProcessWith(const std::string& text) {
   for (const auto& e : fs::directory_iterator("/proc")) {

@@ -261,6 +261,30 @@ TEST_F(CliTest, CheckTakesDirectoriesReportingEveryFileAndExitingWithTheWorstCod
   EXPECT_EQ(Unimouse("check " + robot + " " + scenario).exit_code, 0);
 }
 
+TEST_F(CliTest, ARobotFileWhoseAliasHoldsItselfIsBadInputForCheckRunAndADirectory) {
+  fs::create_directories(dir_ / "class");
+  const std::string robot = Write("class/cycle.yaml", "a: &b [*b]\n");
+  const std::string expected = robot +
+                               ":1:4: this list or map holds an alias of itself (a cycle); a "
+                               "value cannot contain itself";
+  const Outcome check = Unimouse("check " + robot);
+  EXPECT_EQ(check.exit_code, 2) << check.output;
+  EXPECT_EQ(check.output, "unimouse: error: " + expected + "\n");
+
+  const Outcome directory = Unimouse("check " + (dir_ / "class").string());
+  EXPECT_EQ(directory.exit_code, 2) << directory.output;
+  EXPECT_NE(directory.output.find(expected), std::string::npos) << directory.output;
+
+  const fs::path out = dir_ / "out";
+  const Outcome run = Unimouse("run --duration 0.1 --robot " + robot + " --out " + out.string());
+  EXPECT_EQ(run.exit_code, 2) << run.output;
+  std::ifstream in(out / "result.json");
+  const nlohmann::json result = nlohmann::json::parse(in);
+  EXPECT_EQ(result["status"], "error");
+  EXPECT_EQ(result["exit_code"], 2);
+  EXPECT_EQ(result["error"], expected);
+}
+
 TEST_F(CliTest, CheckStartsNothingAndWritesNothing) {
   // the test process's own TMPDIR, which the program inherits, and the directory checked
   const fs::path tmp = fs::temp_directory_path();

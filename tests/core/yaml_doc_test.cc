@@ -42,6 +42,72 @@ TEST(YamlDocTest, AliasesWithinTheLimitAreExpanded) {
   EXPECT_EQ(root.entries[1].second.items[1].scalar, "2");
 }
 
+// the message of the InputError that parsing `text` throws, or ""
+std::string ErrorOf(const std::string& text, const std::string& file) {
+  try {
+    ParseYaml(text, file);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(YamlDocTest, AListThatHoldsAnAliasOfItselfIsRefusedAtTheList) {
+  EXPECT_EQ(ErrorOf("a: &b [*b]\n", "cycle.yaml"),
+            "cycle.yaml:1:4: this list or map holds an alias of itself (a cycle); a value cannot "
+            "contain itself");
+}
+
+TEST(YamlDocTest, ACycleThroughAMapAndAListFurtherDownIsRefusedAtItsAnchor) {
+  EXPECT_EQ(ErrorOf("robot:\n  parts: &p\n    left: [1, {more: *p}]\n", "deep_cycle.yaml"),
+            "deep_cycle.yaml:2:10: this list or map holds an alias of itself (a cycle); a value "
+            "cannot contain itself");
+}
+
+TEST(YamlDocTest, AMapKeyThatIsAnAliasOfItsOwnMapIsRefused) {
+  EXPECT_EQ(ErrorOf("a: &m {x: 1, ? *m : 2}\n", "key.yaml")
+                .rfind("key.yaml:1:4: this list or "
+                       "map holds an alias of itself",
+                       0),
+            0u);
+}
+
+TEST(YamlDocTest, AnAliasUsedTwiceSideBySideIsNoCycle) {
+  const YamlNode root = ParseYaml("a: &w [1]\nb: [*w, *w, [*w]]\n", "twice.yaml");
+  ASSERT_EQ(root.entries[1].second.items.size(), 3u);
+  EXPECT_EQ(root.entries[1].second.items[2].items[0].items[0].scalar, "1");
+}
+
+// `lists` lists, one inside the other, around one number: the number is value `lists` + 1 deep
+std::string NestedLists(size_t lists) {
+  return std::string(lists, '[') + "7" + std::string(lists, ']') + "\n";
+}
+
+TEST(YamlDocTest, ValuesNestedToTheBoundAreReadAndOneLevelMoreIsRefused) {
+  ASSERT_EQ(kMaxYamlDepth, 64u);
+  const YamlNode root = ParseYaml(NestedLists(63), "deep.yaml");
+  const YamlNode* node = &root;
+  for (int level = 1; level < 64; ++level) {
+    ASSERT_EQ(node->items.size(), 1u) << level;
+    node = &node->items[0];
+  }
+  EXPECT_EQ(node->scalar, "7");
+  // the number, 65th value down, stands in column 65
+  EXPECT_EQ(ErrorOf(NestedLists(64), "deeper.yaml"),
+            "deeper.yaml:1:65: values nested more than 64 levels deep; no robot file or manifest "
+            "nests that deep (docs/limits.md)");
+}
+
+TEST(YamlDocTest, NestingFarBeyondTheBoundIsRefusedWithoutRunningOutOfStack) {
+  // beyond about 2000 lists the YAML parser meets its own bound before the conversion runs
+  for (const size_t lists : {1000, 1990, 5000, 100000}) {
+    const std::string what = ErrorOf(NestedLists(lists), "abyss.yaml");
+    EXPECT_EQ(what.rfind("abyss.yaml:", 0), 0u) << lists << ": " << what;
+    EXPECT_NE(what.find(": values nested more than 64 levels deep"), std::string::npos)
+        << lists << ": " << what;
+  }
+}
+
 TEST(YamlDocTest, AMapOfManyKeysIsReadInTimeAndADuplicateNamed) {
   std::string text;
   for (int i = 0; i < 40000; ++i) text += "k" + std::to_string(i) + ": 1\n";

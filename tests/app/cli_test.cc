@@ -213,6 +213,20 @@ TEST_F(CliTest, CheckAcceptsTheBundledHalfSizeRobot) {
   EXPECT_NE(o.output.find("ok: robot 'unimouse-half', 4 bodies"), std::string::npos) << o.output;
 }
 
+TEST_F(CliTest, CheckAcceptsTheBundledRobotsOfOtherLayouts) {
+  Outcome o = Unimouse("check unimouse-skid");
+  EXPECT_EQ(o.exit_code, 0) << o.output;
+  EXPECT_NE(o.output.find("ok: robot 'unimouse-skid', 5 bodies, 5 joints, 4 actuators"),
+            std::string::npos)
+      << o.output;
+  o = Unimouse("check unimouse-six");
+  EXPECT_EQ(o.exit_code, 0) << o.output;
+  EXPECT_NE(
+      o.output.find("ok: robot 'unimouse-six', 4 bodies, 4 joints, 2 actuators, 14 components"),
+      std::string::npos)
+      << o.output;
+}
+
 TEST_F(CliTest, BadRobotFileExitsWithCode2AndOneLocatedLine) {
   const std::string path = Write("bad.yaml", "name: x\nchassis:\n  name: c\n  mass: 1\n");
   const Outcome o = Unimouse("check " + path);

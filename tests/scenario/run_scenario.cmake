@@ -4,10 +4,14 @@
 # that result.json says the same.
 #
 #   cmake -DPROGRAM=unimouse -DSCENARIO=name -DCONTROLLER=file.lua -DOUT=dir -DEXPECT=0|1
+#         [-DROBOT=bundled robot or file]
 #         [-DSETS=name=value,...] [-DRESULT_RECORDS=dir] -P run_scenario.cmake
 #
 # The result.json is copied into RESULT_RECORDS, for the schema check (tests/CMakeLists.txt).
 set(command "${PROGRAM}" run --out "${OUT}" --scenario "${SCENARIO}" --controller "${CONTROLLER}")
+if(ROBOT)
+  list(APPEND command --robot "${ROBOT}")
+endif()
 if(SETS)
   string(REPLACE "," ";" sets "${SETS}")
   foreach(set IN LISTS sets)

@@ -80,7 +80,8 @@ int main(int argc, char** argv) {
                       "Lua file returning function(time_s) that drives the robot through sim.*");
   run_cmd->add_flag("--realtime", run.realtime,
                     "pace the simulation to the wall clock, even a firmware in lock-step, to "
-                    "watch it (with --link the run is paced anyway until lock-step is on)");
+                    "watch it (a board or a program on a link, from --link or the robot file, "
+                    "is paced anyway until it turns lock-step on)");
   run_cmd->add_option("--link", run.link, LinkHelp());
   run_cmd->add_option("--link-set", run.link_sets,
                       "a link parameter, name=value, as `unimouse plugins` lists them for "

@@ -77,16 +77,20 @@ void FloorGrid::AddSquare(int ix, int iy, std::vector<int>& out) const {
 }
 
 void FloorGrid::ShapesNear(const FloorRect& area, std::vector<int>& out) const {
-  if (nx_ == 0) return;
-  if (++stamp_ == 0) {
-    std::fill(seen_.begin(), seen_.end(), 0);
-    stamp_ = 1;
+  // a rectangle off the grid, or not a rectangle (NaN): nothing there
+  const double x1_m = x0_m_ + nx_ * square_m_, y1_m = y0_m_ + ny_ * square_m_;
+  if (nx_ == 0 || !(area.x0_m <= area.x1_m && area.y0_m <= area.y1_m) || area.x1_m < x0_m_ ||
+      area.y1_m < y0_m_ || area.x0_m > x1_m || area.y0_m > y1_m) {
+    return;
   }
+  NewQuery();
   const size_t begin = out.size();
-  const int ix0 = std::max(0, static_cast<int>(std::floor((area.x0_m - x0_m_) / square_m_)));
-  const int iy0 = std::max(0, static_cast<int>(std::floor((area.y0_m - y0_m_) / square_m_)));
-  const int ix1 = std::min(nx_ - 1, static_cast<int>(std::floor((area.x1_m - x0_m_) / square_m_)));
-  const int iy1 = std::min(ny_ - 1, static_cast<int>(std::floor((area.y1_m - y0_m_) / square_m_)));
+  // clamped while still a double: a cast of a number beyond int's range is undefined
+  auto square = [this](double at_m, double origin_m, int n) {
+    return static_cast<int>(std::clamp(std::floor((at_m - origin_m) / square_m_), 0.0, n - 1.0));
+  };
+  const int ix0 = square(area.x0_m, x0_m_, nx_), ix1 = square(area.x1_m, x0_m_, nx_);
+  const int iy0 = square(area.y0_m, y0_m_, ny_), iy1 = square(area.y1_m, y0_m_, ny_);
   for (int iy = iy0; iy <= iy1; ++iy) {
     for (int ix = ix0; ix <= ix1; ++ix) AddSquare(ix, iy, out);
   }
@@ -95,22 +99,37 @@ void FloorGrid::ShapesNear(const FloorRect& area, std::vector<int>& out) const {
 
 void FloorGrid::ShapesAlong(double x_m, double y_m, double dx, double dy, double length_m,
                             std::vector<int>& out) const {
-  if (nx_ == 0) return;
-  if (++stamp_ == 0) {
-    std::fill(seen_.begin(), seen_.end(), 0);
-    stamp_ = 1;
-  }
-  // the squares a segment crosses, one after another (a digital differential analyser): from
-  // the square of the start, step into the x or the y neighbour, whichever edge comes first
-  const double norm = std::hypot(dx, dy);
-  const double u = (x_m - x0_m_) / square_m_, v = (y_m - y0_m_) / square_m_;
-  int ix = static_cast<int>(std::floor(u)), iy = static_cast<int>(std::floor(v));
-  if (norm == 0 || length_m <= 0) {
-    AddSquare(ix, iy, out);
+  if (nx_ == 0 || !std::isfinite(x_m) || !std::isfinite(y_m) || !std::isfinite(dx) ||
+      !std::isfinite(dy) || !std::isfinite(length_m)) {
     return;
   }
-  const double ux = dx / norm, uy = dy / norm;
-  const double length = length_m / square_m_;  // in squares
+  const double norm = std::hypot(dx, dy);
+  const double ux = norm > 0 ? dx / norm : 0, uy = norm > 0 ? dy / norm : 0;
+  // the part of the segment over the grid (slabs): [enter, leave] metres from its start; a
+  // segment that never crosses the grid meets no shape
+  double enter = 0, leave = std::max(0.0, length_m);
+  const double from[2] = {x_m, y_m}, along[2] = {ux, uy};
+  const double lo[2] = {x0_m_, y0_m_}, hi[2] = {x0_m_ + nx_ * square_m_, y0_m_ + ny_ * square_m_};
+  for (int k = 0; k < 2; ++k) {
+    if (along[k] == 0) {
+      if (from[k] < lo[k] || from[k] > hi[k]) return;
+      continue;
+    }
+    const double a = (lo[k] - from[k]) / along[k], b = (hi[k] - from[k]) / along[k];
+    enter = std::max(enter, std::min(a, b));
+    leave = std::min(leave, std::max(a, b));
+  }
+  if (enter > leave) return;
+  NewQuery();
+
+  // the squares the segment crosses, one after another (a digital differential analyser): from
+  // the square where it enters the grid, step into the x or the y neighbour, whichever edge
+  // comes first
+  const double u = (x_m + ux * enter - x0_m_) / square_m_;
+  const double v = (y_m + uy * enter - y0_m_) / square_m_;
+  int ix = static_cast<int>(std::clamp(std::floor(u), 0.0, nx_ - 1.0));
+  int iy = static_cast<int>(std::clamp(std::floor(v), 0.0, ny_ - 1.0));
+  const double length = (leave - enter) / square_m_;  // in squares
   const int step_x = ux > 0 ? 1 : -1, step_y = uy > 0 ? 1 : -1;
   constexpr double kNever = std::numeric_limits<double>::infinity();
   // distance along the segment, in squares, to the next x edge and y edge, and between edges
@@ -120,9 +139,9 @@ void FloorGrid::ShapesAlong(double x_m, double y_m, double dx, double dy, double
   const double every_y = uy != 0 ? 1 / std::fabs(uy) : kNever;
   for (;;) {
     AddSquare(ix, iy, out);
-    // a square's corner on the segment: both neighbours, so that no shape is skipped
     const double next = std::min(next_x, next_y);
     if (next > length) break;
+    // a square's corner on the segment: both neighbours, so that no shape is skipped
     if (std::fabs(next_x - next_y) < 1e-9) {
       AddSquare(ix + step_x, iy, out);
       AddSquare(ix, iy + step_y, out);
@@ -134,11 +153,15 @@ void FloorGrid::ShapesAlong(double x_m, double y_m, double dx, double dy, double
       iy += step_y;
       next_y += every_y;
     }
-    // off the grid on an axis, moving away (or not moving on it): it never comes back
-    if ((ix < 0 && step_x < 0) || (ix >= nx_ && step_x > 0) || (iy < 0 && step_y < 0) ||
-        (iy >= ny_ && step_y > 0)) {
-      break;
-    }
+    // off the grid: the segment does not come back
+    if (ix < 0 || iy < 0 || ix >= nx_ || iy >= ny_) break;
+  }
+}
+
+void FloorGrid::NewQuery() const {
+  if (++stamp_ == 0) {
+    std::fill(seen_.begin(), seen_.end(), 0);
+    stamp_ = 1;
   }
 }
 

@@ -52,7 +52,13 @@ void GuardMujoco(void (*call)(void*), void* arg) {
   innermost = &frame;
   // glibc's setjmp saves no signal mask: no system call
   if (setjmp(frame.back) == 0) {
-    call(arg);
+    // an exception from inside (an allocation, a callback) leaves no guard behind on its way
+    try {
+      call(arg);
+    } catch (...) {
+      innermost = outer;
+      throw;
+    }
     innermost = outer;
     return;
   }

@@ -3,8 +3,10 @@
 // callback must not return. A C++ exception thrown there would unwind through MuJoCo's C frames,
 // which is undefined behaviour. So every call into MuJoCo that can raise an error runs inside
 // GuardMujoco: the callback jumps back to the guard (longjmp), out of MuJoCo's frames, and only
-// there the error becomes a RuntimeFault. A component's hook runs inside one too, for the calls
-// a component makes to MuJoCo itself; its own frames are then left without unwinding.
+// there the error becomes a RuntimeFault. A component's hook runs inside one too, as a backstop
+// for the calls a plugin makes to MuJoCo itself: the plugin's own frames are then left without
+// unwinding (what they hold is lost), so a plugin should call MuJoCo only where nothing it owns
+// is on the stack. The host's own calls a hook reaches (a ray cast) are guarded where they are.
 #ifndef UNIMOUSE_CORE_MUJOCO_GUARD_H_
 #define UNIMOUSE_CORE_MUJOCO_GUARD_H_
 

@@ -20,7 +20,7 @@ State::State(const mjModel& model, int component_state_size, int signal_count)
 
 void State::CopyFrom(const State& other) {
   UNIMOUSE_DEMAND(model_ == other.model_);
-  mj_copyData(data_.get(), model_, other.data_.get());
+  GuardMujoco([&] { mj_copyData(data_.get(), model_, other.data_.get()); });
   component_state_ = other.component_state_;
   signals_ = other.signals_;
   rngs_ = other.rngs_;

@@ -72,12 +72,18 @@ void WriteBoxGeom(Mjcf& x, const StaticBox& b, const char* contact, int group) {
                   << "'/>\n";
 }
 
-void WriteAssets(Mjcf& x) {
-  x << "<asset>\n"
-    << "<texture name='grid' type='2d' builtin='checker' rgb1='0.12 0.12 0.12' "
-       "rgb2='0.16 0.16 0.16' width='512' height='512'/>\n"
-    << "<material name='floor' texture='grid' texrepeat='1 1' texuniform='true'/>\n"
-    << "<material name='wall' rgba='0.92 0.92 0.9 1'/>\n"
+// the materials, in one order for every model (pictures draw the scenery's geoms with the
+// physics model's materials, by index); the floor's texture only where there is a floor
+void WriteAssets(Mjcf& x, bool floor_texture = true) {
+  x << "<asset>\n";
+  if (floor_texture) {
+    x << "<texture name='grid' type='2d' builtin='checker' rgb1='0.12 0.12 0.12' "
+         "rgb2='0.16 0.16 0.16' width='512' height='512'/>\n"
+      << "<material name='floor' texture='grid' texrepeat='1 1' texuniform='true'/>\n";
+  } else {
+    x << "<material name='floor'/>\n";
+  }
+  x << "<material name='wall' rgba='0.92 0.92 0.9 1'/>\n"
     << "<material name='post' rgba='0.85 0.15 0.1 1'/>\n"
     << "<material name='obstacle' rgba='0.3 0.5 0.8 1'/>\n"
     << "</asset>\n";
@@ -370,7 +376,7 @@ std::unique_ptr<World> World::Build(const RobotSpec& robot, const Maze* maze,
     std::unique_ptr<mjData, DataDeleter> d;
     GuardMujoco([&] { d.reset(mj_makeData(&m)); });
     d->qpos[w->robot_qpos_ + 2] = 1;
-    mj_kinematics(&m, d.get());
+    GuardMujoco([&] { mj_kinematics(&m, d.get()); });
     double lowest = std::numeric_limits<double>::infinity();
     double reach = 0;
     for (int g = 0; g < m.ngeom; ++g) {
@@ -395,17 +401,16 @@ std::unique_ptr<World> World::Build(const RobotSpec& robot, const Maze* maze,
     const size_t end = std::min(w->scenery_.size(), first + kSceneryChunkBoxes);
     Mjcf s;
     s << "<mujoco model='scenery'>\n";
-    WriteAssets(s);
+    WriteAssets(s, /*floor_texture=*/false);
     s << "<worldbody>\n";
     for (size_t i = first; i < end; ++i) {
       WriteBoxGeom(s, w->scenery_[i], "contype='0' conaffinity='0'", kGroupWorld);
     }
     s << "</worldbody>\n</mujoco>\n";
     SceneryChunk chunk;
-    chunk.first_box = static_cast<int>(first);
     chunk.model.reset(CompileMjcf(s.str(), "scenery"));
     GuardMujoco([&] { chunk.data.reset(mj_makeData(chunk.model.get())); });
-    mj_kinematics(chunk.model.get(), chunk.data.get());
+    GuardMujoco([&] { mj_kinematics(chunk.model.get(), chunk.data.get()); });
     // what a ray cast tests of each box, as MuJoCo placed it
     const mjModel& cm = *chunk.model;
     const mjData& cd = *chunk.data;
@@ -514,9 +519,15 @@ bool World::RobotTouchesScenery(const mjData& d) const {
 
 double World::CastRay(const mjData& d, const double origin[3], const double direction[3],
                       double max_m) const {
+  for (int k = 0; k < 3; ++k) {
+    if (!std::isfinite(origin[k]) || !std::isfinite(direction[k])) return -1;
+  }
+  if (!std::isfinite(max_m)) return -1;
   const mjtByte world_only[mjNGROUP] = {1, 0, 0, 0, 0, 0};
   int geom = -1;
-  double best = mj_ray(model_.get(), &d, origin, direction, world_only, 1, -1, &geom);
+  double best = -1;
+  GuardMujoco(
+      [&] { best = mj_ray(model_.get(), &d, origin, direction, world_only, 1, -1, &geom); });
   // the walls along the ray's way on the floor, each tested as MuJoCo's ray cast tests a geom:
   // the nearest of them is the nearest of all
   ray_shapes_.clear();

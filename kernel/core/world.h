@@ -58,7 +58,7 @@ class World {
   ~World();
 
   /// Most cells on a side of a maze a run builds a world from: its walls and posts are shapes
-  /// MuJoCo compiles, 500 to a model, and a 128 x 128 maze takes about a second.
+  /// MuJoCo compiles, 500 to a model, and a 128 x 128 maze takes about 1.2 s.
   static constexpr int kMaxMazeSide_cells = 128;
 
   /// Builds a robot in a maze (or on an open floor when maze is null), facing the maze's start
@@ -80,7 +80,6 @@ class World {
   struct SceneryChunk {
     std::unique_ptr<mjModel, void (*)(mjModel*)> model{nullptr, &mj_deleteModel};
     std::unique_ptr<mjData, void (*)(mjData*)> data{nullptr, &mj_deleteData};
-    int first_box = 0;  ///< index in scenery() of its first geom
   };
   const std::vector<SceneryChunk>& scenery_chunks() const { return scenery_chunks_; }
 
@@ -108,7 +107,7 @@ class World {
   void UpdateCollisionProxies(const mjData& d);
 
   /// Returns the distance along unit `direction` to the first surface that is not part of a
-  /// robot, or -1 when there is none within max_m.
+  /// robot, or -1 when there is none within max_m (or an argument is not finite).
   double CastRay(const mjData& d, const double origin[3], const double direction[3],
                  double max_m) const;
 

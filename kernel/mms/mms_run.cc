@@ -205,7 +205,14 @@ class Device final : public Channel {
   Device(const std::string& spec, double connect_timeout_s)
       : connect_timeout_(std::chrono::duration_cast<Clock::duration>(
             std::chrono::duration<double>(connect_timeout_s))) {
-    if (link::ParseTransportSpec(spec).kind->firmware != link::FirmwareHost::kBoard) {
+    // a board or relay at the end of a port: not a firmware the simulator runs, nor a scheme
+    // it does not know
+    const link::TransportKind* kind = nullptr;
+    try {
+      kind = link::ParseTransportSpec(spec).kind;
+    } catch (const InputError&) {
+    }
+    if (kind == nullptr || kind->firmware != link::FirmwareHost::kBoard) {
       throw InputError("--port " + spec + ": " + link::TransportUsages(/*boards_only=*/true));
     }
     transport_ = link::OpenTransport(spec);

@@ -42,9 +42,8 @@ SceneRenderer::SceneRenderer(const Kernel& kernel, int font_scale)
     data_ = mj_makeData(model_);
     int scenery_geoms = 0;
     for (const World::SceneryChunk& chunk : kernel.world().scenery_chunks()) {
-      mjData* d = mj_makeData(chunk.model.get());
-      mj_kinematics(chunk.model.get(), d);
-      scenery_data_.push_back(d);
+      scenery_data_.push_back(mj_makeData(chunk.model.get()));
+      mj_kinematics(chunk.model.get(), scenery_data_.back());
       scenery_geoms += chunk.model->ngeom;
     }
     mjv_makeScene(model_, &scene_, model_->ngeom + scenery_geoms + kExtraGeoms);
@@ -137,9 +136,11 @@ void SceneRenderer::CopyState() {
   data_->time = d.time;
   mju_copy(data_->qpos, d.qpos, model_->nq);
   mju_copy(data_->qvel, d.qvel, model_->nv);
-  mj_kinematics(model_, data_);
-  mj_comPos(model_, data_);
-  mj_camlight(model_, data_);
+  GuardMujoco([&] {
+    mj_kinematics(model_, data_);
+    mj_comPos(model_, data_);
+    mj_camlight(model_, data_);
+  });
 }
 
 mjvGeom* SceneRenderer::NewGeom() {

@@ -9,8 +9,9 @@
 //
 // Arming and disarming cost no system call: they bump an atomic stretch number that the
 // watchdog's thread looks at on its own period (a twentieth of the limit, within 10-100 ms), so
-// a run that calls into Lua every step pays no lock and no wake-up per step. A stretch expires
-// between its limit and its limit plus one period.
+// a run that calls into Lua every step pays no lock and no wake-up per step. A stretch is timed
+// from the first look that sees it, so it expires between its limit and its limit plus two
+// periods. Arm and Disarm alternate, on one thread.
 #ifndef UNIMOUSE_SCENARIO_WATCHDOG_H_
 #define UNIMOUSE_SCENARIO_WATCHDOG_H_
 

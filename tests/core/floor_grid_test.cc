@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <random>
 
 #include "inline_assets.h"
@@ -59,7 +60,9 @@ TEST(FloorGridTest, ARectangleQueryListsEveryShapeItOverlapsInAscendingOrder) {
       const FloorRect& r = rects[i];
       const bool overlaps =
           r.x0_m <= area.x1_m && area.x0_m <= r.x1_m && r.y0_m <= area.y1_m && area.y0_m <= r.y1_m;
-      if (overlaps) EXPECT_TRUE(std::binary_search(found.begin(), found.end(), i)) << q << " " << i;
+      if (overlaps) {
+        EXPECT_TRUE(std::binary_search(found.begin(), found.end(), i)) << q << " " << i;
+      }
     }
   }
 }
@@ -71,9 +74,13 @@ TEST(FloorGridTest, ASegmentQueryListsEveryShapeItMeetsAlsoThroughCornersAndFrom
   std::uniform_real_distribution<double> at(-2, 4), turn(0, 2 * 3.141592653589793), length(0, 3);
   for (int q = 0; q < 2000; ++q) {
     double x = at(rng), y = at(rng), a = turn(rng);
-    // every tenth along an axis or a diagonal through a grid corner: the hard cases
+    // every tenth along an axis or a diagonal, and every twentieth from a square's corner: the
+    // hard cases
     if (q % 10 == 0) a = (q / 10 % 8) * 3.141592653589793 / 4;
-    if (q % 20 == 0) x = y = 0.18 * 3;
+    if (q % 20 == 0) {
+      x = grid.bounds().x0_m + grid.square_m() * (q % 7);
+      y = grid.bounds().y0_m + grid.square_m() * (q % 5);
+    }
     const double ux = std::cos(a), uy = std::sin(a), l = length(rng);
     std::vector<int> found;
     grid.ShapesAlong(x, y, ux, uy, l, found);
@@ -88,6 +95,29 @@ TEST(FloorGridTest, ASegmentQueryListsEveryShapeItMeetsAlsoThroughCornersAndFrom
   }
 }
 
+TEST(FloorGridTest, WhatIsNotANumberOrFarAwayMeetsNothingAndEndsAtOnce) {
+  std::mt19937_64 rng(5);
+  const FloorGrid grid(RandomRects(rng, 50), 0.18);
+  const double nan = std::nan(""), inf = std::numeric_limits<double>::infinity();
+  std::vector<int> found;
+  grid.ShapesAlong(nan, 1, 1, 0, 1, found);
+  grid.ShapesAlong(1, 1, nan, 0, 1, found);
+  grid.ShapesAlong(1, 1, 1, 0, inf, found);
+  grid.ShapesAlong(1e12, 1e12, -1, -1, 1e3, found);  // far away, and never reaching the grid
+  grid.ShapesAlong(-1e12, 1, 1, 0, 10, found);
+  grid.ShapesNear({nan, 0, 1, 1}, found);
+  grid.ShapesNear({1e12, 1e12, 2e12, 2e12}, found);
+  EXPECT_TRUE(found.empty());
+  // from far away along the grid's row, a long ray finds what a short one from the edge finds
+  std::vector<int> near_edge, from_far;
+  grid.ShapesAlong(grid.bounds().x0_m - 0.01, 1, 1, 0, 10, near_edge);
+  grid.ShapesAlong(-1e9, 1, 1, 0, 2e9, from_far);
+  std::sort(near_edge.begin(), near_edge.end());
+  std::sort(from_far.begin(), from_far.end());
+  EXPECT_FALSE(near_edge.empty());
+  EXPECT_EQ(near_edge, from_far);
+}
+
 TEST(FloorGridTest, AWorldsRaysMeetTheSameWallAtTheSameDistanceAsMujocosRayOverEveryWall) {
   const Maze maze = LoadMaze(UNIMOUSE_SOURCE_DIR "/mazes/japan2018.txt");
   const std::unique_ptr<World> world = World::Build(testing::BareRobot(), &maze);
@@ -99,7 +129,7 @@ TEST(FloorGridTest, AWorldsRaysMeetTheSameWallAtTheSameDistanceAsMujocosRayOverE
   int hits = 0;
   for (int q = 0; q < 20000; ++q) {
     const double origin[3] = {at(rng), at(rng), height(rng)};
-    const double a = turn(rng), e = tilt(rng);
+    const double a = turn(rng), e = q % 100 == 0 ? -1.5707963267948966 : tilt(rng);
     const double direction[3] = {std::cos(a) * std::cos(e), std::sin(a) * std::cos(e), std::sin(e)};
     const double max_m = q % 2 ? 1.2 : 4;
     // what the world measured before it had an index: MuJoCo's ray over every scenery geom
@@ -117,6 +147,9 @@ TEST(FloorGridTest, AWorldsRaysMeetTheSameWallAtTheSameDistanceAsMujocosRayOverE
     ASSERT_EQ(world->CastRay(*d, origin, direction, max_m), expected) << "ray " << q;
   }
   EXPECT_GT(hits, 10000);
+  // a ray that is not a number meets nothing
+  const double origin[3] = {std::nan(""), 0.1, 0.02}, east[3] = {1, 0, 0};
+  EXPECT_EQ(world->CastRay(*d, origin, east, 1.2), -1);
   mj_deleteData(d);
 }
 

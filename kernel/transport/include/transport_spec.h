@@ -65,8 +65,8 @@ struct TransportSpec {
   std::string WithFirmware(const std::string& file) const;
 };
 
-/// Parses a spec, "SCHEME" or "SCHEME:REST"; throws InputError for an unknown scheme or a
-/// firmware transport without its file.
+/// Parses a spec, "SCHEME" or "SCHEME:REST"; throws InputError for an unknown scheme. A
+/// firmware transport without its file parses (its `firmware` is ""): opening it says so.
 TransportSpec ParseTransportSpec(const std::string& spec);
 
 /// Returns the spec that runs the bundled firmware `name` (e.g. "micromouse") from

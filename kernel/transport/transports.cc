@@ -19,6 +19,7 @@ namespace unimouse::link {
 // each defined in its own <scheme>_transport.cc
 std::unique_ptr<Transport> OpenPty(const std::string& link_path);
 std::unique_ptr<Transport> OpenSerial(const std::string& rest);
+int SerialLineBaud(const std::string& rest);
 std::unique_ptr<Transport> OpenTcp(const std::string& rest);
 std::unique_ptr<Transport> OpenNative(const std::string& command);
 std::unique_ptr<Transport> OpenAvr(const std::string& path);
@@ -132,6 +133,8 @@ std::string TransportSpec::RefusedInDataFile() const {
 std::string TransportSpec::WithFirmware(const std::string& file) const {
   return std::string(kind->scheme) + ":" + file + arguments;
 }
+
+int TransportSpec::LineBaud() const { return kind->open == &OpenSerial ? SerialLineBaud(rest) : 0; }
 
 std::string BundledFirmwareSpec(FirmwareHost host, const std::string& firmware_dir,
                                 const std::string& name) {

@@ -67,6 +67,7 @@ Link::Link(Params params) : p_(WithProfile(std::move(params))) {
   }
   // what the run needs to know of the peer, declared at bind
   traits_ = UNIMOUSE_TRAIT_FIRMWARE | (spec.kind->wall_clock ? UNIMOUSE_TRAIT_WALL_CLOCK : 0);
+  spec_baud_ = spec.LineBaud();
   // a wrong table is bad input now, before anything is bound or opened
   for (TableEntry& e : ParseSendTable(p_.send)) send_.push_back({std::move(e), {}, 1});
   for (TableEntry& e : ParseReceiveTable(p_.receive)) {
@@ -86,6 +87,9 @@ void Link::Bind(BindContext& ctx) {
     o.signal = ctx.ReadSignal(o.entry.signal);
     o.every_n_steps = StepsPerFrame(o.entry, period_s_);
   }
+  std::vector<TableEntry> entries;
+  for (const Outgoing& o : send_) entries.push_back(o.entry);
+  send_bytes_per_s_ = SendBytesPerSecond(entries, period_s_);
   for (Incoming& i : receive_) i.signal = ctx.WriteSignal(i.entry.signal);
   ctx.SetStateSize(kStateSize);
   if (!p_.beliefs_out.empty()) beliefs_path_ = ctx.OutputFile(p_.beliefs_out);
@@ -123,6 +127,20 @@ void Link::Reset(const ResetContext& ctx) const {
   late_steps_ = 0;
   last_step_done_s_ = 0;
   if (transport_ != nullptr) ctx.Log("firmware link: " + transport_->Describe());
+
+  // a table the line cannot carry loses frames from the first second: say so before the run,
+  // also when the robot file is only checked
+  int baud = p_.baud > 0 ? p_.baud : spec_baud_;
+  if (baud == 0 && transport_ != nullptr) baud = transport_->line_baud();
+  if (baud > 0 && send_bytes_per_s_ > baud / 10.0) {
+    char text[320];
+    std::snprintf(text, sizeof(text),
+                  "the send table needs %.0f bytes a second at its periods, more than the %.0f "
+                  "a %d baud line carries (10 bits a byte): frames will be dropped; raise the "
+                  "baud rate, or send fewer frames or at longer periods",
+                  send_bytes_per_s_, baud / 10.0, baud);
+    ctx.Warn(text);
+  }
 }
 
 void Link::ZeroReceived(const TickContext& ctx) const {

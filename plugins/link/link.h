@@ -153,8 +153,10 @@ class Link final : public Component {
   mutable double last_step_done_s_ = 0;
   double bytes_per_step_ = 0;
   std::string beliefs_path_;
-  BindContext::MazeInfo maze_;  // what a firmware is told when it asks for the maze
-  int traits_ = 0;              // what the link is to the run (UNIMOUSE_TRAIT_*)
+  BindContext::MazeInfo maze_;   // what a firmware is told when it asks for the maze
+  int traits_ = 0;               // what the link is to the run (UNIMOUSE_TRAIT_*)
+  int spec_baud_ = 0;            // the line rate the transport spec names, 0 for none
+  double send_bytes_per_s_ = 0;  // what the send table needs at its periods
   // the connection is a resource, opened by Start, never part of a snapshot
   std::unique_ptr<Transport> transport_;
 

@@ -166,6 +166,7 @@ void Imu::Bind(BindContext& ctx) {
   gyro_.bias = f_.gyro_bias_dps * kRadPerDeg;
   gyro_.drift_sd = f_.gyro_bias_instability_dps * kRadPerDeg / peak;
   gyro_.drift_decay = std::exp(-dt_s_ / f_.gyro_bias_tau_s);
+  gyro_.drift_step_sd = gyro_.drift_sd * std::sqrt(1 - gyro_.drift_decay * gyro_.drift_decay);
   gyro_.scale_error = f_.gyro_scale_error;
   gyro_.cross_axis = f_.gyro_cross_axis;
   accel_.range = f_.accel_range_g * kStandardGravity_m_s2;
@@ -174,6 +175,7 @@ void Imu::Bind(BindContext& ctx) {
   accel_.bias = f_.accel_bias_g * kStandardGravity_m_s2;
   accel_.drift_sd = f_.accel_bias_instability_g * kStandardGravity_m_s2 / peak;
   accel_.drift_decay = std::exp(-dt_s_ / f_.accel_bias_tau_s);
+  accel_.drift_step_sd = accel_.drift_sd * std::sqrt(1 - accel_.drift_decay * accel_.drift_decay);
   accel_.scale_error = f_.accel_scale_error;
   accel_.cross_axis = f_.accel_cross_axis;
 
@@ -218,10 +220,11 @@ void Imu::DrawErrors(const ResetContext& ctx, const Channel& c, double* slots) c
   for (int i = 0; i < 3; ++i) slots[kDrift + i] = c.drift_sd * ctx.Normal(c.drift);
 }
 
-void Imu::SiteSpecificForce(const mjModel& m, const mjData& d, const double* previous_v,
-                            double out_force[3], double out_v[3]) const {
-  // the velocity of the material point at the site, world axes: differenced over one period it
-  // is the point's acceleration, lever-arm terms included; the chip feels it minus gravity
+void Imu::SiteMotion(const mjModel& m, const mjData& d, const double* previous_v,
+                     double out_omega[3], double out_force[3], double out_v[3]) const {
+  // the motion of the material point at the site, world axes: its velocity differenced over one
+  // period is the point's acceleration, lever-arm terms included; the chip feels it minus
+  // gravity
   double v6[6];
   mj_objectVelocity(&m, &d, mjOBJ_SITE, site_, v6, 0);
   double f_world[3];
@@ -233,6 +236,7 @@ void Imu::SiteSpecificForce(const mjModel& m, const mjData& d, const double* pre
   // site_xmat is row-major with the site's axes as columns: the transpose rotates into it
   const double* r = d.site_xmat + 9 * site_;
   for (int i = 0; i < 3; ++i) {
+    out_omega[i] = r[i] * v6[0] + r[3 + i] * v6[1] + r[6 + i] * v6[2];
     out_force[i] = r[i] * f_world[0] + r[3 + i] * f_world[1] + r[6 + i] * f_world[2];
   }
 }
@@ -242,9 +246,7 @@ void Imu::Update(const SenseContext& ctx, const Channel& c, const double truth[3
   const double* m = slots + kMatrix;
   for (int i = 0; i < 3; ++i) {
     if (c.drift_sd > 0) {
-      slots[kDrift + i] =
-          c.drift_decay * slots[kDrift + i] +
-          c.drift_sd * std::sqrt(1 - c.drift_decay * c.drift_decay) * ctx.Normal(c.drift);
+      slots[kDrift + i] = c.drift_decay * slots[kDrift + i] + c.drift_step_sd * ctx.Normal(c.drift);
     }
   }
   for (int i = 0; i < 3; ++i) {
@@ -273,9 +275,8 @@ void Imu::Reset(const ResetContext& ctx) const {
   std::span<double> s = ctx.state();
   DrawErrors(ctx, gyro_, s.data() + kGyro);
   DrawErrors(ctx, accel_, s.data() + kAccel);
-  double omega[6], force[3];
-  mj_objectVelocity(&ctx.model(), &ctx.data(), mjOBJ_SITE, site_, omega, 1);
-  SiteSpecificForce(ctx.model(), ctx.data(), nullptr, force, s.data() + kPreviousV);
+  double omega[3], force[3];
+  SiteMotion(ctx.model(), ctx.data(), nullptr, omega, force, s.data() + kPreviousV);
 
   // the filters start settled on what the chip would read now, without noise
   for (const auto& [c, slots, truth] :
@@ -301,9 +302,8 @@ void Imu::Reset(const ResetContext& ctx) const {
 
 void Imu::Sense(const SenseContext& ctx) const {
   std::span<double> s = ctx.state();
-  double omega[6], force[3], v[3];
-  mj_objectVelocity(&ctx.model(), &ctx.data(), mjOBJ_SITE, site_, omega, 1);
-  SiteSpecificForce(ctx.model(), ctx.data(), s.data() + kPreviousV, force, v);
+  double omega[3], force[3], v[3];
+  SiteMotion(ctx.model(), ctx.data(), s.data() + kPreviousV, omega, force, v);
   std::copy(v, v + 3, s.data() + kPreviousV);
 
   // the registers change at the output data rate; half a step absorbs rounding of the times

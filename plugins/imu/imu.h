@@ -159,6 +159,7 @@ class Imu final : public Component {
     double bias = 0;             // turn-on tolerance
     double drift_sd = 0;         // stationary sd of the Gauss-Markov drift
     double drift_decay = 0;      // exp(-dt / tau)
+    double drift_step_sd = 0;    // its innovation each step: drift_sd sqrt(1 - decay^2)
     double scale_error = 0;
     double cross_axis = 0;
     SignalId si[3], counts[3], truth[3], truth_scale[3], truth_bias[3];
@@ -168,8 +169,8 @@ class Imu final : public Component {
   void DrawErrors(const ResetContext& ctx, const Channel& c, double* slots) const;
   void Update(const SenseContext& ctx, const Channel& c, const double truth[3], double* slots,
               bool sample) const;
-  void SiteSpecificForce(const mjModel& m, const mjData& d, const double* previous_v,
-                         double out_force[3], double out_v[3]) const;
+  void SiteMotion(const mjModel& m, const mjData& d, const double* previous_v, double out_omega[3],
+                  double out_force[3], double out_v[3]) const;
 
   const Params p_;
   ImuFigures f_;

@@ -170,4 +170,24 @@ std::unique_ptr<Transport> OpenTransport(const std::string& text) {
   return spec.kind->open(spec.rest);
 }
 
+std::string SpiImuPartProblem(const std::string& part) {
+  if (part == "mpu6500" || part == "icm20602") return "";
+  return "unknown SPI IMU '" + part.substr(0, 40) + "'; the bus carries mpu6500 or icm20602";
+}
+
+std::string PinProblem(const std::string& mcu, const std::string& pin) {
+  const bool form = pin.size() == 3 && pin[0] == 'P' && pin[1] >= 'A' && pin[1] <= 'L' &&
+                    pin[2] >= '0' && pin[2] <= '7';
+  if (!form) return "'" + pin.substr(0, 20) + "' is not a pin: write its port and bit, e.g. PB0";
+  const char port = pin[1];
+  const int bit = pin[2] - '0';
+  bool exists = true;
+  if (mcu == "atmega328p") {
+    exists = (port == 'B' || port == 'D') || (port == 'C' && bit <= 6);
+  } else if (mcu == "atmega2560") {
+    exists = port != 'I' && (port != 'G' || bit <= 5);
+  }
+  return exists ? "" : mcu + " has no pin " + pin;
+}
+
 }  // namespace unimouse::link

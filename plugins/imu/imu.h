@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // A MEMS 3-axis gyro and 3-axis accelerometer at a robot site (the dissertation's first item of
-// future work, section 6.2). Each physics step it takes the site's true angular velocity and
+// future work, chapter 6). Each physics step it takes the site's true angular velocity and
 // specific force from MuJoCo, passes them through the part's errors and filters, and at the
 // output data rate writes what the chip's data registers would hold, as raw counts and in SI
 // units:

@@ -3,7 +3,8 @@
 // once (before the chip's 100 ms start-up) and again after it, wakes the chip, selects
 // +-2000 dps, then calibrates the gyro's bias and turns 90 degrees left on gyro z read from the
 // data registers every millisecond, and logs what it read and the angle it integrated. Chip
-// select on digital pin 53 (PB0, the Mega 2560's SS).
+// select on digital pin 53 (PB0, the Mega 2560's SS). Built with IMU_SPI_NO_WAKE it forgets to
+// write PWR_MGMT_1, a driver bug that a chip powering up asleep (the ICM-20602) shows.
 #include <SPI.h>
 #include <UnimouseSim.h>
 #include <stdio.h>
@@ -65,7 +66,9 @@ void setup() {
   say("who_am_i at %d ms: 0x%02x", static_cast<int>(millis()), readRegister(0x75));
   robot.delay(150);
   say("who_am_i at %d ms: 0x%02x", static_cast<int>(millis()), readRegister(0x75));
+#ifndef IMU_SPI_NO_WAKE
   writeRegister(0x6B, 0x01);  // PWR_MGMT_1: awake, best clock
+#endif
   writeRegister(0x1A, 0x01);  // CONFIG: DLPF
   writeRegister(0x1B, 0x18);  // GYRO_CONFIG: +-2000 dps
   say("gyro_config: 0x%02x, pwr_mgmt_1: 0x%02x", readRegister(0x1B), readRegister(0x6B));

@@ -73,6 +73,22 @@ TEST_F(SpiImuTest, GyroZIntegratedByTheDriverGivesTheTrueTurnWithinTwoDegrees) {
   EXPECT_NEAR(gyro_deg, true_deg, 2.0);
 }
 
+// the ICM-20602 powers up asleep: a driver that never clears SLEEP reads its ID and its
+// configuration back, and zeros from the data registers, as from the real chip
+TEST(SpiImuIcm20602Test, ADriverThatNeverWakesTheChipReadsZerosFromItsDataRegisters) {
+  const std::string image = UNIMOUSE_AVR_TEST_FIRMWARE_DIR "/imu_spi_no_wake.elf";
+  if (!std::filesystem::exists(image)) GTEST_SKIP() << "no AVR test firmware";
+  const RunResult r = testing::UnimouseRun(
+      "--robot unimouse-gyro --duration 2.5 --link avr:" + image + " --link-set spi_imu=icm20602",
+      "unimouse_spi_imu_asleep");
+  ASSERT_EQ(r.outcome.exit_code, 0) << r.outcome.output;
+  const std::string log = ReadTextFile(
+      (std::filesystem::temp_directory_path() / "unimouse_spi_imu_asleep" / "log.txt").string());
+  EXPECT_NE(log.find("who_am_i at 150 ms: 0x12"), std::string::npos) << log;
+  EXPECT_NE(log.find("gyro_config: 0x18, pwr_mgmt_1: 0x41"), std::string::npos) << log;
+  EXPECT_NE(log.find("spi gyro turn: 0.0 deg"), std::string::npos) << log;
+}
+
 TEST(SpiImuInputTest, PartsAndPinsAreCheckedAgainstTheMcu) {
   EXPECT_EQ(link::SpiImuPartProblem("mpu6500"), "");
   EXPECT_EQ(link::SpiImuPartProblem("icm20602"), "");

@@ -70,11 +70,12 @@ class AvrTransport final : public Transport {
     if (!board_) return "";
     std::string text = board_->stats().Describe();
     if (imu_) {
-      char more[160];
+      char more[240];
       std::snprintf(more, sizeof(more),
-                    "; SPI IMU: %llu bytes, %llu register writes above its 1 MHz, %llu transfers "
-                    "before its 100 ms start-up",
-                    static_cast<unsigned long long>(imu_->bytes()),
+                    "; SPI IMU: %llu bytes (%.1f ms of a real bus at the clocks the firmware set), "
+                    "%llu register writes above its 1 MHz, %llu transfers before its 100 ms "
+                    "start-up",
+                    static_cast<unsigned long long>(imu_->bytes()), 1e3 * imu_->bus_s(),
                     static_cast<unsigned long long>(imu_->fast_writes()),
                     static_cast<unsigned long long>(imu_->early_transfers()));
       text += more;

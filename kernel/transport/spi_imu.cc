@@ -138,10 +138,19 @@ void SpiImu::Write(uint8_t address, uint8_t value) {
   }
 }
 
+double SpiImu::ClockHz() const {
+  // the clock the firmware set: f / 4, 16, 64 or 128 (SPR1:0), doubled by SPI2X
+  static constexpr int kDividers[4] = {4, 16, 64, 128};
+  const double hz = static_cast<double>(avr_->frequency) / kDividers[avr_->data[kSpcr] & 3];
+  return avr_->data[kSpsr] & 1 ? 2 * hz : hz;
+}
+
 void SpiImu::OnByte(avr_irq_t*, uint32_t value, void* param) {
   auto* self = static_cast<SpiImu*>(param);
   if (!self->selected_) return;
   ++self->bytes_;
+  // what the byte would keep a real bus busy for at that clock (simavr takes 100 us whatever)
+  self->bus_s_ += 8 / self->ClockHz();
   // before its registers are up the chip does not drive MISO: the MCU reads 0x00 (the emulated
   // line; on a board an undriven MISO reads whatever the line floats to)
   if (self->Now_s() < kRegisterStartup_s) {
@@ -155,11 +164,7 @@ void SpiImu::OnByte(avr_irq_t*, uint32_t value, void* param) {
     self->reading_mode_ = (byte & 0x80) != 0;
     self->address_ = byte & 0x7F;
   } else if (!self->reading_mode_) {
-    // the clock the firmware set: f / 4, 16, 64 or 128 (SPR1:0), doubled by SPI2X
-    static constexpr int kDividers[4] = {4, 16, 64, 128};
-    double hz = static_cast<double>(self->avr_->frequency) / kDividers[self->avr_->data[kSpcr] & 3];
-    if (self->avr_->data[kSpsr] & 1) hz *= 2;
-    if (hz > kMaxWriteClock_hz) ++self->fast_writes_;
+    if (self->ClockHz() > kMaxWriteClock_hz) ++self->fast_writes_;
     self->Write(self->address_, byte);
     self->address_ = (self->address_ + 1) & 0x7F;
   } else {

@@ -38,16 +38,19 @@ class SpiImu {
 
   void SetReading(const ImuReading& reading) { reading_ = reading; }
   /// Bytes exchanged, register writes above the 1 MHz the part allows for them, transfers while
-  /// the chip was not yet up, for the run's record.
+  /// the chip was not yet up, for the run's last line.
   uint64_t bytes() const { return bytes_; }
   uint64_t fast_writes() const { return fast_writes_; }
   uint64_t early_transfers() const { return early_transfers_; }
+  /// Seconds the bytes would keep a real bus busy at the clock the firmware set for each.
+  double bus_s() const { return bus_s_; }
 
  private:
   static void OnSelect(avr_irq_t* irq, uint32_t value, void* param);
   static void OnByte(avr_irq_t* irq, uint32_t value, void* param);
   void Reset();
   double Now_s() const;
+  double ClockHz() const;
   uint8_t Register(uint8_t address) const;
   void Write(uint8_t address, uint8_t value);
   void Latch();
@@ -66,6 +69,7 @@ class SpiImu {
   uint8_t next_out_ = 0;  // what the chip shifts out during the next transfer
   double awake_since_s_ = 0;
   uint64_t bytes_ = 0, fast_writes_ = 0, early_transfers_ = 0;
+  double bus_s_ = 0;
 };
 
 }  // namespace unimouse::link

@@ -84,6 +84,7 @@ class SimulationRobot {
     sensors_.addSensor(rightEncoder_);
     sensors_.addSensor(clock_);
     sensors_.addSensor(maze_);
+    for (uint8_t i = 0; i < 6; ++i) sensors_.addSensor(imu_.axis(i));
   }
 
 #ifdef UNIMOUSE_PC_CORE
@@ -141,6 +142,12 @@ class SimulationRobot {
   int32_t leftEncoderTotal() const { return leftEncoder_.count(); }
   int32_t rightEncoderTotal() const { return rightEncoder_.count(); }
   /// H-bridge commands, -1023..1023 (clamped); positive drives the wheel forward.
+  /// The IMU's angular velocity about its z axis (yaw, counter-clockwise positive), rad/s: 0
+  /// until the robot's link sends frame UNIMOUSE_ID_GYRO_Z (docs/firmware.md, "Reading the IMU").
+  float gyroZ() const { return imu_.gyroRadPerS(2); }
+  /// The IMU's six axes, raw counts and SI units.
+  ImuSensor& imu() { return imu_; }
+
   void motorLeft(int32_t command) { leftMotor_.setCommand(command, nowMs()); }
   void motorRight(int32_t command) { rightMotor_.setCommand(command, nowMs()); }
   /// A line for the simulator's log (never Serial.print: it would corrupt the protocol).
@@ -183,20 +190,21 @@ class SimulationRobot {
   MotorActuator& rightMotorActuator() { return rightMotor_; }
 
   /// The frame reader, for its counts of skipped bytes and unclaimed frames.
-  const StreamSimulationSensorManager<7>& sensorManager() const { return sensors_; }
+  const StreamSimulationSensorManager<13>& sensorManager() const { return sensors_; }
 
  private:
   // millis() is an unsigned long, 64 bits on the PC: counted in 32 bits, it wraps as on boards
   static uint32_t nowMs() { return static_cast<uint32_t>(millis()); }
   void manager(uint8_t code) { actuators_.send(UNIMOUSE_ID_MANAGER, &code, 1); }
 
-  StreamSimulationSensorManager<7> sensors_;
+  StreamSimulationSensorManager<13> sensors_;
   StreamActuatorManager actuators_;
   DistanceSensor left_{UNIMOUSE_ID_TOF_LEFT}, right_{UNIMOUSE_ID_TOF_RIGHT},
       front_{UNIMOUSE_ID_TOF_FRONT};
   EncoderSensor leftEncoder_{UNIMOUSE_ID_ENCODER_LEFT}, rightEncoder_{UNIMOUSE_ID_ENCODER_RIGHT};
   ClockSensor clock_;
   MazeInfoSensor maze_;
+  ImuSensor imu_;
   MotorActuator leftMotor_{actuators_, UNIMOUSE_ID_MOTOR_LEFT};
   MotorActuator rightMotor_{actuators_, UNIMOUSE_ID_MOTOR_RIGHT};
   SimulationLogger logger_{actuators_};

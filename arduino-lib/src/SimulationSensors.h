@@ -146,4 +146,54 @@ class EncoderSensor : public ISimulationSensor, public IEncoder {
   int32_t total_ = 0, read_ = 0;
 };
 
+/// One axis of an IMU: the latest raw count of its data register (int16), as frames
+/// UNIMOUSE_ID_GYRO_X..UNIMOUSE_ID_ACCEL_Z carry it.
+class ImuAxisSensor : public ISimulationSensor {
+ public:
+  explicit ImuAxisSensor(uint8_t id) : id_(id) {}
+  uint8_t getId() const override { return id_; }
+  void notify(const uint8_t* payload) override {
+    counts_ = static_cast<int16_t>(unimouse_get_u16(payload));
+    fresh_ = true;
+  }
+  int16_t counts() const { return counts_; }
+  /// Whether a reading came since the last call.
+  bool hasNewData() {
+    const bool f = fresh_;
+    fresh_ = false;
+    return f;
+  }
+
+ private:
+  uint8_t id_;
+  int16_t counts_ = 0;
+  bool fresh_ = false;
+};
+
+/// A 6-axis IMU read through the link: raw counts, and the same in SI units at the chip's
+/// sensitivities (LSB per dps and per g; 16.4 and 8192 are an ICM-20602's or MPU-6500's at
+/// +-2000 dps and +-4 g, the gyro robot's settings).
+class ImuSensor {
+ public:
+  explicit ImuSensor(float gyroLsbPerDps = 16.4f, float accelLsbPerG = 8192.0f)
+      : gyroLsbPerDps_(gyroLsbPerDps), accelLsbPerG_(accelLsbPerG) {}
+  /// Angular velocity about axis 0, 1, 2 (x, y, z), rad/s.
+  float gyroRadPerS(uint8_t axis) const {
+    return axes_[axis].counts() / gyroLsbPerDps_ * 0.017453292f;
+  }
+  /// Specific force along axis 0, 1, 2, m/s^2 (at rest and level, z reads +9.81).
+  float accelMPerS2(uint8_t axis) const {
+    return axes_[3 + axis].counts() / accelLsbPerG_ * 9.80665f;
+  }
+  /// The raw register counts of axis 0-2 (gyro) or 3-5 (accelerometer).
+  int16_t counts(uint8_t axis) const { return axes_[axis].counts(); }
+  ImuAxisSensor& axis(uint8_t i) { return axes_[i]; }
+
+ private:
+  float gyroLsbPerDps_, accelLsbPerG_;
+  ImuAxisSensor axes_[6] = {ImuAxisSensor(UNIMOUSE_ID_GYRO_X),  ImuAxisSensor(UNIMOUSE_ID_GYRO_Y),
+                            ImuAxisSensor(UNIMOUSE_ID_GYRO_Z),  ImuAxisSensor(UNIMOUSE_ID_ACCEL_X),
+                            ImuAxisSensor(UNIMOUSE_ID_ACCEL_Y), ImuAxisSensor(UNIMOUSE_ID_ACCEL_Z)};
+};
+
 #endif  // UNIMOUSE_SIM_SIMULATION_SENSORS_H_

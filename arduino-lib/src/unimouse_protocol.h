@@ -35,8 +35,16 @@ enum {
   UNIMOUSE_ID_MAZE_INFO = 14,     /* sim -> MCU, 8 bytes, once asked (UNIMOUSE_MANAGER_MAZE_INFO):
                                      width, height (cells; 0 0 without a maze), cell side in mm
                                      (uint16), goal rectangle x0, y0, x1, y1 (inclusive) */
-  UNIMOUSE_ID_MAZE_SIZE = 15      /* MCU -> sim, 2 bytes: the width and height of the maze the
+  UNIMOUSE_ID_MAZE_SIZE = 15,     /* MCU -> sim, 2 bytes: the width and height of the maze the
                                      firmware works with; the simulator warns if they differ */
+  /* an IMU's raw register counts, int16, as the chip's data registers hold them (the robot's
+   * send table names them, e.g. "34 imu.gyro_z_counts i16"; robots/unimouse-gyro.yaml) */
+  UNIMOUSE_ID_GYRO_X = 32, /* sim -> MCU, int16 */
+  UNIMOUSE_ID_GYRO_Y = 33,
+  UNIMOUSE_ID_GYRO_Z = 34,
+  UNIMOUSE_ID_ACCEL_X = 35,
+  UNIMOUSE_ID_ACCEL_Y = 36,
+  UNIMOUSE_ID_ACCEL_Z = 37
 };
 
 /* manager codes */
@@ -92,6 +100,12 @@ static inline int unimouse_payload_size(uint8_t id) {
       return 4;
     case UNIMOUSE_ID_DEBUG_VISITED:
     case UNIMOUSE_ID_MAZE_SIZE:
+    case UNIMOUSE_ID_GYRO_X:
+    case UNIMOUSE_ID_GYRO_Y:
+    case UNIMOUSE_ID_GYRO_Z:
+    case UNIMOUSE_ID_ACCEL_X:
+    case UNIMOUSE_ID_ACCEL_Y:
+    case UNIMOUSE_ID_ACCEL_Z:
       return 2;
     case UNIMOUSE_ID_MAZE_INFO:
       return 8;

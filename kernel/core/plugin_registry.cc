@@ -75,6 +75,10 @@ std::string UnitOfName(std::string_view name) {
   // longest first: "_nm_per_a" before "_a"
   static constexpr std::pair<std::string_view, std::string_view> kSuffixes[] = {
       {"_nm_s_per_rad", "N m s/rad"},
+      {"_dps_per_rt_hz", "deg/s/sqrt(Hz)"},
+      {"_g_per_rt_hz", "g/sqrt(Hz)"},
+      {"_lsb_per_dps", "LSB/(deg/s)"},
+      {"_lsb_per_g", "LSB/g"},
       {"_rad_per_s", "rad/s"},
       {"_m_per_s", "m/s"},
       {"_nm_per_a", "N m/A"},
@@ -85,14 +89,17 @@ std::string UnitOfName(std::string_view name) {
       {"_bits", "bits"},
       {"_ohm", "ohm"},
       {"_deg", "deg"},
+      {"_dps", "deg/s"},
       {"_rad", "rad"},
       {"_hz", "Hz"},
       {"_kg", "kg"},
+      {"_g", "g (9.80665 m/s^2)"},
       {"_nm", "N m"},
       {"_m", "m"},
       {"_s", "s"},
       {"_v", "V"},
       {"_a", "A"},
+      {"_n", "N"},
       {"_h", "H"},
   };
   for (const auto& [suffix, unit] : kSuffixes) {

@@ -104,6 +104,8 @@ class AvrBoard {
   std::string FunctionAt(uint32_t pc) const;
   /// Returns the address of a data symbol (without the 0x800000 offset), or -1.
   int64_t DataSymbol(const std::string& name) const;
+  /// Returns the emulated MCU, for peripherals wired to its pins and buses (spi_imu.h).
+  avr_t* mcu() const { return avr_; }
 
  private:
   static void OnOutput(avr_irq_t* irq, uint32_t value, void* param);

@@ -9,6 +9,7 @@
 #include "unimouse/errors.h"
 #ifdef UNIMOUSE_HAVE_SIMAVR
 #include "avr_board.h"
+#include "spi_imu.h"
 #endif
 
 namespace unimouse::link {
@@ -27,6 +28,18 @@ class AvrTransport final : public Transport {
     options.mcu = settings.mcu;
     options.f_cpu_hz = static_cast<uint32_t>(settings.f_cpu_hz);
     board_.emplace(path_, options);
+    if (!settings.spi_imu_part.empty()) {
+      imu_.emplace(board_->mcu(), settings.spi_imu_part, settings.spi_imu_cs_pin);
+    }
+  }
+  void SetImuReading(std::span<const double, 6> values) override {
+    if (!imu_) return;
+    ImuReading reading;
+    for (int i = 0; i < 3; ++i) {
+      reading.gyro_rad_s[i] = values[i];
+      reading.accel_m_s2[i] = values[3 + i];
+    }
+    imu_->SetReading(reading);
   }
   void Read(std::vector<uint8_t>& out, size_t max_bytes) override {
     if (board_) board_->Read(out, max_bytes);
@@ -53,7 +66,22 @@ class AvrTransport final : public Transport {
     last_s_ = time_s;
     return board_->RunUntilTime(offset_s_ + time_s);
   }
-  std::string Summary() const override { return board_ ? board_->stats().Describe() : ""; }
+  std::string Summary() const override {
+    if (!board_) return "";
+    std::string text = board_->stats().Describe();
+    if (imu_) {
+      char more[240];
+      std::snprintf(more, sizeof(more),
+                    "; SPI IMU: %llu bytes (%.1f ms of a real bus at the clocks the firmware set), "
+                    "%llu register writes above its 1 MHz, %llu transfers before its 100 ms "
+                    "start-up",
+                    static_cast<unsigned long long>(imu_->bytes()), 1e3 * imu_->bus_s(),
+                    static_cast<unsigned long long>(imu_->fast_writes()),
+                    static_cast<unsigned long long>(imu_->early_transfers()));
+      text += more;
+    }
+    return text;
+  }
   std::vector<std::pair<std::string, double>> Measurements() const override {
     return board_ ? board_->stats().Named() : std::vector<std::pair<std::string, double>>{};
   }
@@ -61,6 +89,7 @@ class AvrTransport final : public Transport {
  private:
   std::string path_;
   std::optional<AvrBoard> board_;
+  std::optional<SpiImu> imu_;  // after the board: it is wired to the board's MCU
   double last_s_ = 0, offset_s_ = 0;
 };
 

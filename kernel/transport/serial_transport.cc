@@ -65,19 +65,21 @@ class SerialTransport final : public StreamTransport {
 
 }  // namespace
 
+int SerialLineBaud(const std::string& rest) {
+  const size_t at = rest.rfind('@');
+  if (at == std::string::npos) return 115200;
+  const std::string text = rest.substr(at + 1);
+  const bool digits = !text.empty() && text.size() <= 8 &&
+                      text.find_first_not_of("0123456789") == std::string::npos;
+  UNIMOUSE_THROW_UNLESS(digits && std::stoul(text) > 0,
+                        "serial: '" + text + "' is not a baud rate");
+  return static_cast<int>(std::stoul(text));
+}
+
 std::unique_ptr<Transport> OpenSerial(const std::string& rest) {
   UNIMOUSE_THROW_UNLESS(!rest.empty(), "serial needs a device: serial:/dev/ttyUSB0@115200");
-  const size_t at = rest.rfind('@');
-  unsigned baud = 115200;
-  if (at != std::string::npos) {
-    const std::string text = rest.substr(at + 1);
-    const bool digits = !text.empty() && text.size() <= 8 &&
-                        text.find_first_not_of("0123456789") == std::string::npos;
-    UNIMOUSE_THROW_UNLESS(digits && std::stoul(text) > 0,
-                          "serial: '" + text + "' is not a baud rate");
-    baud = static_cast<unsigned>(std::stoul(text));
-  }
-  return std::make_unique<SerialTransport>(rest.substr(0, at), baud);
+  const auto baud = static_cast<unsigned>(SerialLineBaud(rest));
+  return std::make_unique<SerialTransport>(rest.substr(0, rest.rfind('@')), baud);
 }
 
 }  // namespace unimouse::link

@@ -19,6 +19,7 @@ namespace unimouse::link {
 // each defined in its own <scheme>_transport.cc
 std::unique_ptr<Transport> OpenPty(const std::string& link_path);
 std::unique_ptr<Transport> OpenSerial(const std::string& rest);
+int SerialLineBaud(const std::string& rest);
 std::unique_ptr<Transport> OpenTcp(const std::string& rest);
 std::unique_ptr<Transport> OpenNative(const std::string& command);
 std::unique_ptr<Transport> OpenAvr(const std::string& path);
@@ -133,6 +134,8 @@ std::string TransportSpec::WithFirmware(const std::string& file) const {
   return std::string(kind->scheme) + ":" + file + arguments;
 }
 
+int TransportSpec::LineBaud() const { return kind->open == &OpenSerial ? SerialLineBaud(rest) : 0; }
+
 std::string BundledFirmwareSpec(FirmwareHost host, const std::string& firmware_dir,
                                 const std::string& name) {
   const TransportKind* found = nullptr;
@@ -165,6 +168,26 @@ std::string ResolveBundledFirmware(const std::string& text, const std::string& f
 std::unique_ptr<Transport> OpenTransport(const std::string& text) {
   const TransportSpec spec = ParseTransportSpec(text);
   return spec.kind->open(spec.rest);
+}
+
+std::string SpiImuPartProblem(const std::string& part) {
+  if (part == "mpu6500" || part == "icm20602") return "";
+  return "unknown SPI IMU '" + part.substr(0, 40) + "'; the bus carries mpu6500 or icm20602";
+}
+
+std::string PinProblem(const std::string& mcu, const std::string& pin) {
+  const bool form = pin.size() == 3 && pin[0] == 'P' && pin[1] >= 'A' && pin[1] <= 'L' &&
+                    pin[2] >= '0' && pin[2] <= '7';
+  if (!form) return "'" + pin.substr(0, 20) + "' is not a pin: write its port and bit, e.g. PB0";
+  const char port = pin[1];
+  const int bit = pin[2] - '0';
+  bool exists = true;
+  if (mcu == "atmega328p") {
+    exists = (port == 'B' || port == 'D') || (port == 'C' && bit <= 6);
+  } else if (mcu == "atmega2560") {
+    exists = port != 'I' && (port != 'G' || bit <= 5);
+  }
+  return exists ? "" : mcu + " has no pin " + pin;
 }
 
 }  // namespace unimouse::link

@@ -143,4 +143,13 @@ int StepsPerFrame(const TableEntry& entry, double link_period_s) {
   return static_cast<int>(n);
 }
 
+double SendBytesPerSecond(const std::vector<TableEntry>& entries, double link_period_s) {
+  double bytes_per_s = 0;
+  for (const TableEntry& e : entries) {
+    bytes_per_s +=
+        (1 + EncodingSize(e.encoding)) / (StepsPerFrame(e, link_period_s) * link_period_s);
+  }
+  return bytes_per_s;
+}
+
 }  // namespace unimouse::link

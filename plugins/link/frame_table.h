@@ -45,6 +45,10 @@ std::vector<TableEntry> ParseReceiveTable(const std::string& text);
 /// InputError when its period is not a whole number of `link_period_s`.
 int StepsPerFrame(const TableEntry& entry, double link_period_s);
 
+/// Returns the bytes a second the sent entries take on the line, each frame its id and payload,
+/// at their periods on a link that steps every `link_period_s`.
+double SendBytesPerSecond(const std::vector<TableEntry>& entries, double link_period_s);
+
 /// Returns an encoding's name as the table writes it.
 const char* EncodingName(Encoding encoding);
 

@@ -67,6 +67,13 @@ Link::Link(Params params) : p_(WithProfile(std::move(params))) {
   }
   // what the run needs to know of the peer, declared at bind
   traits_ = UNIMOUSE_TRAIT_FIRMWARE | (spec.kind->wall_clock ? UNIMOUSE_TRAIT_WALL_CLOCK : 0);
+  spec_baud_ = spec.LineBaud();
+  if (!p_.spi_imu.empty()) {
+    UNIMOUSE_THROW_UNLESS(SpiImuPartProblem(p_.spi_imu).empty(),
+                          "spi_imu: " + SpiImuPartProblem(p_.spi_imu));
+    UNIMOUSE_THROW_UNLESS(PinProblem(p_.mcu, p_.spi_imu_cs_pin).empty(),
+                          "spi_imu_cs_pin: " + PinProblem(p_.mcu, p_.spi_imu_cs_pin));
+  }
   // a wrong table is bad input now, before anything is bound or opened
   for (TableEntry& e : ParseSendTable(p_.send)) send_.push_back({std::move(e), {}, 1});
   for (TableEntry& e : ParseReceiveTable(p_.receive)) {
@@ -86,6 +93,14 @@ void Link::Bind(BindContext& ctx) {
     o.signal = ctx.ReadSignal(o.entry.signal);
     o.every_n_steps = StepsPerFrame(o.entry, period_s_);
   }
+  std::vector<TableEntry> entries;
+  for (const Outgoing& o : send_) entries.push_back(o.entry);
+  send_bytes_per_s_ = SendBytesPerSecond(entries, period_s_);
+  if (!p_.spi_imu.empty()) {
+    const char* names[6] = {".gyro_x_rad_s", ".gyro_y_rad_s", ".gyro_z_rad_s",
+                            ".accel_x_m_s2", ".accel_y_m_s2", ".accel_z_m_s2"};
+    for (int i = 0; i < 6; ++i) imu_[i] = ctx.ReadSignal(p_.spi_imu_from + names[i]);
+  }
   for (Incoming& i : receive_) i.signal = ctx.WriteSignal(i.entry.signal);
   ctx.SetStateSize(kStateSize);
   if (!p_.beliefs_out.empty()) beliefs_path_ = ctx.OutputFile(p_.beliefs_out);
@@ -95,7 +110,7 @@ void Link::Bind(BindContext& ctx) {
 
 void Link::Start() {
   transport_ = OpenTransport(p_.transport);
-  transport_->Configure({p_.mcu, p_.f_cpu_hz});
+  transport_->Configure({p_.mcu, p_.f_cpu_hz, p_.spi_imu, p_.spi_imu_cs_pin});
   // a serial port's own rate limits it; other transports go as fast as they are read unless told
   const int baud = p_.baud > 0 ? p_.baud : transport_->line_baud();
   bytes_per_step_ = baud > 0 ? baud / 10.0 * period_s_ : 0;
@@ -123,6 +138,20 @@ void Link::Reset(const ResetContext& ctx) const {
   late_steps_ = 0;
   last_step_done_s_ = 0;
   if (transport_ != nullptr) ctx.Log("firmware link: " + transport_->Describe());
+
+  // a table the line cannot carry loses frames from the first second: say so before the run,
+  // also when the robot file is only checked
+  int baud = p_.baud > 0 ? p_.baud : spec_baud_;
+  if (baud == 0 && transport_ != nullptr) baud = transport_->line_baud();
+  if (baud > 0 && send_bytes_per_s_ > baud / 10.0) {
+    char text[320];
+    std::snprintf(text, sizeof(text),
+                  "the send table needs %.0f bytes a second at its periods, more than the %.0f "
+                  "a %d baud line carries (10 bits a byte): frames will be dropped; raise the "
+                  "baud rate, or send fewer frames or at longer periods",
+                  send_bytes_per_s_, baud / 10.0, baud);
+    ctx.Warn(text);
+  }
 }
 
 void Link::ZeroReceived(const TickContext& ctx) const {
@@ -469,7 +498,13 @@ void Link::Sense(const SenseContext& ctx) const {
   if (lockstep) PutClockFrame(static_cast<uint64_t>(std::llround(ctx.time_s() * 1e6)), out);
   Send(ctx, out, lockstep);
 
-  // an emulated board keeps its own time: it runs the step's cycles and is never waited for
+  // an emulated board keeps its own time: it runs the step's cycles and is never waited for,
+  // its bus's IMU reading what the IMU component reads now
+  if (!p_.spi_imu.empty()) {
+    double values[6];
+    for (int i = 0; i < 6; ++i) values[i] = ctx.Read(imu_[i]);
+    transport_->SetImuReading(std::span<const double, 6>(values));
+  }
   if (transport_->clocked()) {
     RunBoard(ctx, heard, lockstep);
     return;

@@ -41,6 +41,9 @@ struct LinkParams {
   param::GivenSet from_data_file;
   std::string mcu = "atmega2560";
   double f_cpu_hz = 16000000;
+  std::string spi_imu;
+  std::string spi_imu_cs_pin = "PB0";
+  std::string spi_imu_from = "imu";
 
   template <class V>
   void Visit(V& v) {
@@ -83,6 +86,13 @@ struct LinkParams {
       param::OneOf{"atmega2560|atmega328p"});
     v("f_cpu_hz", f_cpu_hz, "the emulated board's clock, unless the image names its own",
       param::Range{1e6, 32e6});
+    v("spi_imu", spi_imu,
+      "an IMU chip on the emulated board's SPI bus, mpu6500 or icm20602, serving the values of "
+      "the unimouse.imu named by spi_imu_from; empty: none");
+    v("spi_imu_cs_pin", spi_imu_cs_pin,
+      "the SPI IMU's chip-select pin, port and bit (PB0 is "
+      "the Mega 2560's SS, Arduino pin 53)");
+    v("spi_imu_from", spi_imu_from, "prefix of the IMU signals the SPI IMU serves");
   }
 };
 
@@ -153,8 +163,11 @@ class Link final : public Component {
   mutable double last_step_done_s_ = 0;
   double bytes_per_step_ = 0;
   std::string beliefs_path_;
-  BindContext::MazeInfo maze_;  // what a firmware is told when it asks for the maze
-  int traits_ = 0;              // what the link is to the run (UNIMOUSE_TRAIT_*)
+  BindContext::MazeInfo maze_;   // what a firmware is told when it asks for the maze
+  int traits_ = 0;               // what the link is to the run (UNIMOUSE_TRAIT_*)
+  int spec_baud_ = 0;            // the line rate the transport spec names, 0 for none
+  double send_bytes_per_s_ = 0;  // what the send table needs at its periods
+  SignalId imu_[6];              // the SPI IMU's gyro x y z, accel x y z, when there is one
   // the connection is a resource, opened by Start, never part of a snapshot
   std::unique_ptr<Transport> transport_;
 

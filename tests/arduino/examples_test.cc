@@ -4,6 +4,7 @@
 // example learns the maze from the simulator, so the same program runs a half-size contest.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
@@ -124,6 +125,29 @@ TEST(ArduinoExamplesTest, MicromouseWarnsWhenTheMazeIsLargerThanItsRoom) {
   EXPECT_NE(r.outcome.output.find("warning: the firmware works with a 16 x 16 maze"),
             std::string::npos)
       << r.outcome.output;
+}
+
+// the gyro robot's IMU read through the link: the example's turn, measured by its own gyro
+// integration, agrees with the turn the simulator saw within 2 degrees (the ICM-20602's scale
+// tolerance alone is +-0.9 degrees on 90)
+TEST(ArduinoExamplesTest, GyroTurnMeasuresItsNinetyDegreeTurnOnTheGyroWithinTwoDegrees) {
+  const std::string out = (std::filesystem::temp_directory_path() / "unimouse_example_gt").string();
+  const testing::RunResult r = testing::UnimouseRun(
+      "--robot unimouse-gyro --duration 2.5 --link native:" UNIMOUSE_FIRMWARE_DIR
+      "/gyro_turn --link-set \"send=3 left.encoder_counts i16; 4 right.encoder_counts i16; 34 "
+      "imu.gyro_z_counts i16\"",
+      "unimouse_example_gt");
+  ASSERT_EQ(r.outcome.exit_code, 0) << r.outcome.output;
+  const std::string log = ReadTextFile(out + "/log.txt");
+  const size_t at = log.find("gyro turn: ");
+  ASSERT_NE(at, std::string::npos) << log;
+  const double gyro_deg = std::stod(log.substr(at + 11));
+  // the robot starts facing north on an open floor
+  const double true_deg =
+      std::remainder(r.result["robot_pose"]["yaw_rad"].get<double>() - M_PI / 2, 2 * M_PI) * 180 /
+      M_PI;
+  EXPECT_NEAR(true_deg, 90, 5) << "the example did not turn about 90 degrees";
+  EXPECT_NEAR(gyro_deg, true_deg, 2.0);
 }
 
 }  // namespace

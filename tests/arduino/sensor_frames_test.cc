@@ -109,5 +109,24 @@ TEST(FirmwareSensorFramesTest, NoTargetReadsAsTheFullScale) {
   EXPECT_FLOAT_EQ(rig.front.distance(), 1.2f);
 }
 
+TEST(FirmwareSensorFramesTest, ImuFramesCarrySignedCountsReadInSiAtTheChipsSensitivity) {
+  // an ICM-20602 at +-2000 dps and +-4 g: 16.4 LSB/dps, 8192 LSB/g
+  ByteStream stream;
+  StreamSimulationSensorManager<6> manager{stream};
+  ImuSensor imu;
+  for (uint8_t i = 0; i < 6; ++i) manager.addSensor(imu.axis(i));
+  stream.Arrive(Encoder(UNIMOUSE_ID_GYRO_Z, -1640));    // -100 dps
+  stream.Arrive(Encoder(UNIMOUSE_ID_ACCEL_Z, 8192));    // 1 g
+  stream.Arrive(Encoder(UNIMOUSE_ID_ACCEL_X, -32768));  // the register's end
+  manager.updateSensors();
+  EXPECT_EQ(imu.counts(2), -1640);
+  EXPECT_NEAR(imu.gyroRadPerS(2), -100 * 3.14159265 / 180, 1e-5);
+  EXPECT_NEAR(imu.accelMPerS2(2), 9.80665, 1e-5);
+  EXPECT_NEAR(imu.accelMPerS2(0), -4 * 9.80665, 1e-4);
+  EXPECT_EQ(imu.counts(1), 0);
+  EXPECT_TRUE(imu.axis(2).hasNewData());
+  EXPECT_FALSE(imu.axis(1).hasNewData());
+}
+
 }  // namespace
 }  // namespace unimouse

@@ -150,5 +150,20 @@ TEST(FrameTableTest, APeriodIsAWholeNumberOfLinkSteps) {
   EXPECT_THROW(StepsPerFrame(ParseSendTable("0 b tof 0.0005")[0], 0.001), InputError);
 }
 
+TEST(FrameTableTest, SixImuAxesAtOneKilohertzNeedEighteenThousandBytesASecond) {
+  // six int16 frames of 3 bytes (id and payload) every 1 ms step: 18,000 B/s, more than the
+  // 11,520 a 115200 baud line carries at 10 bits a byte
+  const std::vector<TableEntry> six = ParseSendTable(
+      "20 imu.gyro_x_counts i16; 21 imu.gyro_y_counts i16; 22 imu.gyro_z_counts i16; "
+      "23 imu.accel_x_counts i16; 24 imu.accel_y_counts i16; 25 imu.accel_z_counts i16");
+  EXPECT_DOUBLE_EQ(SendBytesPerSecond(six, 0.001), 18000);
+  // the original's table: 2 encoders every step and 3 ToF sensors every 30 ms
+  EXPECT_DOUBLE_EQ(SendBytesPerSecond(ParseSendTable(kOriginalSend), 0.001), 6000 + 300);
+  // gyro z alone, and a float every 10 ms
+  EXPECT_DOUBLE_EQ(
+      SendBytesPerSecond(ParseSendTable("22 imu.gyro_z_counts i16; 30 x f32 0.01"), 0.001),
+      3000 + 500);
+}
+
 }  // namespace
 }  // namespace unimouse::link

@@ -16,6 +16,7 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <thread>
 
@@ -402,6 +403,42 @@ TEST(LinkTransportTest, BadTransportSpecsAreBadInput) {
   EXPECT_THROW(KernelWithLink("serial:/dev/no_such_port@115200"), InputError);
   EXPECT_THROW(KernelWithLink("tcp::99999"), InputError);
   EXPECT_THROW(KernelWithLink("native:/no/such/program"), InputError);
+}
+
+// the gyro robot with a link on a serial port (which `check` never opens) sending `send`
+std::string RobotWithSerialLink(const std::string& send, const std::string& line) {
+  const std::string path = testing::FreshDirectory("link_bandwidth") + "/robot.yaml";
+  std::ofstream(path) << testing::GyroRobotWith(
+      "  - { type: unimouse.imu, name: imu, params: { site: imu } }\n"
+      "  - { type: unimouse.link, name: link,\n"
+      "      params: { transport: '" +
+      line + "', send: '" + send + "' } }\n");
+  return path;
+}
+
+constexpr const char* kSixAxes =
+    "20 imu.gyro_x_counts i16; 21 imu.gyro_y_counts i16; 22 imu.gyro_z_counts i16; "
+    "23 imu.accel_x_counts i16; 24 imu.accel_y_counts i16; 25 imu.accel_z_counts i16";
+
+TEST(LinkBandwidthTest, CheckWarnsWhenSixImuAxesAtOneKilohertzOutrunA115200BaudLine) {
+  const testing::Outcome o =
+      testing::Unimouse("check " + RobotWithSerialLink(kSixAxes, "serial:/dev/ttyUSB9@115200"));
+  EXPECT_EQ(o.exit_code, 0) << o.output;
+  EXPECT_NE(o.output.find("the send table needs 18000 bytes a second at its periods, more than "
+                          "the 11520 a 115200 baud line carries"),
+            std::string::npos)
+      << o.output;
+}
+
+TEST(LinkBandwidthTest, CheckIsQuietWhenTheLineCarriesTheTable) {
+  // a megabaud line carries 100,000 B/s; gyro z alone at 1 kHz is 3,000 B/s on 115200 baud
+  for (const auto& [send, line] :
+       {std::pair<std::string, std::string>{kSixAxes, "serial:/dev/ttyUSB9@1000000"},
+        {"22 imu.gyro_z_counts i16", "serial:/dev/ttyUSB9@115200"}}) {
+    const testing::Outcome o = testing::Unimouse("check " + RobotWithSerialLink(send, line));
+    EXPECT_EQ(o.exit_code, 0) << o.output;
+    EXPECT_EQ(o.output.find("send table needs"), std::string::npos) << o.output;
+  }
 }
 
 }  // namespace

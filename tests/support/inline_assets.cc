@@ -34,6 +34,25 @@ RobotYaml BundledRobotWith(const std::string& components) {
   return out;
 }
 
+std::string GyroRobotWith(const std::string& more) {
+  std::ifstream in(UNIMOUSE_SOURCE_DIR "/robots/unimouse-gyro.yaml");
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  const std::string text = buffer.str();
+  const std::string marker = "\ncomponents:\n";
+  return text.substr(0, text.find(marker)) + marker +
+         "  - { type: unimouse.battery, name: battery, params: { emf_v: 6 } }\n"
+         "  - { type: unimouse.h_bridge, name: left_bridge,\n"
+         "      params: { command_in: left.command, voltage_out: left.voltage_v } }\n"
+         "  - { type: unimouse.h_bridge, name: right_bridge,\n"
+         "      params: { command_in: right.command, voltage_out: right.voltage_v } }\n"
+         "  - { type: unimouse.dc_motor, name: left_motor,\n"
+         "      params: { actuator: left_motor, voltage_in: left.voltage_v } }\n"
+         "  - { type: unimouse.dc_motor, name: right_motor,\n"
+         "      params: { actuator: right_motor, voltage_in: right.voltage_v } }\n" +
+         more;
+}
+
 std::string TinyRobotWith(const std::string& components) {
   return "name: tiny\n"
          "chassis:\n"

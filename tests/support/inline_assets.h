@@ -37,6 +37,12 @@ struct RobotYaml {
 };
 RobotYaml BundledRobotWith(const std::string& components);
 
+/// The gyro robot (robots/unimouse-gyro.yaml: an IMU site `imu`, inputs left.command,
+/// right.command and fan.command) with its components replaced by an ideal 6 V supply, the two
+/// H-bridges and motors, and then `more` (YAML list items); the last line of `more` is the
+/// text's last line.
+std::string GyroRobotWith(const std::string& more);
+
 /// A 3 x 2 maze drawn so that posts and walls can be counted by hand:
 ///
 ///   o---o---o---o      north edge: 3 walls

@@ -93,5 +93,12 @@ TEST(TransportSpecTest, ABundledFirmwaresNameBecomesItsFileAndAnythingElseStaysA
   fs::remove_all(dir);
 }
 
+TEST(TransportSpecTest, ASerialSpecNamesItsLineRateAndOtherTransportsHaveNone) {
+  EXPECT_EQ(ParseTransportSpec("serial:/dev/ttyACM0@1000000").LineBaud(), 1000000);
+  EXPECT_EQ(ParseTransportSpec("serial:/dev/ttyACM0").LineBaud(), 115200);
+  EXPECT_EQ(ParseTransportSpec("tcp::5760").LineBaud(), 0);
+  EXPECT_EQ(ParseTransportSpec("pty").LineBaud(), 0);
+}
+
 }  // namespace
 }  // namespace unimouse::link

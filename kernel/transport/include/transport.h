@@ -58,13 +58,24 @@ class Transport {
   /// Appends the whole lines the firmware printed outside the protocol since the last call (a
   /// program's standard error); never waits.
   virtual void TakeText(std::vector<std::string>& /*lines*/) {}
+  /// Hands an IMU on the board's bus (TransportSettings::spi_imu_part) what it measures now:
+  /// gyro x, y, z in rad/s, then accelerometer x, y, z in m/s^2. Other transports ignore it.
+  virtual void SetImuReading(std::span<const double, 6> /*gyro_then_accel*/) {}
 };
 
 /// What the link's parameters tell a transport beyond its spec.
 struct TransportSettings {
-  std::string mcu;      ///< avr: the part, unless the image names its own
-  double f_cpu_hz = 0;  ///< avr: the clock, unless the image names its own
+  std::string mcu;             ///< avr: the part, unless the image names its own
+  double f_cpu_hz = 0;         ///< avr: the clock, unless the image names its own
+  std::string spi_imu_part;    ///< avr: an IMU chip on the SPI bus (mpu6500, icm20602), or ""
+  std::string spi_imu_cs_pin;  ///< avr: its chip-select pin, "PB0"
 };
+
+/// Returns "" when `part` is an IMU the emulated board's SPI bus can carry (mpu6500, icm20602),
+/// else why not.
+std::string SpiImuPartProblem(const std::string& part);
+/// Returns "" when `pin` (port and bit, "PB0") is a pin of `mcu`, else why not.
+std::string PinProblem(const std::string& mcu, const std::string& pin);
 
 /// Returns a signal that ended a firmware, named for a student: "SIGFPE (division by zero?)".
 std::string FirmwareSignalText(int sig);

@@ -63,6 +63,10 @@ struct TransportSpec {
   std::string RefusedInDataFile() const;
   /// Returns the spec with its firmware file replaced by `file`.
   std::string WithFirmware(const std::string& file) const;
+  /// Returns the rate in baud of the line the spec names (a serial port's, given or its
+  /// default), or 0 for a transport without a line rate of its own. Throws InputError for a
+  /// rate that is not one.
+  int LineBaud() const;
 };
 
 /// Parses a spec, "SCHEME" or "SCHEME:REST"; throws InputError for an unknown scheme. A

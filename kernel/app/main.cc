@@ -18,6 +18,7 @@
 #include "transport_spec.h"
 #include "unimouse/errors.h"
 #include "viewer.h"
+#include "yaml_doc.h"
 
 namespace {
 
@@ -39,6 +40,39 @@ std::string LinkHelp() {
     // a broken plugin is reported when a command loads it, not in the help
   }
   return fallback;
+}
+
+// CLI11 takes a misspelt command for a stray argument ("A subcommand is required") and answers
+// `NAME --help` with the parent's help and exit code 0: walk the command words first, and name
+// the first one that is not a command, with the nearest command's name
+std::string UnknownCommand(CLI::App& app, int argc, char** argv) {
+  CLI::App* current = &app;
+  for (int i = 1; i < argc; ++i) {
+    const std::string token = argv[i];
+    if (token == "--") break;
+    if (token.size() > 1 && token[0] == '-') {
+      // an option's value is not a command word
+      const CLI::Option* option = current->get_option_no_throw(token);
+      if (option != nullptr && option->get_items_expected_max() > 0) ++i;
+      continue;
+    }
+    const std::vector<CLI::App*> commands = current->get_subcommands({});
+    if (commands.empty()) break;
+    CLI::App* next = nullptr;
+    std::vector<std::string> names;
+    for (CLI::App* command : commands) {
+      names.push_back(command->get_name());
+      if (command->get_name() == token) next = command;
+    }
+    if (next == nullptr) {
+      const std::string near = unimouse::NearestWord(token, names);
+      const std::string where = current == &app ? "" : " of '" + current->get_name() + "'";
+      return "unknown command '" + token + "'" + where +
+             (near.empty() ? "" : "; did you mean '" + near + "'?");
+    }
+    current = next;
+  }
+  return "";
 }
 
 }  // namespace
@@ -320,6 +354,10 @@ int main(int argc, char** argv) {
   batch_job_cmd->add_option("--out", batch_out, "the batch's directory (the job's is DIR/jobs/ID)")
       ->required();
 
+  if (const std::string unknown = UnknownCommand(app, argc, argv); !unknown.empty()) {
+    std::fprintf(stderr, "unimouse: error: %s\n", unknown.c_str());
+    return kExitBadInput;
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -389,6 +390,33 @@ TEST_F(CliTest, MissingFilesAndBadOptionsExitWithCode2) {
   EXPECT_EQ(Unimouse("run --duration -1").exit_code, 2);
   EXPECT_EQ(Unimouse("run --duration abc").exit_code, 2);
   EXPECT_EQ(Unimouse("frobnicate").exit_code, 2);
+}
+
+TEST_F(CliTest, AMisspeltCommandIsNamedWithTheNearestCommandAndExitCode2) {
+  Outcome o = Unimouse("rnu");
+  EXPECT_EQ(o.exit_code, 2) << o.output;
+  EXPECT_NE(o.output.find("unimouse: error: unknown command 'rnu'; did you mean 'run'?"),
+            std::string::npos)
+      << o.output;
+  // an option's value before it is not taken for the command
+  o = Unimouse("--plugin-path /nowhere chekc robots");
+  EXPECT_EQ(o.exit_code, 2) << o.output;
+  EXPECT_NE(o.output.find("unknown command 'chekc'; did you mean 'check'?"), std::string::npos)
+      << o.output;
+  o = Unimouse("maze shwo japan2018");
+  EXPECT_EQ(o.exit_code, 2) << o.output;
+  EXPECT_NE(o.output.find("unknown command 'shwo' of 'maze'; did you mean 'show'?"),
+            std::string::npos)
+      << o.output;
+}
+
+TEST_F(CliTest, HelpForAnUnknownCommandIsBadInputNotTheProgramsHelp) {
+  for (const char* command : {"rnu --help", "frobnicate --help", "maze shwo --help"}) {
+    const Outcome o = Unimouse(command);
+    EXPECT_EQ(o.exit_code, 2) << command << ": " << o.output;
+    EXPECT_NE(o.output.find("unknown command"), std::string::npos) << o.output;
+    EXPECT_EQ(o.output.find("Usage"), std::string::npos) << o.output;
+  }
 }
 
 TEST_F(CliTest, EverySubcommandHasHelp) {

@@ -108,7 +108,9 @@ int main(int argc, char** argv) {
   run_cmd->add_option("--out", run.out_dir, "directory for result.json and other outputs")
       ->capture_default_str();
   run_cmd->add_option("--scenario", run.scenario,
-                      "challenge to run: a scenario file or the name of a bundled one");
+                      "challenge to run: a scenario file, the name of a bundled one, or none "
+                      "for the robot alone (without --scenario, --set, --controller and --link "
+                      "the run is the contest driven by the bundled firmware)");
   run_cmd->add_option("--set", run.sets, "scenario parameter, name=value (repeatable)");
   run_cmd->add_option("--controller", run.controller,
                       "Lua file returning function(time_s) that drives the robot through sim.*");
@@ -370,12 +372,15 @@ int main(int argc, char** argv) {
     run.duration_given = run_cmd->get_option("--duration")->count() > 0;
     run.maze_given = run_cmd->get_option("--maze")->count() > 0;
     if (run_cmd->parsed()) {
-      // the main job: nothing chosen, so the contest with the bundled micromouse firmware
-      bool chosen = false;
-      for (const char* option : {"--robot", "--maze", "--duration", "--scenario", "--set",
-                                 "--controller", "--link", "--realtime"}) {
+      // the main job: no challenge and no driver chosen, so the contest with the bundled
+      // micromouse firmware; the robot, the maze, the duration, the seed, the pacing and the
+      // pictures change how it runs, not what runs. An open floor has no contest, and
+      // `--scenario none` asks for the robot alone
+      bool chosen = run.maze == "none";
+      for (const char* option : {"--scenario", "--set", "--controller", "--link"}) {
         chosen = chosen || run_cmd->get_option(option)->count() > 0;
       }
+      if (run.scenario == "none") run.scenario.clear();
       if (!chosen) {
         run.scenario = "micromouse";
         run.sets = {"end_on_log=done"};

@@ -51,7 +51,7 @@ std::string ReadMaze(const std::string& name) {
 }
 
 TEST_F(CliTest, RunWritesAResultWithPoseTimeAndSpeed) {
-  const Outcome o = Unimouse("run --duration 0.5 --seed 3 --out " + dir_.string());
+  const Outcome o = Unimouse("run --scenario none --duration 0.5 --seed 3 --out " + dir_.string());
   ASSERT_EQ(o.exit_code, 0) << o.output;
   EXPECT_NE(o.output.find("in maze japan2018 (16x16)"), std::string::npos) << o.output;
   std::ifstream in(dir_ / "result.json");
@@ -417,6 +417,41 @@ TEST_F(CliTest, HelpForAnUnknownCommandIsBadInputNotTheProgramsHelp) {
     EXPECT_NE(o.output.find("unknown command"), std::string::npos) << o.output;
     EXPECT_EQ(o.output.find("Usage"), std::string::npos) << o.output;
   }
+}
+
+// README: "`unimouse run` with no options is this job"; the robot, the maze and the duration
+// change how the contest runs, not whether it runs
+TEST_F(CliTest, MazeRobotAndDurationAloneKeepTheContestWithTheBundledFirmware) {
+  const std::vector<std::string> runs = {"--maze japan2019 --duration 3", "--duration 3",
+                                         "--robot unimouse --duration 3"};
+  for (size_t i = 0; i < runs.size(); ++i) {
+    const fs::path out = dir_ / std::to_string(i);
+    const Outcome o = Unimouse("run " + runs[i] + " --no-pictures --out " + out.string());
+    // the contest is not decided in 3 s
+    EXPECT_EQ(o.exit_code, 1) << runs[i] << ": " << o.output;
+    std::ifstream in(out / "result.json");
+    const nlohmann::json result = nlohmann::json::parse(in);
+    EXPECT_EQ(result["scenario"]["name"], "micromouse") << runs[i];
+    EXPECT_EQ(result["driver"]["link"]["transport"], "inproc") << runs[i];
+    EXPECT_NEAR(result["sim_time_s"].get<double>(), 3, 1e-9) << runs[i];
+    // the firmware has set off from the start cell, (0.09, 0.09) facing north
+    const double moved = std::hypot(result["robot_pose"]["x_m"].get<double>() - 0.09,
+                                    result["robot_pose"]["y_m"].get<double>() - 0.09);
+    EXPECT_GT(moved, 0.09) << runs[i] << ": " << result["robot_pose"].dump();
+    EXPECT_EQ(o.output.find("nothing drives the robot"), std::string::npos) << o.output;
+  }
+  std::ifstream in(dir_ / "0" / "result.json");
+  EXPECT_NE(nlohmann::json::parse(in)["maze"].get<std::string>().find("japan2019.txt"),
+            std::string::npos);
+}
+
+TEST_F(CliTest, ScenarioNoneRunsTheRobotAlone) {
+  const Outcome o =
+      Unimouse("run --scenario none --duration 0.05 --no-pictures --out " + dir_.string());
+  EXPECT_EQ(o.exit_code, 0) << o.output;
+  EXPECT_NE(o.output.find("warning: nothing drives the robot"), std::string::npos) << o.output;
+  std::ifstream in(dir_ / "result.json");
+  EXPECT_FALSE(nlohmann::json::parse(in).contains("scenario"));
 }
 
 TEST_F(CliTest, EverySubcommandHasHelp) {

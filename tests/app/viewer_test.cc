@@ -63,9 +63,9 @@ bool HaveXvfb() { return std::system("command -v xvfb-run > /dev/null 2>&1") == 
 
 TEST(ViewerTest, OpensUnderXvfbDrawsFramesAndItsScreenshotShowsTheMaze) {
   if (!HaveXvfb()) GTEST_SKIP() << "xvfb-run is not installed (apt install xvfb xauth)";
-  const auto r =
-      testing::UnimouseRun("--maze japan2018 --duration 5 --view --view-frames 30 --no-pictures",
-                           "viewer_xvfb", "xvfb-run -a -s '-screen 0 1280x1024x24' ");
+  const auto r = testing::UnimouseRun(
+      "--scenario none --maze japan2018 --duration 5 --view --view-frames 30 --no-pictures",
+      "viewer_xvfb", "xvfb-run -a -s '-screen 0 1280x1024x24' ");
   ASSERT_EQ(r.outcome.exit_code, 0) << r.outcome.output;
   EXPECT_EQ(r.result["view"]["frames"], 30);
   EXPECT_GT(r.result["sim_time_s"].get<double>(), 0);

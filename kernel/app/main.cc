@@ -311,10 +311,10 @@ int main(int argc, char** argv) {
       "for the emulated board (an image for --link), docs/firmware.md");
   firmware_build_cmd->add_option("sketch", firmware.sketch, "sketch folder or .ino file")
       ->required();
-  firmware_build_cmd
-      ->add_option("--out", firmware.out_dir,
-                   "directory for the built files (the build tree goes in its .unimouse-build)")
-      ->capture_default_str();
+  firmware_build_cmd->add_option(
+      "--out", firmware.out_dir,
+      "directory for the built files (default: the sketch's folder; the build tree goes "
+      "in its .unimouse-build)");
   firmware_build_cmd->add_option("--board", firmware.board, "pc, or mega2560 for avr:")
       ->capture_default_str();
   firmware_build_cmd->add_option("--name", firmware.name,

@@ -2,7 +2,8 @@
 // The link protocol's bytes, without any I/O (docs/protocol.md, arduino-lib/src/
 // unimouse_protocol.h). The decoder takes the firmware's bytes as they come, in pieces of any
 // size: partial frames wait for the rest, unknown ids are counted and skipped one byte at a time,
-// so garbage never stops it. Which data frames there are (sensor readings out, commands in) is
+// so garbage never stops it. Printable text between frames (a board's Serial.print) is read as
+// lines of the firmware's log. Which data frames there are (sensor readings out, commands in) is
 // the link's frame table; the control frames (manager, log, clock, debug) are the protocol's own.
 #ifndef UNIMOUSE_PLUGINS_LINK_FRAME_CODEC_H_
 #define UNIMOUSE_PLUGINS_LINK_FRAME_CODEC_H_
@@ -49,6 +50,9 @@ struct FirmwareFrame {
   float number = 0;           ///< float32 data frame, or debug value
   std::vector<uint8_t> data;  ///< debug walls (x, y, walls, known), visited (x, y), path (x, y...)
   bool is_data = false;       ///< a data frame of the table, read into `value` or `number`
+  /// a log line (id UNIMOUSE_ID_LOG) the firmware wrote as plain text, not as a log frame:
+  /// Serial.print on a board
+  bool plain_text = false;
   Encoding encoding = Encoding::kI16;  ///< a data frame's encoding
   /// Returns a data frame's value as a signal.
   double Signal() const {
@@ -67,6 +71,8 @@ class FrameDecoder {
 
   uint64_t frames() const { return frames_; }
   uint64_t unknown_bytes() const { return unknown_bytes_; }
+  /// Lines of plain text read between frames (FirmwareFrame::plain_text).
+  uint64_t text_lines() const { return text_lines_; }
   /// Ids seen that neither the protocol nor the data frames define for this direction, each
   /// once, in order.
   const std::vector<uint8_t>& unknown_ids() const { return unknown_ids_; }
@@ -74,16 +80,28 @@ class FrameDecoder {
   void Reset() {
     pending_.clear();
     skipping_log_ = false;
+    text_.clear();
+    in_text_ = false;
+    after_cr_ = false;
   }
 
  private:
   // the data frame with this id, or null
   const DataFrame* Data(uint8_t id) const;
+  // takes a byte of plain text; false when it ends the text and is a frame's first byte
+  bool TakeText(uint8_t byte, std::vector<FirmwareFrame>& out);
+  void EndText(std::vector<FirmwareFrame>& out);
 
   std::vector<DataFrame> data_frames_;
   // bytes of the frame being assembled, its id first
   std::vector<uint8_t> pending_;
   bool skipping_log_ = false;  // inside an overlong log line, until its 0x00
+  // plain text between frames: printable bytes where a frame's id would be (no id the
+  // firmware sends is printable), to the end of the line
+  std::string text_;
+  bool in_text_ = false;
+  bool after_cr_ = false;  // a line just ended at '\r': a '\n' next belongs to it
+  uint64_t text_lines_ = 0;
   uint64_t frames_ = 0;
   uint64_t unknown_bytes_ = 0;
   std::vector<uint8_t> unknown_ids_;

@@ -16,7 +16,7 @@ constexpr int kLockstep = 1;
 constexpr int kLastFrame_s = 2;
 constexpr int kFailsafe = 3;
 constexpr int kUnknownReported = 4;
-constexpr int kRepeats = 5;    // the firmware said it resends its commands
+constexpr int kRepeats = 5;     // the firmware said it resends its commands
 constexpr int kMazeAsked = 6;  // the firmware asked for the maze: it goes out with the next frames
 constexpr int kStateSize = 7;
 
@@ -287,10 +287,7 @@ void Link::Receive(const SenseContext& ctx, Heard& heard) const {
   }
   read_this_step_ += inbox_.size();
   received_bytes_ += inbox_.size();
-  // what a PC-built firmware printed (printf, std::cout) is its log, as its log frames are
-  text_.clear();
-  transport_->TakeText(text_);
-  for (const std::string& line : text_) ctx.Firmware(line);
+  TakeText(ctx);
   if (transport_->Connected() != was_connected_) {
     was_connected_ = transport_->Connected();
     if (was_connected_) {
@@ -313,6 +310,12 @@ void Link::Receive(const SenseContext& ctx, Heard& heard) const {
   std::vector<FirmwareFrame> frames;
   decoder_.Feed(inbox_, frames);
   for (const FirmwareFrame& f : frames) Apply(ctx, f, heard);
+  if (decoder_.text_lines() > 0 && !text_said_) {
+    text_said_ = true;
+    ctx.Log(
+        "the firmware writes plain text between its frames (Serial.print on a board): each "
+        "line is logged as a line of its log");
+  }
 
   // each unknown id is reported once; all are counted
   std::span<double> s = ctx.state();
@@ -324,6 +327,13 @@ void Link::Receive(const SenseContext& ctx, Heard& heard) const {
     ctx.Warn(text);
   }
   s[kUnknownReported] = static_cast<double>(unknown.size());
+}
+
+void Link::TakeText(const SenseContext& ctx) const {
+  // what a PC-built firmware printed (printf, std::cout) is its log, as its log frames are
+  text_.clear();
+  transport_->TakeText(text_);
+  for (const std::string& line : text_) ctx.Firmware(line);
 }
 
 void Link::Send(const SenseContext& ctx, const std::string& frames, bool lockstep) const {
@@ -372,6 +382,8 @@ bool Link::AwaitFirmware(const SenseContext& ctx, Heard& heard, bool Heard::*unt
     const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
         deadline - std::chrono::steady_clock::now());
     if (left.count() <= 0 || !transport_->WaitReadable(left)) {
+      // the last lines a firmware printed before it hung or crashed are the ones that matter
+      TakeText(ctx);
       if (const std::string failure = transport_->Failure(); !failure.empty()) {
         ctx.Fail(failure + " at t=" + Seconds(ctx.time_s()) + " s");
         return false;
@@ -481,6 +493,7 @@ void Link::Sense(const SenseContext& ctx) const {
 
 void Link::Finish(const SenseContext& ctx) const {
   if (transport_ == nullptr) return;
+  TakeText(ctx);
   if (!beliefs_path_.empty()) {
     std::FILE* f = std::fopen(beliefs_path_.c_str(), "w");
     if (f == nullptr) {

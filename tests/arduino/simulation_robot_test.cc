@@ -17,6 +17,7 @@ unsigned long millis() { return now_ms; }
 unsigned long micros() { return now_ms * 1000; }
 void unimousePcClock(uint32_t) {}
 void unimousePcAwaitInput() {}
+void unimousePcSetIdle(void (*)(void*), void*) {}
 
 namespace unimouse {
 namespace {

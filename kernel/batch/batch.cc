@@ -88,6 +88,10 @@ int RunBatch(const BatchOptions& o) {
   const int workers = o.workers > 0
                           ? o.workers
                           : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+  if (o.force) {
+    // forgotten before anything runs: an interrupted --force leaves no old result among the new
+    for (const auto& job : m.jobs) fs::remove_all(JobDirectory(out, job));
+  }
   std::vector<const Job*> queue;
   int done = 0, passed = 0;
   for (const auto& job : m.jobs) {
@@ -102,7 +106,12 @@ int RunBatch(const BatchOptions& o) {
   const bool terminal = ::isatty(1) != 0;
   std::printf("unimouse batch: %d jobs, %d to run, %d at a time, into %s\n", total,
               static_cast<int>(queue.size()), workers, out.c_str());
-  if (done > 0) std::printf("  %d already done, kept (--force runs them again)\n", done);
+  if (done > 0) {
+    std::printf(
+        "  %d already done with the same inputs (SHA-256 of submission, scenario, robot and "
+        "maze), kept (--force runs them again)\n",
+        done);
+  }
   std::fflush(stdout);
 
   // no SA_RESTART: a signal wakes the wait below

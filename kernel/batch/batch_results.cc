@@ -86,6 +86,10 @@ json JobRows(const std::vector<std::string>& job_dirs, const std::string& out_di
     if (!row["scores"].is_object()) row["scores"] = json::object();
     row["dir"] = relative;
     row["pictures"] = pictures;
+    // what the job graded: each input file with its SHA-256
+    row["inputs"] = job.contains("command") && job["command"].contains("inputs")
+                        ? job["command"]["inputs"]
+                        : json::array();
     rows[id] = std::move(row);
   }
   json list = json::array();

@@ -183,6 +183,87 @@ TEST(BatchCommandTest, AClassGetsTheRightStatusForEveryJobTheSameOnResumeAndThro
 }
 
 // an algorithm written for mms scored over mazes as each of its own `unimouse mms` runs scores
+// docs/batch.md: a job is kept only while the SHA-256 of every file it reads is unchanged
+TEST(BatchCommandTest, AResubmittedControllerOrAChangedScenarioIsGradedAgainOnResume) {
+  const std::string dir = FreshDirectory("batch_regrade");
+  const std::string controller =
+      WriteFile(dir, "student.lua", ReadTextFile(kSource + "/tests/batch/walking_mouse.lua"));
+  const std::string scenario =
+      WriteFile(dir, "contest.lua", ReadTextFile(kSource + "/scenarios/micromouse.lua"));
+  const std::string manifest = WriteFile(dir, "class.yaml", R"(
+submissions:
+  - name: student
+    controller: student.lua
+scenarios:
+  - scenario: contest.lua
+    set: {contest_s: 3, max_runs: 1}
+mazes: [japan2018]
+)");
+  const std::string out = dir + "/out";
+  const std::string batch = "batch run " + manifest + " -j 1 --out " + out;
+  auto graded = [&](const std::string& role) {
+    const json results = Results(out);
+    for (const auto& input : results["jobs"][0]["inputs"]) {
+      if (input["role"] == role) return input["sha256"].get<std::string>();
+    }
+    return std::string("none");
+  };
+  auto sha256sum = [](const std::string& file) {
+    return unimouse::testing::Shell("sha256sum " + file).output.substr(0, 64);
+  };
+
+  Outcome o = Unimouse(batch);
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  EXPECT_NE(o.output.find("1 jobs, 1 to run"), std::string::npos) << o.output;
+  EXPECT_EQ(graded("submission"), sha256sum(controller));
+  EXPECT_EQ(graded("scenario"), sha256sum(scenario));
+  EXPECT_EQ(graded("maze"), sha256sum(kSource + "/mazes/japan2018.txt"));
+  EXPECT_EQ(graded("robot"), sha256sum(kSource + "/robots/unimouse.yaml"));
+  o = Unimouse(batch);
+  EXPECT_NE(o.output.find("1 jobs, 0 to run"), std::string::npos) << o.output;
+
+  // the student resubmits: the same command line, another file
+  std::ofstream(controller, std::ios::app) << "-- resubmitted\n";
+  o = Unimouse(batch);
+  EXPECT_NE(o.output.find("1 jobs, 1 to run"), std::string::npos) << o.output;
+  EXPECT_EQ(graded("submission"), sha256sum(controller));
+
+  // the teacher changes the scenario
+  std::ofstream(scenario, std::ios::app) << "-- the rules, amended\n";
+  o = Unimouse(batch);
+  EXPECT_NE(o.output.find("1 jobs, 1 to run"), std::string::npos) << o.output;
+  EXPECT_EQ(graded("scenario"), sha256sum(scenario));
+}
+
+TEST(BatchCommandTest, ForceForgetsEveryEarlierRecordOfTheManifestsJobs) {
+  const std::string dir = FreshDirectory("batch_force");
+  const std::string manifest = WriteFile(dir, "class.yaml", R"(
+submissions:
+  - name: student
+    controller: )" + kSource + R"(/tests/batch/walking_mouse.lua
+scenarios:
+  - scenario: micromouse
+    set: {contest_s: 3, max_runs: 1}
+mazes: [japan2018, japan2019]
+)");
+  const std::string out = dir + "/out";
+  ASSERT_EQ(Unimouse("batch run " + manifest + " -j 1 --out " + out).exit_code, 0);
+  // a record of the earlier grading in each job's directory
+  for (const auto& e : fs::recursive_directory_iterator(out + "/jobs")) {
+    if (e.path().filename() == "job.json") {
+      std::ofstream(e.path().parent_path() / "earlier.txt") << "old\n";
+    }
+  }
+  // RunBatch removes each job's directory before the first job starts, so that an interrupted
+  // --force cannot leave earlier records beside new ones
+  const Outcome o = Unimouse("batch run " + manifest + " -j 1 --force --out " + out);
+  EXPECT_EQ(o.exit_code, 0) << o.output;
+  EXPECT_NE(o.output.find("2 jobs, 2 to run"), std::string::npos) << o.output;
+  for (const auto& e : fs::recursive_directory_iterator(out)) {
+    EXPECT_NE(e.path().filename(), "earlier.txt") << e.path();
+  }
+}
+
 TEST(BatchCommandTest, MmsProgramsAreScoredOverTheMazesAsTheirOwnRunsScoreThem) {
   const std::string dir = FreshDirectory("batch_mms");
   const std::string manifest = WriteFile(dir, "mms.yaml",

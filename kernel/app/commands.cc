@@ -81,6 +81,7 @@ int RunOnce(const RunOptions& options, Viewer* viewer) {
   o.link = options.link;
   o.link_sets = options.link_sets;
   o.firmware_profile = options.firmware_profile;
+  o.trace = {options.trace_period_s, options.trace_signals};
   o.realtime = options.realtime;
   o.paced_by_caller = viewer != nullptr;
   o.scenario = options.scenario;
@@ -259,7 +260,13 @@ int CheckCommand(const CheckOptions& options) {
     int code = kExitPassed;
     try {
       if (IsScenario(target)) {
-        CheckScenario(target, overrides, registry);
+        // a .lua file that returns a function is a controller, as a class submits them
+        const std::string file = ResolveDataFile(target, "scenarios/", ".lua");
+        if (Scenario::ReturnsFunction(file)) {
+          std::printf("%s: ok: controller, returns function(time_s)\n", file.c_str());
+        } else {
+          CheckScenario(target, overrides, registry);
+        }
       } else {
         CheckRobot(target, registry);
       }

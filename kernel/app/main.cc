@@ -126,6 +126,13 @@ int main(int argc, char** argv) {
                       "default) or unimousesim-0.1 (built against the original UnimouseSim's "
                       "library: 1.0 m ToF scale, commands held while silent, no extensions)");
 
+  run_cmd->add_option("--trace-period", run.trace_period_s,
+                      "seconds between the rows of the trace (trace.csv, the robot file's "
+                      "unimouse.logger, every 10 ms in the bundled robot); 0 for no trace");
+  run_cmd->add_option("--trace-signals", run.trace_signals,
+                      "the signals the trace records, comma-separated, instead of the robot "
+                      "file's list");
+
   // pictures: none of these changes what is run
   run_cmd->add_option("--camera", run.camera, "camera of the pictures: top, chase or free")
       ->capture_default_str();
@@ -157,10 +164,11 @@ int main(int argc, char** argv) {
       app.add_subcommand("check", "validate robot files and scenarios without running them");
   check_cmd
       ->add_option("files", check.targets,
-                   "robot YAML files, scenario .lua files, bundled robot or scenario names, or "
-                   "directories (every .yaml and .lua inside). A robot's components are created "
-                   "and bound; a scenario is loaded and its world built around the bundled "
-                   "robot. Nothing is started or written. Each is reported; the exit code is the "
+                   "robot YAML files, scenario or controller .lua files, bundled robot or "
+                   "scenario names, or directories (every .yaml and .lua inside). A robot's "
+                   "components are created and bound; a scenario is loaded and its world built "
+                   "around the bundled robot; a controller (a file that returns a function) is "
+                   "loaded. Nothing is started or written. Each is reported; the exit code is the "
                    "worst")
       ->required();
   check_cmd->add_option("--set", check.sets,

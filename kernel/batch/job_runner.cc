@@ -271,7 +271,7 @@ nlohmann::json JobInputs(const Manifest& manifest, const Job& job) {
   if (job.scenario >= 0) {
     const ScenarioEntry& scenario = manifest.scenarios[static_cast<size_t>(job.scenario)];
     bundled("scenario", scenario.file, "scenarios/", ".lua");
-    bundled("robot", manifest.robot, "robots/", ".yaml");
+    bundled("robot", sub.robot.empty() ? manifest.robot : sub.robot, "robots/", ".yaml");
     const std::string maze = !job.maze_file.empty() ? job.maze_file
                              : scenario.has_maze    ? scenario.default_maze
                                                     : std::string();
@@ -381,7 +381,12 @@ int RunJob(const Manifest& manifest, const Job& job, const std::string& batch_ou
     end.exit_code = -1;
   }
   const nlohmann::json result = ReadResult(dir / "result.json");
-  const JobOutcome outcome = ClassifyJob(end, result, limits);
+  JobOutcome outcome = ClassifyJob(end, result, limits);
+  // the manifest's paths are made absolute for the run; the teacher wrote them relative to it
+  const std::string beside = fs::path(manifest.file).parent_path().string() + "/";
+  for (size_t at; (at = outcome.reason.find(beside)) != std::string::npos;) {
+    outcome.reason.erase(at, beside.size());
+  }
   using P = nlohmann::json::json_pointer;
   nlohmann::json record = {
       {"id", job.id},

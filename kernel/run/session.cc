@@ -183,6 +183,7 @@ void Session::Assemble() {
                         "--duration must be a positive number of seconds");
   robot_file_ = ResolveDataFile(o.robot, "robots/", ".yaml");
   robot_ = LoadRobotSpec(robot_file_);
+  ApplyTraceOptions(o.trace, robot_);
   identity_["robot"] = robot_file_;
   identity_["robot_name"] = robot_.name;
   identity_["robot_sha256"] = FileSha256(robot_file_);

@@ -264,6 +264,99 @@ mazes: [japan2018, japan2019]
   }
 }
 
+// docs/batch.md: `robot:` at the top for every job, and per submission for its own jobs
+TEST(BatchCommandTest, ASubmissionCanBringItsOwnRobotFile) {
+  const std::string dir = FreshDirectory("batch_own_robot");
+  const std::string robot =
+      WriteFile(dir, "erin.yaml", ReadTextFile(kSource + "/robots/unimouse.yaml"));
+  const std::string manifest = WriteFile(dir, "class.yaml", R"(
+robot: unimouse
+submissions:
+  - name: dan
+    controller: )" + kSource + R"(/tests/batch/walking_mouse.lua
+  - name: erin
+    controller: )" + kSource + R"(/tests/batch/walking_mouse.lua
+    robot: erin.yaml
+scenarios:
+  - scenario: micromouse
+    set: {contest_s: 3, max_runs: 1}
+mazes: [japan2018]
+)");
+  const std::string out = dir + "/out";
+  const Outcome o = Unimouse("batch run " + manifest + " -j 1 --out " + out);
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  std::map<std::string, std::string> robots;
+  const json results = Results(out);
+  for (const auto& job : results["jobs"]) {
+    const json result =
+        json::parse(ReadTextFile(out + "/" + job["dir"].get<std::string>() + "/result.json"));
+    robots[job["submission"].get<std::string>()] = result["robot"].get<std::string>();
+  }
+  EXPECT_EQ(robots["erin"], robot);
+  EXPECT_EQ(fs::path(robots["dan"]).filename(), "unimouse.yaml");
+  EXPECT_NE(robots["dan"], robot);
+}
+
+// docs/limits.md's limit per call, named in a reason that names the file as the manifest does
+TEST(BatchCommandTest, AControllerThatNeverReturnsIsAScriptErrorNamingItsFileAndTheLimitPerCall) {
+  const std::string dir = FreshDirectory("batch_endless");
+  WriteFile(dir, "loop.lua", "return function(time_s)\n  while true do end\nend\n");
+  const std::string manifest = WriteFile(dir, "class.yaml", R"(
+submissions:
+  - {name: frank, controller: loop.lua}
+scenarios:
+  - scenario: micromouse
+    set: {contest_s: 3, max_runs: 1}
+mazes: [japan2018]
+)");
+  const std::string out = dir + "/out";
+  const Outcome o = Unimouse("batch run " + manifest + " -j 1 --out " + out);
+  EXPECT_EQ(o.exit_code, 1) << o.output;
+  const json job = Results(out)["jobs"][0];
+  EXPECT_EQ(job["status"], "script_error") << job.dump();
+  const std::string reason = job["reason"];
+  EXPECT_EQ(reason.rfind("loop.lua:2: instruction budget exhausted: more than 20 million "
+                         "instructions in one call into the script, its limit per call",
+                         0),
+            0u)
+      << reason;
+  EXPECT_EQ(reason.find(dir), std::string::npos) << reason;
+}
+
+// docs/batch.md "Traces": none unless the manifest asks
+TEST(BatchCommandTest, JobsWriteATraceOnlyWhenTheManifestAsksForOne) {
+  const std::string dir = FreshDirectory("batch_trace");
+  const std::string jobs = R"(
+submissions:
+  - name: student
+    controller: )" + kSource +
+                           R"(/tests/batch/walking_mouse.lua
+scenarios:
+  - scenario: micromouse
+    set: {contest_s: 3, max_runs: 1}
+mazes: [japan2018]
+)";
+  auto traces = [&](const std::string& out) {
+    std::vector<std::string> found;
+    for (const auto& e : fs::recursive_directory_iterator(out + "/jobs")) {
+      if (e.path().filename() == "trace.csv") found.push_back(ReadTextFile(e.path().string()));
+    }
+    return found;
+  };
+  const std::string plain = WriteFile(dir, "plain.yaml", jobs);
+  ASSERT_EQ(Unimouse("batch run " + plain + " -j 1 --out " + dir + "/plain").exit_code, 0);
+  EXPECT_TRUE(traces(dir + "/plain").empty());
+
+  const std::string asked =
+      WriteFile(dir, "asked.yaml", "trace: {period_s: 0.5, signals: tof.front_m}\n" + jobs);
+  ASSERT_EQ(Unimouse("batch run " + asked + " -j 1 --out " + dir + "/asked").exit_code, 0);
+  const std::vector<std::string> found = traces(dir + "/asked");
+  ASSERT_EQ(found.size(), 1u);
+  const std::string header = found[0].substr(0, found[0].find('\n'));
+  EXPECT_NE(header.find("tof.front_m"), std::string::npos) << header;
+  EXPECT_EQ(header.find("left.command"), std::string::npos) << header;
+}
+
 TEST(BatchCommandTest, MmsProgramsAreScoredOverTheMazesAsTheirOwnRunsScoreThem) {
   const std::string dir = FreshDirectory("batch_mms");
   const std::string manifest = WriteFile(dir, "mms.yaml",
@@ -376,6 +469,8 @@ bool ProcessWith(const std::string& text) {
   return false;
 }
 
+// the flood reaches the file-size limit through the trace, which logs every line (the run's log
+// stops showing them after 1 MiB)
 TEST(BatchCommandTest, ASubmissionThatForksOrFloodsHarmsNoOtherJob) {
   for (const std::string sandbox : {"none", "auto"}) {
     const std::string dir = FreshDirectory("batch_untrusted_" + sandbox);
@@ -393,6 +488,7 @@ submissions:
 scenarios:
   - scenario: micromouse
     set: {contest_s: 3, max_runs: 1}
+trace: {period_s: 0.01}
 limits: {wall_time_s: 60, file_size_mb: 1, sandbox: )" +
                                                sandbox + "}\n");
     const std::string out = dir + "/out";

@@ -262,6 +262,23 @@ TEST_F(CliTest, CheckTakesDirectoriesReportingEveryFileAndExitingWithTheWorstCod
   EXPECT_EQ(Unimouse("check " + robot + " " + scenario).exit_code, 0);
 }
 
+// docs/robots.md: `unimouse check DIR` checks "a class's submissions", which are controllers
+TEST_F(CliTest, CheckRecognisesTheLuaControllersOfAClassBesideItsScenarios) {
+  fs::create_directories(dir_ / "class");
+  std::ifstream speed(fs::path(UNIMOUSE_SOURCE_DIR) / "tests/scenarios/speed_controller.lua");
+  const std::string good =
+      Write("class/alice.lua", std::string(std::istreambuf_iterator<char>(speed), {}));
+  Write("class/bob.lua", "return function(time_s)\n  sim.motor(\nend\n");
+  const std::string scenario =
+      Write("class/open.lua", "return sim.scenario { name = 'open', run = function() end }\n");
+  const Outcome o = Unimouse("check " + (dir_ / "class").string());
+  EXPECT_EQ(o.exit_code, 2) << o.output;
+  EXPECT_NE(o.output.find(good + ": ok: controller"), std::string::npos) << o.output;
+  EXPECT_NE(o.output.find("bob.lua:3: unexpected symbol"), std::string::npos) << o.output;
+  EXPECT_NE(o.output.find(scenario + ": ok: scenario 'open'"), std::string::npos) << o.output;
+  EXPECT_EQ(Unimouse("check " + good).exit_code, 0);
+}
+
 TEST_F(CliTest, CheckStartsNothingAndWritesNothing) {
   // the test process's own TMPDIR, which the program inherits, and the directory checked
   const fs::path tmp = fs::temp_directory_path();
@@ -452,6 +469,34 @@ TEST_F(CliTest, ScenarioNoneRunsTheRobotAlone) {
   EXPECT_NE(o.output.find("warning: nothing drives the robot"), std::string::npos) << o.output;
   std::ifstream in(dir_ / "result.json");
   EXPECT_FALSE(nlohmann::json::parse(in).contains("scenario"));
+}
+
+TEST_F(CliTest, TheTracesRateAndChannelsAreRunOptionsAndZeroIsNoTrace) {
+  const std::string run = "run --scenario none --maze none --duration 0.2 --no-pictures --out ";
+  Outcome o = Unimouse(run + (dir_ / "none").string() + " --trace-period 0");
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  EXPECT_FALSE(fs::exists(dir_ / "none" / "trace.csv"));
+  EXPECT_TRUE(fs::exists(dir_ / "none" / "result.json"));
+
+  o = Unimouse(run + (dir_ / "some").string() +
+               " --trace-period 0.05 --trace-signals tof.front_m,left.command");
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  std::ifstream in(dir_ / "some" / "trace.csv");
+  std::string header;
+  std::getline(in, header);
+  EXPECT_NE(header.find("tof.front_m"), std::string::npos) << header;
+  EXPECT_NE(header.find("left.command"), std::string::npos) << header;
+  EXPECT_EQ(header.find("battery.voltage_v"), std::string::npos) << header;
+  std::vector<double> times;
+  for (std::string row; std::getline(in, row);) times.push_back(std::stod(row));
+  // a row every 0.05 s of the 0.2 s, not every 10 ms
+  ASSERT_GE(times.size(), 4u);
+  ASSERT_LE(times.size(), 5u);
+  EXPECT_NEAR(times[1] - times[0], 0.05, 1e-9);
+
+  o = Unimouse(run + (dir_ / "bad").string() + " --trace-signals no.such_signal");
+  EXPECT_EQ(o.exit_code, 2) << o.output;
+  EXPECT_NE(o.output.find("no.such_signal"), std::string::npos) << o.output;
 }
 
 TEST_F(CliTest, EverySubcommandHasHelp) {

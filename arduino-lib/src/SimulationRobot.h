@@ -109,6 +109,9 @@ class SimulationRobot {
     fdev_set_udata(&stdout_, this);
     stdout = &stdout_;
 #endif
+    // the sizes of the simulator's data frames first, so that a robot's extra sensor, which
+    // this sketch may not read, never desynchronises the frames
+    manager(UNIMOUSE_MANAGER_FRAME_SIZES);
     manager(UNIMOUSE_MANAGER_SENSORS_ON);
     manager(UNIMOUSE_MANAGER_REPEATS_COMMANDS);
     if (lockstep) manager(UNIMOUSE_MANAGER_LOCKSTEP_ON);
@@ -196,8 +199,13 @@ class SimulationRobot {
   MotorActuator& leftMotorActuator() { return leftMotor_; }
   MotorActuator& rightMotorActuator() { return rightMotor_; }
 
+  /// Reads a sensor of the robot's beyond the three ToF sensors and two encoders: its frames
+  /// (an entry of the link's `send` table, docs/robots.md) reach `sensor` from the next update()
+  /// on. Returns false when three extra sensors are registered already.
+  bool addSensor(ISimulationSensor& sensor) { return sensors_.addSensor(sensor); }
+
   /// The frame reader, for its counts of skipped bytes and unclaimed frames.
-  const StreamSimulationSensorManager<7>& sensorManager() const { return sensors_; }
+  const StreamSimulationSensorManager<10>& sensorManager() const { return sensors_; }
 
  private:
   static void step(void* robot) { static_cast<SimulationRobot*>(robot)->update(); }
@@ -224,7 +232,7 @@ class SimulationRobot {
   static uint32_t nowMs() { return static_cast<uint32_t>(millis()); }
   void manager(uint8_t code) { actuators_.send(UNIMOUSE_ID_MANAGER, &code, 1); }
 
-  StreamSimulationSensorManager<7> sensors_;
+  StreamSimulationSensorManager<10> sensors_;
   StreamActuatorManager actuators_;
   DistanceSensor left_{UNIMOUSE_ID_TOF_LEFT}, right_{UNIMOUSE_ID_TOF_RIGHT},
       front_{UNIMOUSE_ID_TOF_FRONT};

@@ -30,7 +30,9 @@ long RoundClamped(double value, long min, long max) {
 
 int EncodingSize(Encoding encoding) { return encoding == Encoding::kF32 ? 4 : 2; }
 
-bool IsControlId(int id) { return id >= UNIMOUSE_ID_MANAGER && id <= UNIMOUSE_ID_MAZE_SIZE; }
+bool IsControlId(int id) {
+  return (id >= UNIMOUSE_ID_MANAGER && id <= UNIMOUSE_ID_MAZE_SIZE) || id == UNIMOUSE_ID_FRAME_SIZE;
+}
 
 std::vector<DataFrame> OriginalCommandFrames() {
   return {{UNIMOUSE_ID_MOTOR_LEFT, Encoding::kMotor}, {UNIMOUSE_ID_MOTOR_RIGHT, Encoding::kMotor}};
@@ -218,6 +220,12 @@ void PutMazeInfoFrame(const BindContext::MazeInfo& maze, std::string& out) {
   frame[6] = static_cast<uint8_t>(maze.goal_y0);
   frame[7] = static_cast<uint8_t>(maze.goal_x1);
   frame[8] = static_cast<uint8_t>(maze.goal_y1);
+  out.append(reinterpret_cast<const char*>(frame), sizeof(frame));
+}
+
+void PutFrameSizeFrame(uint8_t id, Encoding encoding, std::string& out) {
+  const uint8_t frame[3] = {UNIMOUSE_ID_FRAME_SIZE, id,
+                            static_cast<uint8_t>(EncodingSize(encoding))};
   out.append(reinterpret_cast<const char*>(frame), sizeof(frame));
 }
 

@@ -29,8 +29,8 @@ enum class Encoding {
 /// Returns the payload bytes of a frame in `encoding`.
 int EncodingSize(Encoding encoding);
 
-/// Returns whether `id` is one of the protocol's control frames (manager, log, clock, debug),
-/// which a frame table cannot take.
+/// Returns whether `id` is one of the protocol's control frames (manager, log, clock, debug,
+/// maze, frame size: 7 to 15 and 127), which a frame table cannot take.
 bool IsControlId(int id);
 
 /// A data frame the decoder knows: its id and how its payload reads.
@@ -121,6 +121,8 @@ void PutClockFrame(uint64_t time_us, std::string& out);
 /// Appends a maze info frame: width and height in cells, the cell's side in whole millimetres,
 /// the goal rectangle (a world has at most 128 cells a side, so each fits a byte).
 void PutMazeInfoFrame(const BindContext::MazeInfo& maze, std::string& out);
+/// Appends a frame size frame: a data frame's id and its payload bytes in `encoding`.
+void PutFrameSizeFrame(uint8_t id, Encoding encoding, std::string& out);
 
 }  // namespace unimouse::link
 

@@ -17,8 +17,9 @@ constexpr int kLastFrame_s = 2;
 constexpr int kFailsafe = 3;
 constexpr int kUnknownReported = 4;
 constexpr int kRepeats = 5;     // the firmware said it resends its commands
-constexpr int kMazeAsked = 6;  // the firmware asked for the maze: it goes out with the next frames
-constexpr int kStateSize = 7;
+constexpr int kMazeAsked = 6;   // the firmware asked for the maze: it goes out with the next frames
+constexpr int kSizesAsked = 7;  // the firmware asked for the data frames' sizes: the same
+constexpr int kStateSize = 8;
 
 // visited cells kept for the beliefs file: a firmware that reports more repeats itself
 constexpr size_t kMaxVisitedKept = 1 << 20;
@@ -110,6 +111,7 @@ void Link::Reset(const ResetContext& ctx) const {
   s[kUnknownReported] = 0;
   s[kRepeats] = 0;
   s[kMazeAsked] = 0;
+  s[kSizesAsked] = 0;
   ZeroReceived(ctx);
   decoder_ = FrameDecoder(data_frames_);
   inbox_.clear();
@@ -198,6 +200,9 @@ void Link::Apply(const SenseContext& ctx, const FirmwareFrame& f, Heard& heard) 
                 "the firmware asked for the maze: its goal cells are not a rectangle, so "
                 "the frame's goal rectangle holds other cells too");
           }
+          break;
+        case UNIMOUSE_MANAGER_FRAME_SIZES:
+          s[kSizesAsked] = 1;
           break;
         default:
           std::snprintf(text, sizeof(text), "unknown manager byte 0x%02x, ignored", f.value);
@@ -476,6 +481,10 @@ void Link::Sense(const SenseContext& ctx) const {
   if (s[kMazeAsked] != 0) {
     PutMazeInfoFrame(maze_, out);
     s[kMazeAsked] = 0;
+  }
+  if (s[kSizesAsked] != 0) {
+    for (const Outgoing& o : send_) PutFrameSizeFrame(o.entry.id, o.entry.encoding, out);
+    s[kSizesAsked] = 0;
   }
   const bool lockstep = s[kLockstep] != 0;
   if (lockstep) PutClockFrame(static_cast<uint64_t>(std::llround(ctx.time_s() * 1e6)), out);

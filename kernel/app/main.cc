@@ -296,6 +296,13 @@ int main(int argc, char** argv) {
   mms_cmd->add_flag("--physical", mms.physical,
                     "the physics tier: each move driven on the simulated robot in MuJoCo, the "
                     "walls read by its sensors, the contest clock simulated time");
+  mms_cmd->add_flag("--strict-contacts", mms.strict_contacts,
+                    "with --physical: a move or turn carried out that grazed a wall replies crash "
+                    "(by default ack, the contact counted in the result: an mms program takes "
+                    "crash for a move that did not happen)");
+  mms_cmd->add_flag("--centre-goal", mms.centre_goal,
+                    "the maze's centre cells are the goal, as mms has it, instead of the goal "
+                    "the maze file marks");
   mms_cmd->add_flag("--true-walls", mms.true_walls,
                     "with --physical: wall queries answered from the maze, not the sensors");
   mms_cmd->add_option("--robot", mms.robot, "with --physical: robot file or bundled robot name")

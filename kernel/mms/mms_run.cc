@@ -392,6 +392,7 @@ void CheckOptions(const MmsRunOptions& o) {
   UNIMOUSE_THROW_UNLESS(o.program.empty() != o.port.empty(),
                         "unimouse mms: name the program after --, or a --port, not both");
   UNIMOUSE_THROW_UNLESS(o.physical || !o.true_walls, "--true-walls goes with --physical");
+  UNIMOUSE_THROW_UNLESS(o.physical || !o.strict_contacts, "--strict-contacts goes with --physical");
   UNIMOUSE_THROW_UNLESS(o.physical || !o.watch, "--view goes with --physical");
   UNIMOUSE_THROW_UNLESS(!o.watch || !o.realtime, "--view paces the run itself: drop --realtime");
   auto positive = [](double v) { return std::isfinite(v) && v > 0; };
@@ -417,7 +418,9 @@ int RunMms(const MmsRunOptions& options) {
   try {
     CheckOptions(options);
     const std::string maze_file = ResolveDataFile(options.maze, "mazes/", ".txt");
-    const Maze maze = LoadMaze(maze_file);
+    Maze maze = LoadMaze(maze_file);
+    // mms's goal: the maze's centre cells, whatever the file marks
+    if (options.centre_goal) maze.set_goals(CentreCells(maze.width(), maze.height()));
     SetMazeIdentity(record, maze_file, &maze);
     fs::create_directories(options.out_dir);
     signal(SIGPIPE, SIG_IGN);
@@ -440,6 +443,7 @@ int RunMms(const MmsRunOptions& options) {
       if (options.watch) session->SetStepWatcher(options.watch);
       robot = std::make_unique<MmsRobot>(*session);
       world.SetBody(robot.get(), options.true_walls);
+      world.set_contact_is_crash(options.strict_contacts);
     }
     std::unique_ptr<Channel> channel;
     if (options.port.empty()) {

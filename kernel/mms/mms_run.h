@@ -34,6 +34,8 @@ struct MmsRunOptions {
   long max_commands = 10000000;    ///< command lines before the run is stopped
   bool physical = false;           ///< the physics tier: the moves on the simulated robot
   bool true_walls = false;         ///< physics tier: `wall*` from the maze, not the sensors
+  bool strict_contacts = false;    ///< physics tier: a move that grazed a wall replies crash
+  bool centre_goal = false;        ///< the maze's centre cells are the goal, as in mms
   std::string robot = "unimouse";  ///< physics tier: robot file or bundled robot name
   uint64_t seed = 1;               ///< physics tier: the sensors' noise
   bool no_pictures = false;        ///< no maze.png and maze.svg

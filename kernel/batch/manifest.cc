@@ -269,8 +269,14 @@ Manifest LoadManifest(const std::string& path) {
   const fs::path dir = fs::path(m.file).parent_path();
   const YamlNode root = LoadYamlFile(path);
   const MapReader r(root, "manifest",
-                    {"robot", "trace", "submissions", "scenarios", "mazes", "seeds", "limits",
-                     "jobs"});
+                    {"robot", "trace", "rank", "higher_is_better", "submissions", "scenarios",
+                     "mazes", "seeds", "limits", "jobs"});
+  m.rank_score = r.String("rank", "");
+  if (const YamlNode* higher = r.Optional("higher_is_better")) {
+    for (const auto& item : ListOf(*higher, "higher_is_better").items) {
+      m.higher_is_better.push_back(item.AsString("score"));
+    }
+  }
   if (const YamlNode* robot = r.Optional("robot")) {
     m.robot = DataFile(*robot, dir, "robots/", ".yaml");
   }

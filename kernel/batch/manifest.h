@@ -89,6 +89,8 @@ struct Manifest {
   /// --trace-period of every job: 0 (no trace) unless the manifest's `trace:` asks for one
   std::string trace_period_s = "0";
   std::string trace_signals;  ///< --trace-signals of every job; "" for the robot file's
+  std::string rank_score;     ///< the score that ranks the submissions (`rank:`); "" for none
+  std::vector<std::string> higher_is_better;  ///< scores better high (`higher_is_better:`)
   std::vector<Submission> submissions;
   std::vector<ScenarioEntry> scenarios;
   std::vector<Job> jobs;  ///< the product, or the explicit `jobs:` list; sorted by id

@@ -357,6 +357,42 @@ mazes: [japan2018]
   EXPECT_EQ(header.find("left.command"), std::string::npos) << header;
 }
 
+// docs/batch.md "The summary": what the teacher scored, ranked by the manifest's score
+TEST(BatchCommandTest, TheSummaryAggregatesTheScoresRanksByTheManifestsScoreAndNamesThePage) {
+  const std::string dir = FreshDirectory("batch_rank");
+  const std::string manifest = WriteFile(dir, "class.yaml", R"(
+rank: best_run_path_cost
+submissions:
+  - name: lost
+    controller: )" + kSource + R"(/tests/scenarios/wandering_mouse.lua
+  - name: good
+    controller: )" + kSource + R"(/tests/batch/walking_mouse.lua
+scenarios:
+  - scenario: micromouse
+    set: {contest_s: 3, max_runs: 1}
+mazes: [japan2018]
+seeds: [1, 2]
+)");
+  const std::string out = dir + "/out";
+  const Outcome o = Unimouse("batch run " + manifest + " -j 2 --out " + out);
+  EXPECT_EQ(o.exit_code, 1) << o.output;
+  EXPECT_NE(o.output.find("report: " + out + "/report.html"), std::string::npos) << o.output;
+  const json results = Results(out);
+  EXPECT_EQ(results["rank"]["score"], "best_run_path_cost");
+  const json& first = results["summary"][0];
+  EXPECT_EQ(first["submission"], "good") << results["summary"].dump(1);
+  EXPECT_EQ(first["rank"], 1);
+  // walking_mouse.lua's path by hand: 7 cells north, a quarter turn, 7 cells east
+  const json& cost = first["scores"]["best_run_path_cost"];
+  EXPECT_EQ(cost["jobs"], 2);
+  EXPECT_DOUBLE_EQ(cost["mean"].get<double>(), 15);
+  EXPECT_DOUBLE_EQ(cost["best"].get<double>(), 15);
+  EXPECT_DOUBLE_EQ(cost["worst"].get<double>(), 15);
+  EXPECT_TRUE(results["summary"][1]["rank"].is_null());
+  const std::string page = ReadTextFile(out + "/report.html");
+  EXPECT_NE(page.find("data-key=\"scores.best_run_path_cost.mean\""), std::string::npos);
+}
+
 TEST(BatchCommandTest, MmsProgramsAreScoredOverTheMazesAsTheirOwnRunsScoreThem) {
   const std::string dir = FreshDirectory("batch_mms");
   const std::string manifest = WriteFile(dir, "mms.yaml",

@@ -12,6 +12,7 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <numbers>
+#include <optional>
 #include <sstream>
 #include <string_view>
 #include <utility>
@@ -176,6 +177,78 @@ std::unique_ptr<Kernel> CheckedKernel(const RobotSpec& robot, const Maze* maze,
   return Kernel::Create(robot, maze, registry, options);
 }
 
+// the lowest point of a geom that touches things, in the world frame; nothing for a plane or
+// a mesh
+std::optional<double> LowestZ(const mjModel& m, const mjData& d, int g) {
+  const double* p = d.geom_xpos + 3 * g;
+  const double* r = d.geom_xmat + 9 * g;  // row-major: r[6..8] is the world z row
+  const double* size = m.geom_size + 3 * g;
+  const double axis_z = std::abs(r[8]);  // the geom's own z axis against the world's
+  switch (m.geom_type[g]) {
+    case mjGEOM_SPHERE:
+      return p[2] - size[0];
+    case mjGEOM_CAPSULE:
+      return p[2] - size[0] - axis_z * size[1];
+    case mjGEOM_CYLINDER:
+      return p[2] - axis_z * size[1] - size[0] * std::sqrt(std::max(0.0, 1 - axis_z * axis_z));
+    case mjGEOM_BOX:
+    case mjGEOM_ELLIPSOID:
+      return p[2] - std::abs(r[6]) * size[0] - std::abs(r[7]) * size[1] - axis_z * size[2];
+    default:
+      return std::nullopt;
+  }
+}
+
+// a robot as built, at rest at its spawn pose: the wheels on the floor, and something else
+// (a caster) touching it too, or it tips over onto its chassis once the run starts
+void WarnIfItCannotStand(const mjModel& m, const mjData& d) {
+  constexpr double kTouch_m = 0.001;
+  std::map<int, double> lowest_of_body;  // the robot's bodies that touch things
+  for (int g = 0; g < m.ngeom; ++g) {
+    const int body = m.geom_bodyid[g];
+    if (body == 0 || (m.geom_contype[g] == 0 && m.geom_conaffinity[g] == 0)) continue;
+    const std::optional<double> z = LowestZ(m, d, g);
+    if (!z) continue;
+    const auto [at, fresh] = lowest_of_body.emplace(body, *z);
+    if (!fresh) at->second = std::min(at->second, *z);
+  }
+  if (lowest_of_body.empty()) return;
+  double floor_z = lowest_of_body.begin()->second;
+  for (const auto& [body, z] : lowest_of_body) floor_z = std::min(floor_z, z);
+  bool wheel_touches = false, other_touches = false;
+  for (const auto& [body, z] : lowest_of_body) {
+    const char* name = mj_id2name(&m, mjOBJ_BODY, body);
+    // a wheel turns on a hinge that a motor drives
+    bool wheel = false;
+    for (int a = 0; a < m.nu; ++a) {
+      wheel = wheel || (m.actuator_trntype[a] == mjTRN_JOINT &&
+                        m.jnt_bodyid[m.actuator_trnid[2 * a]] == body);
+    }
+    const bool touches = z - floor_z <= kTouch_m;
+    (wheel ? wheel_touches : other_touches) |= touches;
+    if (wheel && !touches) {
+      std::printf(
+          "  warning: wheel '%s' is %.1f mm above the floor at rest: it does not touch it\n", name,
+          (z - floor_z) * 1000);
+    }
+  }
+  if (wheel_touches && !other_touches) {
+    for (const auto& [body, z] : lowest_of_body) {
+      const int parent = m.body_parentid[body];
+      if (parent == 0 || m.body_jntnum[body] == 0) continue;
+      bool wheel = false;
+      for (int a = 0; a < m.nu; ++a) {
+        wheel = wheel || m.jnt_bodyid[m.actuator_trnid[2 * a]] == body;
+      }
+      if (wheel) continue;
+      std::printf(
+          "  warning: '%s' is %.1f mm above the floor at rest: only the wheels touch it, so the "
+          "robot tips onto its chassis as it starts\n",
+          mj_id2name(&m, mjOBJ_BODY, body), (z - floor_z) * 1000);
+    }
+  }
+}
+
 void CheckRobot(const std::string& robot_name, const PluginRegistry& registry) {
   const std::string robot_file = ResolveDataFile(robot_name, "robots/", ".yaml");
   const RobotSpec robot = LoadRobotSpec(robot_file);
@@ -184,6 +257,7 @@ void CheckRobot(const std::string& robot_name, const PluginRegistry& registry) {
   std::printf("%s: ok: robot '%s', %d bodies, %d joints, %d actuators, %zu components\n",
               robot_file.c_str(), robot.name.c_str(), m.nbody - 1, m.njnt, m.nu,
               kernel->model().components.size());
+  WarnIfItCannotStand(m, kernel->state().data());
   const Model& model = kernel->model();
   for (const EarlyRead& e : model.early_reads) {
     std::printf(

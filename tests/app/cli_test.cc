@@ -295,6 +295,39 @@ TEST_F(CliTest, CheckStartsNothingAndWritesNothing) {
   EXPECT_EQ(entries(tmp), before);
 }
 
+// the bundled robot with one line changed
+std::string BundledRobotWith(const std::string& line, const std::string& instead) {
+  std::string robot = unimouse::testing::ReadBundledRobot();
+  const size_t at = robot.find(line);
+  EXPECT_NE(at, std::string::npos) << line;
+  if (at != std::string::npos) robot.replace(at, line.size(), instead);
+  return robot;
+}
+
+TEST_F(CliTest, CheckWarnsAboutARobotThatCannotStandAsBuilt) {
+  Outcome o = Unimouse("check unimouse");
+  EXPECT_EQ(o.exit_code, 0) << o.output;
+  EXPECT_EQ(o.output.find("warning"), std::string::npos) << o.output;
+
+  // the caster 6 mm higher than the floor the wheels stand on (its centre 11 mm below the axle)
+  const std::string lifted = Write(
+      "lifted.yaml", BundledRobotWith("pos_m: [-0.055, 0, -0.011]", "pos_m: [-0.055, 0, -0.005]"));
+  o = Unimouse("check " + lifted);
+  EXPECT_EQ(o.exit_code, 0) << o.output;
+  EXPECT_NE(o.output.find("warning: 'caster' is 6.0 mm above the floor at rest: only the wheels "
+                          "touch it"),
+            std::string::npos)
+      << o.output;
+
+  // the left wheel 3 mm higher than the right one
+  const std::string wheel =
+      Write("wheel.yaml", BundledRobotWith("pos_m: [0, 0.048, 0]", "pos_m: [0, 0.048, 0.003]"));
+  o = Unimouse("check " + wheel);
+  EXPECT_NE(o.output.find("warning: wheel 'left_wheel' is 3.0 mm above the floor at rest"),
+            std::string::npos)
+      << o.output;
+}
+
 TEST_F(CliTest, CheckRefusesAMotorOnABallJointAtTheActuatorsLine) {
   const std::string path =
       Write("ball.yaml",

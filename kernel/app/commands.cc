@@ -12,11 +12,11 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <numbers>
-#include <optional>
 #include <sstream>
 #include <string_view>
 #include <utility>
 
+#include "geom_extent.h"
 #include "install_paths.h"
 #include "kernel.h"
 #include "scenario.h"
@@ -177,28 +177,6 @@ std::unique_ptr<Kernel> CheckedKernel(const RobotSpec& robot, const Maze* maze,
   return Kernel::Create(robot, maze, registry, options);
 }
 
-// the lowest point of a geom that touches things, in the world frame; nothing for a plane or
-// a mesh
-std::optional<double> LowestZ(const mjModel& m, const mjData& d, int g) {
-  const double* p = d.geom_xpos + 3 * g;
-  const double* r = d.geom_xmat + 9 * g;  // row-major: r[6..8] is the world z row
-  const double* size = m.geom_size + 3 * g;
-  const double axis_z = std::abs(r[8]);  // the geom's own z axis against the world's
-  switch (m.geom_type[g]) {
-    case mjGEOM_SPHERE:
-      return p[2] - size[0];
-    case mjGEOM_CAPSULE:
-      return p[2] - size[0] - axis_z * size[1];
-    case mjGEOM_CYLINDER:
-      return p[2] - axis_z * size[1] - size[0] * std::sqrt(std::max(0.0, 1 - axis_z * axis_z));
-    case mjGEOM_BOX:
-    case mjGEOM_ELLIPSOID:
-      return p[2] - std::abs(r[6]) * size[0] - std::abs(r[7]) * size[1] - axis_z * size[2];
-    default:
-      return std::nullopt;
-  }
-}
-
 // a robot as built, at rest at its spawn pose: the wheels on the floor, and something else
 // (a caster) touching it too, or it tips over onto its chassis once the run starts
 void WarnIfItCannotStand(const mjModel& m, const mjData& d) {
@@ -207,10 +185,11 @@ void WarnIfItCannotStand(const mjModel& m, const mjData& d) {
   for (int g = 0; g < m.ngeom; ++g) {
     const int body = m.geom_bodyid[g];
     if (body == 0 || (m.geom_contype[g] == 0 && m.geom_conaffinity[g] == 0)) continue;
-    const std::optional<double> z = LowestZ(m, d, g);
-    if (!z) continue;
-    const auto [at, fresh] = lowest_of_body.emplace(body, *z);
-    if (!fresh) at->second = std::min(at->second, *z);
+    if (!HasReach(m, g)) continue;
+    constexpr double kUp[3] = {0, 0, 1};
+    const double z = d.geom_xpos[3 * g + 2] - GeomReach(m, d, g, kUp);
+    const auto [at, fresh] = lowest_of_body.emplace(body, z);
+    if (!fresh) at->second = std::min(at->second, z);
   }
   if (lowest_of_body.empty()) return;
   double floor_z = lowest_of_body.begin()->second;

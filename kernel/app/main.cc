@@ -300,6 +300,11 @@ int main(int argc, char** argv) {
                     "with --physical: a move or turn carried out that grazed a wall replies crash "
                     "(by default ack, the contact counted in the result: an mms program takes "
                     "crash for a move that did not happen)");
+  mms_cmd
+      ->add_option("--maze-class", mms.maze_class,
+                   "with --physical: the maze built classic (180 mm cells), half (90 mm) or auto "
+                   "(half above 16 x 16), as the micromouse scenario's maze_class")
+      ->capture_default_str();
   mms_cmd->add_flag("--centre-goal", mms.centre_goal,
                     "the maze's centre cells are the goal, as mms has it, instead of the goal "
                     "the maze file marks");

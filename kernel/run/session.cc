@@ -231,6 +231,9 @@ void Session::Assemble() {
     if (o.maze != "none") {
       maze_file_ = ResolveDataFile(o.maze, "mazes/", ".txt");
       maze_ = std::make_unique<Maze>(LoadMaze(maze_file_));
+      if (!o.maze_class.empty()) {
+        maze_->set_class(o.maze_class == "half" ? MazeClass::kHalfSize : MazeClass::kClassic);
+      }
     }
   }
   SetMazeIdentity(identity_, maze_file_, maze_.get());

@@ -19,8 +19,10 @@ set_property(GLOBAL PROPERTY UNIMOUSE_ARDUINO_LIB_DIR "${root}")
 # bound inside the module)
 function(unimouse_add_pc_cores)
   get_property(root GLOBAL PROPERTY UNIMOUSE_ARDUINO_LIB_DIR)
-  add_library(unimouse_arduino_pc_core STATIC ${root}/pc/core.cc ${root}/pc/clock.cc)
+  add_library(unimouse_arduino_pc_core STATIC ${root}/pc/core.cc ${root}/pc/clock.cc
+    ${root}/pc/print.cc)
   add_library(unimouse_arduino_inproc_core STATIC ${root}/pc/inproc_core.cc ${root}/pc/clock.cc
+    ${root}/pc/print.cc ${root}/pc/inproc_stdio.c
     ${root}/pc/inproc_exit.c)
   foreach(core unimouse_arduino_pc_core unimouse_arduino_inproc_core)
     target_include_directories(${core} PUBLIC ${root}/pc ${root}/src)

@@ -68,9 +68,12 @@ size_t HardwareSerial::write(uint8_t byte) {
 
 void HardwareSerial::flush() { WriteOut(); }
 
-void delay(unsigned long ms) {
+// the standard output is the standard error here (main), which the simulator logs line by line
+void unimousePcText(const char* text, size_t size) { std::fwrite(text, 1, size, stdout); }
+
+void unimousePcWallWait(unsigned long us) {
   Serial.flush();
-  std::this_thread::sleep_for(std::chrono::milliseconds(ms));
+  std::this_thread::sleep_for(std::chrono::microseconds(us));
 }
 
 int main() {

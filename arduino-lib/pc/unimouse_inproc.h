@@ -33,6 +33,9 @@ typedef struct unimouse_inproc_host {
   void (*exit)(void* self, int code);
 } unimouse_inproc_host;
 
+/** Text the firmware module prints: its log, a line at each newline (the module's core). */
+void unimouse_inproc_text(const char* text, size_t size);
+
 /** The module's entry: runs setup() and then loop() for ever on the stack the simulator gave. */
 typedef void (*unimouse_inproc_main)(const unimouse_inproc_host* host);
 

@@ -14,6 +14,7 @@
 
 #include <Arduino.h>
 #include <stdint.h>
+#include <stdio.h>
 
 #include "SimulationActuators.h"
 #include "SimulationSensors.h"
@@ -98,6 +99,20 @@ class SimulationRobot {
   /// when it falls silent. Returns at once.
   void begin(bool lockstep = kLockstepByDefault) {
     lockstep_ = lockstep;
+#ifdef UNIMOUSE_PC_CORE
+    // Arduino's delay() keeps this robot stepping, as delay() below does
+    unimousePcSetIdle(&SimulationRobot::step, this);
+#endif
+#ifdef __AVR__
+    // avr-libc has no standard output of its own (printf would write through a null stream
+    // and crash the board): printf becomes this robot's log, a log frame a line
+    fdev_setup_stream(&stdout_, &SimulationRobot::putLogChar, NULL, _FDEV_SETUP_WRITE);
+    fdev_set_udata(&stdout_, this);
+    stdout = &stdout_;
+#endif
+    // the sizes of the simulator's data frames first, so that a robot's extra sensor, which
+    // this sketch may not read, never desynchronises the frames
+    manager(UNIMOUSE_MANAGER_FRAME_SIZES);
     manager(UNIMOUSE_MANAGER_SENSORS_ON);
     manager(UNIMOUSE_MANAGER_REPEATS_COMMANDS);
     if (lockstep) manager(UNIMOUSE_MANAGER_LOCKSTEP_ON);
@@ -150,7 +165,9 @@ class SimulationRobot {
 
   void motorLeft(int32_t command) { leftMotor_.setCommand(command, nowMs()); }
   void motorRight(int32_t command) { rightMotor_.setCommand(command, nowMs()); }
-  /// A line for the simulator's log (never Serial.print: it would corrupt the protocol).
+  /// A line for the simulator's log. printf is one too: on the PC it is the firmware's text,
+  /// on a board the library makes it log frames (begin()); Serial.print on a board is plain text
+  /// between the frames, which the simulator logs line by line.
   void log(const char* text) { logger_.log(text); }
   /// A debug frame for the simulator's maze view (UNIMOUSE_ID_DEBUG_*; docs/protocol.md).
   void debug(uint8_t id, const uint8_t* payload, uint16_t size) {
@@ -189,15 +206,40 @@ class SimulationRobot {
   MotorActuator& leftMotorActuator() { return leftMotor_; }
   MotorActuator& rightMotorActuator() { return rightMotor_; }
 
+  /// Reads a sensor of the robot's beyond the three ToF sensors and two encoders: its frames
+  /// (an entry of the link's `send` table, docs/robots.md) reach `sensor` from the next update()
+  /// on. Returns false when three extra sensors are registered already.
+  bool addSensor(ISimulationSensor& sensor) { return sensors_.addSensor(sensor); }
+
   /// The frame reader, for its counts of skipped bytes and unclaimed frames.
-  const StreamSimulationSensorManager<13>& sensorManager() const { return sensors_; }
+  const StreamSimulationSensorManager<16>& sensorManager() const { return sensors_; }
 
  private:
+  static void step(void* robot) { static_cast<SimulationRobot*>(robot)->update(); }
+#ifdef __AVR__
+  static int putLogChar(char c, FILE* stream) {
+    static_cast<SimulationRobot*>(fdev_get_udata(stream))->printChar(c);
+    return 0;
+  }
+  void printChar(char c) {
+    if (c == '\r') return;
+    if (c != '\n') line_[lineLength_++] = c;
+    // a line longer than the buffer goes out in pieces
+    if (c == '\n' || lineLength_ == sizeof(line_) - 1) {
+      line_[lineLength_] = 0;
+      logger_.log(line_);
+      lineLength_ = 0;
+    }
+  }
+  FILE stdout_;
+  char line_[64];
+  uint8_t lineLength_ = 0;
+#endif
   // millis() is an unsigned long, 64 bits on the PC: counted in 32 bits, it wraps as on boards
   static uint32_t nowMs() { return static_cast<uint32_t>(millis()); }
   void manager(uint8_t code) { actuators_.send(UNIMOUSE_ID_MANAGER, &code, 1); }
 
-  StreamSimulationSensorManager<13> sensors_;
+  StreamSimulationSensorManager<16> sensors_;
   StreamActuatorManager actuators_;
   DistanceSensor left_{UNIMOUSE_ID_TOF_LEFT}, right_{UNIMOUSE_ID_TOF_RIGHT},
       front_{UNIMOUSE_ID_TOF_FRONT};

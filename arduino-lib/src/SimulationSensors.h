@@ -2,8 +2,10 @@
 // The simulator's sensor frames on the firmware side (dissertation tables 3.10 and 3.11): a
 // sensor manager reads a Stream and hands each whole frame to the sensor registered for its id.
 // Unlike the original it never waits for the rest of a frame (a partial frame is kept for the
-// next call), skips frames of ids nobody registered, and steps over bytes that are no frame id
-// at all, so garbage on the line costs a few readings, never a hang.
+// next call), skips frames of ids nobody registered, by their size (the protocol's, or the one
+// the simulator declares for each data frame it sends, such as a robot's extra sensor), and
+// steps over bytes that are no frame id at all, so garbage on the line costs a few readings,
+// never a hang.
 #ifndef UNIMOUSE_SIM_SIMULATION_SENSORS_H_
 #define UNIMOUSE_SIM_SIMULATION_SENSORS_H_
 
@@ -51,8 +53,9 @@ class StreamSimulationSensorManager : public ISimulationSensorManager {
       const int byte = stream_.read();
       if (byte < 0) return;
       if (have_ == 0) {
-        // a frame's id: sim -> MCU frames have a fixed size; anything else is not a frame
-        const int size = unimouse_payload_size(static_cast<uint8_t>(byte));
+        // a frame's id: sim -> MCU frames have a fixed size, the protocol's or the one the
+        // simulator declared; anything else is not a frame
+        const int size = payloadSize(static_cast<uint8_t>(byte));
         if (size < 0 || size > static_cast<int>(sizeof(payload_))) {
           ++skippedBytes_;
           continue;
@@ -70,6 +73,16 @@ class StreamSimulationSensorManager : public ISimulationSensorManager {
     }
   }
 
+  /// Payload bytes of a frame from the simulator: the protocol's (unimouse_payload_size), or
+  /// what the simulator declared for a data frame of its send table (a frame size frame, sent
+  /// when asked with UNIMOUSE_MANAGER_FRAME_SIZES: SimulationRobot::begin asks); -2 unknown.
+  int payloadSize(uint8_t id) const {
+    for (uint8_t i = 0; i < declaredCount_; ++i) {
+      if (declared_[i][0] == id) return declared_[i][1];
+    }
+    return unimouse_payload_size(id);
+  }
+
   /// Bytes stepped over because they could not start a frame.
   uint32_t skippedBytes() const { return skippedBytes_; }
   /// Whole frames of ids no sensor is registered for.
@@ -77,6 +90,10 @@ class StreamSimulationSensorManager : public ISimulationSensorManager {
 
  private:
   void deliver() {
+    if (id_ == UNIMOUSE_ID_FRAME_SIZE) {
+      declare(payload_[0], payload_[1]);
+      return;
+    }
     for (uint8_t i = 0; i < count_; ++i) {
       if (sensors_[i]->getId() == id_) {
         sensors_[i]->notify(payload_);
@@ -86,8 +103,26 @@ class StreamSimulationSensorManager : public ISimulationSensorManager {
     ++unclaimedFrames_;
   }
 
+  // a data frame the protocol does not size itself (the ids it sizes keep their size)
+  void declare(uint8_t id, uint8_t size) {
+    if (unimouse_payload_size(id) != -2 || size > sizeof(payload_)) return;
+    for (uint8_t i = 0; i < declaredCount_; ++i) {
+      if (declared_[i][0] == id) {
+        declared_[i][1] = size;
+        return;
+      }
+    }
+    if (declaredCount_ == kMaxDeclared) return;
+    declared_[declaredCount_][0] = id;
+    declared_[declaredCount_][1] = size;
+    ++declaredCount_;
+  }
+
+  static const uint8_t kMaxDeclared = 8;
   Stream& stream_;
   ISimulationSensor* sensors_[N] = {};
+  uint8_t declared_[kMaxDeclared][2] = {};  // id, payload bytes
+  uint8_t declaredCount_ = 0;
   uint8_t count_ = 0;
   uint8_t id_ = 0, need_ = 0, have_ = 0;  // have_: bytes of the current frame, id included
   uint8_t payload_[8] = {};               // the longest sim -> MCU frame, maze info

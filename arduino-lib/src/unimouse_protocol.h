@@ -44,7 +44,11 @@ enum {
   UNIMOUSE_ID_GYRO_Z = 34,
   UNIMOUSE_ID_ACCEL_X = 35,
   UNIMOUSE_ID_ACCEL_Y = 36,
-  UNIMOUSE_ID_ACCEL_Z = 37
+  UNIMOUSE_ID_ACCEL_Z = 37,
+  UNIMOUSE_ID_FRAME_SIZE = 127    /* sim -> MCU, 2 bytes, once asked (UNIMOUSE_MANAGER_FRAME_SIZES):
+                                     a data frame's id and its payload bytes, one frame for each
+                                     entry of the link's send table, so that the firmware can step
+                                     over frames it has no sensor for (a robot's extra sensor) */
 };
 
 /* manager codes */
@@ -60,7 +64,9 @@ enum {
   UNIMOUSE_MANAGER_REPEATS_COMMANDS = 0x12, /* the firmware resends its motor commands at least
                                               every 50 ms, so silence means it is in trouble:
                                               the simulator stops the motors after failsafe_s */
-  UNIMOUSE_MANAGER_MAZE_INFO = 0x13         /* the simulator answers with one maze info frame */
+  UNIMOUSE_MANAGER_MAZE_INFO = 0x13,        /* the simulator answers with one maze info frame */
+  UNIMOUSE_MANAGER_FRAME_SIZES = 0x14       /* the simulator answers with a frame size frame
+                                               for each data frame it sends */
 };
 
 /* sides in a debug walls frame: bits of `walls` and `known` */
@@ -109,6 +115,8 @@ static inline int unimouse_payload_size(uint8_t id) {
       return 2;
     case UNIMOUSE_ID_MAZE_INFO:
       return 8;
+    case UNIMOUSE_ID_FRAME_SIZE:
+      return 2;
     case UNIMOUSE_ID_LOG:
     case UNIMOUSE_ID_DEBUG_PATH:
     case UNIMOUSE_ID_DEBUG_VALUE:

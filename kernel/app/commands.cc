@@ -16,6 +16,7 @@
 #include <string_view>
 #include <utility>
 
+#include "geom_extent.h"
 #include "install_paths.h"
 #include "kernel.h"
 #include "scenario.h"
@@ -81,6 +82,7 @@ int RunOnce(const RunOptions& options, Viewer* viewer) {
   o.link = options.link;
   o.link_sets = options.link_sets;
   o.firmware_profile = options.firmware_profile;
+  o.trace = {options.trace_period_s, options.trace_signals};
   o.realtime = options.realtime;
   o.paced_by_caller = viewer != nullptr;
   o.scenario = options.scenario;
@@ -175,6 +177,57 @@ std::unique_ptr<Kernel> CheckedKernel(const RobotSpec& robot, const Maze* maze,
   return Kernel::Create(robot, maze, registry, options);
 }
 
+// a robot as built, at rest at its spawn pose: the wheels on the floor, and something else
+// (a caster) touching it too, or it tips over onto its chassis once the run starts
+void WarnIfItCannotStand(const mjModel& m, const mjData& d) {
+  constexpr double kTouch_m = 0.001;
+  std::map<int, double> lowest_of_body;  // the robot's bodies that touch things
+  for (int g = 0; g < m.ngeom; ++g) {
+    const int body = m.geom_bodyid[g];
+    if (body == 0 || (m.geom_contype[g] == 0 && m.geom_conaffinity[g] == 0)) continue;
+    if (!HasReach(m, g)) continue;
+    constexpr double kUp[3] = {0, 0, 1};
+    const double z = d.geom_xpos[3 * g + 2] - GeomReach(m, d, g, kUp);
+    const auto [at, fresh] = lowest_of_body.emplace(body, z);
+    if (!fresh) at->second = std::min(at->second, z);
+  }
+  if (lowest_of_body.empty()) return;
+  double floor_z = lowest_of_body.begin()->second;
+  for (const auto& [body, z] : lowest_of_body) floor_z = std::min(floor_z, z);
+  bool wheel_touches = false, other_touches = false;
+  for (const auto& [body, z] : lowest_of_body) {
+    const char* name = mj_id2name(&m, mjOBJ_BODY, body);
+    // a wheel turns on a hinge that a motor drives
+    bool wheel = false;
+    for (int a = 0; a < m.nu; ++a) {
+      wheel = wheel || (m.actuator_trntype[a] == mjTRN_JOINT &&
+                        m.jnt_bodyid[m.actuator_trnid[2 * a]] == body);
+    }
+    const bool touches = z - floor_z <= kTouch_m;
+    (wheel ? wheel_touches : other_touches) |= touches;
+    if (wheel && !touches) {
+      std::printf(
+          "  warning: wheel '%s' is %.1f mm above the floor at rest: it does not touch it\n", name,
+          (z - floor_z) * 1000);
+    }
+  }
+  if (wheel_touches && !other_touches) {
+    for (const auto& [body, z] : lowest_of_body) {
+      const int parent = m.body_parentid[body];
+      if (parent == 0 || m.body_jntnum[body] == 0) continue;
+      bool wheel = false;
+      for (int a = 0; a < m.nu; ++a) {
+        wheel = wheel || m.jnt_bodyid[m.actuator_trnid[2 * a]] == body;
+      }
+      if (wheel) continue;
+      std::printf(
+          "  warning: '%s' is %.1f mm above the floor at rest: only the wheels touch it, so the "
+          "robot tips onto its chassis as it starts\n",
+          mj_id2name(&m, mjOBJ_BODY, body), (z - floor_z) * 1000);
+    }
+  }
+}
+
 void CheckRobot(const std::string& robot_name, const PluginRegistry& registry) {
   const std::string robot_file = ResolveDataFile(robot_name, "robots/", ".yaml");
   const RobotSpec robot = LoadRobotSpec(robot_file);
@@ -183,6 +236,7 @@ void CheckRobot(const std::string& robot_name, const PluginRegistry& registry) {
   std::printf("%s: ok: robot '%s', %d bodies, %d joints, %d actuators, %zu components\n",
               robot_file.c_str(), robot.name.c_str(), m.nbody - 1, m.njnt, m.nu,
               kernel->model().components.size());
+  WarnIfItCannotStand(m, kernel->state().data());
   const Model& model = kernel->model();
   for (const EarlyRead& e : model.early_reads) {
     std::printf(
@@ -259,7 +313,13 @@ int CheckCommand(const CheckOptions& options) {
     int code = kExitPassed;
     try {
       if (IsScenario(target)) {
-        CheckScenario(target, overrides, registry);
+        // a .lua file that returns a function is a controller, as a class submits them
+        const std::string file = ResolveDataFile(target, "scenarios/", ".lua");
+        if (Scenario::ReturnsFunction(file)) {
+          std::printf("%s: ok: controller, returns function(time_s)\n", file.c_str());
+        } else {
+          CheckScenario(target, overrides, registry);
+        }
       } else {
         CheckRobot(target, registry);
       }

@@ -23,6 +23,8 @@ struct RunOptions {
   std::string scenario;                ///< scenario file or bundled name; "" for none
   std::vector<std::string> sets;       ///< scenario parameters, "name=value"
   std::string controller;              ///< Lua controller file for the scenario; "" for none
+  double trace_period_s = -1;  ///< seconds between trace rows; 0 no trace; -1 the robot file's
+  std::string trace_signals;   ///< signals the trace records; "" the robot file's
   bool duration_given = false;
   bool maze_given = false;
   // pictures (docs/pictures.md)

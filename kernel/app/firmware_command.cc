@@ -99,7 +99,14 @@ int FirmwareBuild(const FirmwareBuildOptions& options) {
     }
   }
 
-  const fs::path out = fs::absolute(options.out_dir).lexically_normal();
+  // by default the built files go beside the sketch file: into the sketch's own folder, where
+  // the program of the sketch folder's name cannot collide with the folder itself
+  const fs::path out = options.out_dir.empty() ? sketch.parent_path()
+                                               : fs::absolute(options.out_dir).lexically_normal();
+  if (!avr && fs::is_directory(out / name)) {
+    throw InputError((out / name).string() + " is a directory, so the built program cannot go " +
+                     "there: give --out another directory or --name another name");
+  }
   const fs::path work = out / ".unimouse-build" / (name + "-" + options.board);
   fs::create_directories(work);
   // a project of two lines, as a student's own CMake project would have it

@@ -10,10 +10,10 @@
 namespace unimouse {
 
 struct FirmwareBuildOptions {
-  std::string sketch;         ///< a sketch folder (NAME/NAME.ino) or a .ino, .cc or .cpp file
-  std::string out_dir = ".";  ///< where the built files go; the build tree is under it
-  std::string board = "pc";   ///< pc, or mega2560 for the emulated board
-  std::string name;           ///< of the built files; "" for the sketch's name
+  std::string sketch;   ///< a sketch folder (NAME/NAME.ino) or a .ino, .cc or .cpp file
+  std::string out_dir;  ///< where the built files go, "" beside the sketch; the build tree under it
+  std::string board = "pc";  ///< pc, or mega2560 for the emulated board
+  std::string name;          ///< of the built files; "" for the sketch's name
 };
 
 /// Builds the sketch, printing the build's own output and then how to run the result. Throws

@@ -18,6 +18,7 @@
 #include "transport_spec.h"
 #include "unimouse/errors.h"
 #include "viewer.h"
+#include "yaml_doc.h"
 
 namespace {
 
@@ -39,6 +40,39 @@ std::string LinkHelp() {
     // a broken plugin is reported when a command loads it, not in the help
   }
   return fallback;
+}
+
+// CLI11 takes a misspelt command for a stray argument ("A subcommand is required") and answers
+// `NAME --help` with the parent's help and exit code 0: walk the command words first, and name
+// the first one that is not a command, with the nearest command's name
+std::string UnknownCommand(CLI::App& app, int argc, char** argv) {
+  CLI::App* current = &app;
+  for (int i = 1; i < argc; ++i) {
+    const std::string token = argv[i];
+    if (token == "--") break;
+    if (token.size() > 1 && token[0] == '-') {
+      // an option's value is not a command word
+      const CLI::Option* option = current->get_option_no_throw(token);
+      if (option != nullptr && option->get_items_expected_max() > 0) ++i;
+      continue;
+    }
+    const std::vector<CLI::App*> commands = current->get_subcommands({});
+    if (commands.empty()) break;
+    CLI::App* next = nullptr;
+    std::vector<std::string> names;
+    for (CLI::App* command : commands) {
+      names.push_back(command->get_name());
+      if (command->get_name() == token) next = command;
+    }
+    if (next == nullptr) {
+      const std::string near = unimouse::NearestWord(token, names);
+      const std::string where = current == &app ? "" : " of '" + current->get_name() + "'";
+      return "unknown command '" + token + "'" + where +
+             (near.empty() ? "" : "; did you mean '" + near + "'?");
+    }
+    current = next;
+  }
+  return "";
 }
 
 }  // namespace
@@ -74,7 +108,9 @@ int main(int argc, char** argv) {
   run_cmd->add_option("--out", run.out_dir, "directory for result.json and other outputs")
       ->capture_default_str();
   run_cmd->add_option("--scenario", run.scenario,
-                      "challenge to run: a scenario file or the name of a bundled one");
+                      "challenge to run: a scenario file, the name of a bundled one, or none "
+                      "for the robot alone (without --scenario, --set, --controller and --link "
+                      "the run is the contest driven by the bundled firmware)");
   run_cmd->add_option("--set", run.sets, "scenario parameter, name=value (repeatable)");
   run_cmd->add_option("--controller", run.controller,
                       "Lua file returning function(time_s) that drives the robot through sim.*");
@@ -90,6 +126,13 @@ int main(int argc, char** argv) {
                       "what the firmware expects: unimouse (this project's library, the "
                       "default) or unimousesim-0.1 (built against the original UnimouseSim's "
                       "library: 1.0 m ToF scale, commands held while silent, no extensions)");
+
+  run_cmd->add_option("--trace-period", run.trace_period_s,
+                      "seconds between the rows of the trace (trace.csv, the robot file's "
+                      "unimouse.logger, every 10 ms in the bundled robot); 0 for no trace");
+  run_cmd->add_option("--trace-signals", run.trace_signals,
+                      "the signals the trace records, comma-separated, instead of the robot "
+                      "file's list");
 
   // pictures: none of these changes what is run
   run_cmd->add_option("--camera", run.camera, "camera of the pictures: top, chase or free")
@@ -122,10 +165,11 @@ int main(int argc, char** argv) {
       app.add_subcommand("check", "validate robot files and scenarios without running them");
   check_cmd
       ->add_option("files", check.targets,
-                   "robot YAML files, scenario .lua files, bundled robot or scenario names, or "
-                   "directories (every .yaml and .lua inside). A robot's components are created "
-                   "and bound; a scenario is loaded and its world built around the bundled "
-                   "robot. Nothing is started or written. Each is reported; the exit code is the "
+                   "robot YAML files, scenario or controller .lua files, bundled robot or "
+                   "scenario names, or directories (every .yaml and .lua inside). A robot's "
+                   "components are created and bound; a scenario is loaded and its world built "
+                   "around the bundled robot; a controller (a file that returns a function) is "
+                   "loaded. Nothing is started or written. Each is reported; the exit code is the "
                    "worst")
       ->required();
   check_cmd->add_option("--set", check.sets,
@@ -253,6 +297,18 @@ int main(int argc, char** argv) {
   mms_cmd->add_flag("--physical", mms.physical,
                     "the physics tier: each move driven on the simulated robot in MuJoCo, the "
                     "walls read by its sensors, the contest clock simulated time");
+  mms_cmd->add_flag("--strict-contacts", mms.strict_contacts,
+                    "with --physical: a move or turn carried out that grazed a wall replies crash "
+                    "(by default ack, the contact counted in the result: an mms program takes "
+                    "crash for a move that did not happen)");
+  mms_cmd
+      ->add_option("--maze-class", mms.maze_class,
+                   "with --physical: the maze built classic (180 mm cells), half (90 mm) or auto "
+                   "(half above 16 x 16), as the micromouse scenario's maze_class")
+      ->capture_default_str();
+  mms_cmd->add_flag("--centre-goal", mms.centre_goal,
+                    "the maze's centre cells are the goal, as mms has it, instead of the goal "
+                    "the maze file marks");
   mms_cmd->add_flag("--true-walls", mms.true_walls,
                     "with --physical: wall queries answered from the maze, not the sensors");
   mms_cmd->add_option("--robot", mms.robot, "with --physical: robot file or bundled robot name")
@@ -276,10 +332,10 @@ int main(int argc, char** argv) {
       "for the emulated board (an image for --link), docs/firmware.md");
   firmware_build_cmd->add_option("sketch", firmware.sketch, "sketch folder or .ino file")
       ->required();
-  firmware_build_cmd
-      ->add_option("--out", firmware.out_dir,
-                   "directory for the built files (the build tree goes in its .unimouse-build)")
-      ->capture_default_str();
+  firmware_build_cmd->add_option(
+      "--out", firmware.out_dir,
+      "directory for the built files (default: the sketch's folder; the build tree goes "
+      "in its .unimouse-build)");
   firmware_build_cmd->add_option("--board", firmware.board, "pc, or mega2560 for avr:")
       ->capture_default_str();
   firmware_build_cmd->add_option("--name", firmware.name,
@@ -321,6 +377,10 @@ int main(int argc, char** argv) {
   batch_job_cmd->add_option("--out", batch_out, "the batch's directory (the job's is DIR/jobs/ID)")
       ->required();
 
+  if (const std::string unknown = UnknownCommand(app, argc, argv); !unknown.empty()) {
+    std::fprintf(stderr, "unimouse: error: %s\n", unknown.c_str());
+    return kExitBadInput;
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -333,12 +393,15 @@ int main(int argc, char** argv) {
     run.duration_given = run_cmd->get_option("--duration")->count() > 0;
     run.maze_given = run_cmd->get_option("--maze")->count() > 0;
     if (run_cmd->parsed()) {
-      // the main job: nothing chosen, so the contest with the bundled micromouse firmware
-      bool chosen = false;
-      for (const char* option : {"--robot", "--maze", "--duration", "--scenario", "--set",
-                                 "--controller", "--link", "--realtime"}) {
+      // the main job: no challenge and no driver chosen, so the contest with the bundled
+      // micromouse firmware; the robot, the maze, the duration, the seed, the pacing and the
+      // pictures change how it runs, not what runs. An open floor has no contest, and
+      // `--scenario none` asks for the robot alone
+      bool chosen = run.maze == "none";
+      for (const char* option : {"--scenario", "--set", "--controller", "--link"}) {
         chosen = chosen || run_cmd->get_option(option)->count() > 0;
       }
+      if (run.scenario == "none") run.scenario.clear();
       if (!chosen) {
         run.scenario = "micromouse";
         run.sets = {"end_on_log=done"};

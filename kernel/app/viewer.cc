@@ -2,6 +2,7 @@
 #include "viewer.h"
 
 #include <GLFW/glfw3.h>
+#include <X11/Xlib.h>
 
 #include <chrono>
 #include <cstdio>
@@ -12,6 +13,9 @@
 #include "scene_renderer.h"
 #include "unimouse/errors.h"
 
+// GLFW's X11 display, declared as glfw3native.h does (which would need Xrandr's headers too)
+extern "C" Display* glfwGetX11Display(void);
+
 namespace unimouse {
 
 namespace {
@@ -20,6 +24,17 @@ Viewer* Of(GLFWwindow* w) { return static_cast<Viewer*>(glfwGetWindowUserPointer
 
 std::string last_glfw_error;
 void KeepGlfwError(int, const char* text) { last_glfw_error = text; }
+
+// Xlib ends the process when the display goes away (its X server quits): instead the display
+// is only marked dead, every Xlib call on it returns at once, and the viewer ends the run with
+// its result
+bool display_lost = false;
+int DisplayLost(Display*) {
+  display_lost = true;
+  return 0;
+}
+void DisplayLostExit(Display*, void*) { display_lost = true; }
+constexpr const char* kDisplayLost = "the viewer's display went away (its X server quit)";
 
 }  // namespace
 
@@ -30,6 +45,10 @@ Viewer::Viewer(const std::string& title, std::string out_dir, int max_frames)
     throw InputError("--view needs a display: " + (last_glfw_error.empty()
                                                        ? std::string("GLFW cannot start")
                                                        : last_glfw_error));
+  }
+  if (Display* display = glfwGetX11Display()) {
+    XSetIOErrorHandler(DisplayLost);
+    XSetIOErrorExitHandler(display, DisplayLostExit, nullptr);
   }
   glfwWindowHint(GLFW_SAMPLES, 4);
   window_ = glfwCreateWindow(1200, 900, title.c_str(), nullptr, nullptr);
@@ -61,6 +80,11 @@ Viewer::Viewer(const std::string& title, std::string out_dir, int max_frames)
 }
 
 Viewer::~Viewer() {
+  // with the display gone, neither the window nor the GL objects in it can be let go of
+  if (display_lost) {
+    (void)renderer_.release();
+    return;
+  }
   glfwMakeContextCurrent(window_);
   renderer_.reset();  // its GL objects go while the context still exists
   if (window_ != nullptr) glfwDestroyWindow(window_);
@@ -146,7 +170,7 @@ bool Viewer::Frame(Session& run, const std::string& state) {
   glfwMakeContextCurrent(nullptr);
   glfwPollEvents();
   if (last_frame) controls_.quit = true;
-  return !glfwWindowShouldClose(window_) && !controls_.quit;
+  return !display_lost && !glfwWindowShouldClose(window_) && !controls_.quit;
 }
 
 void Viewer::Begin(Session& run) {
@@ -185,6 +209,10 @@ void Viewer::Show(Session& run) {
     }
     if (!Frame(run, State(run))) break;
   }
+  if (display_lost) {
+    run.Stop(kDisplayLost);
+    return;
+  }
   glfwMakeContextCurrent(window_);
   renderer_.reset();
   glfwMakeContextCurrent(nullptr);
@@ -207,7 +235,7 @@ void Viewer::Watch(Session& run) {
       const bool open = Frame(run, State(run));
       last_frame_ = Clock::now();
       if (!open) {
-        run.Stop("the viewer's window was closed");
+        run.Stop(display_lost ? kDisplayLost : "the viewer's window was closed");
         return;
       }
       continue;
@@ -239,6 +267,7 @@ void Viewer::Watch(Session& run) {
 }
 
 void Viewer::Linger(Session& run, const std::string& ending) {
+  if (display_lost) return;
   if (!renderer_) Begin(run);
   controls_.restart = false;
   while (!glfwWindowShouldClose(window_) && !controls_.quit &&

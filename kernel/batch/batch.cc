@@ -63,7 +63,7 @@ int WriteManifestResults(const Manifest& m, const std::string& out, const std::s
     if (JobIsDone(m, job, out)) dirs.push_back(JobDirectory(out, job));
   }
   const nlohmann::json rows = JobRows(dirs, out);
-  WriteResults(out, rows, m.file, version);
+  WriteResults(out, rows, m.file, version, {m.rank_score, m.higher_is_better});
   *not_passed = 0;
   for (const auto& row : rows) *not_passed += row["status"] != "passed";
   return static_cast<int>(rows.size());
@@ -88,6 +88,10 @@ int RunBatch(const BatchOptions& o) {
   const int workers = o.workers > 0
                           ? o.workers
                           : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+  if (o.force) {
+    // forgotten before anything runs: an interrupted --force leaves no old result among the new
+    for (const auto& job : m.jobs) fs::remove_all(JobDirectory(out, job));
+  }
   std::vector<const Job*> queue;
   int done = 0, passed = 0;
   for (const auto& job : m.jobs) {
@@ -102,7 +106,12 @@ int RunBatch(const BatchOptions& o) {
   const bool terminal = ::isatty(1) != 0;
   std::printf("unimouse batch: %d jobs, %d to run, %d at a time, into %s\n", total,
               static_cast<int>(queue.size()), workers, out.c_str());
-  if (done > 0) std::printf("  %d already done, kept (--force runs them again)\n", done);
+  if (done > 0) {
+    std::printf(
+        "  %d already done with the same inputs (SHA-256 of submission, scenario, robot and "
+        "maze), kept (--force runs them again)\n",
+        done);
+  }
   std::fflush(stdout);
 
   // no SA_RESTART: a signal wakes the wait below
@@ -189,8 +198,10 @@ int RunBatch(const BatchOptions& o) {
   const double wall_s = std::chrono::duration<double>(Clock::now() - start).count();
   std::printf("unimouse batch: %d of %d jobs done, %d passed, %d not passed, %.1f s\n", recorded,
               total, recorded - not_passed, not_passed, wall_s);
-  std::printf("  results: %s/results.csv (also results.json, summary.csv, junit.xml)\n",
-              out.c_str());
+  std::printf(
+      "  report: %s/report.html (also results.csv, results.json, summary.csv, "
+      "junit.xml)\n",
+      out.c_str());
   if (stop_signal != 0) {
     std::printf("  interrupted: run the same command again to go on where it stopped\n");
     return kExitRuntimeFault;
@@ -275,12 +286,21 @@ int CollectBatch(const std::vector<std::string>& dirs, const std::string& out_di
   const nlohmann::json rows = JobRows(job_dirs, out);
   const std::string manifest =
       nlohmann::json::parse(ReadTextFile(job_dirs.front() + "/job.json")).value("manifest", "");
-  WriteResults(out, rows, manifest, version);
+  // the manifest's ranking, when it is still where the jobs ran it from
+  ScoreRanking ranking;
+  try {
+    const Manifest m = LoadManifest(manifest);
+    ranking = {m.rank_score, m.higher_is_better};
+  } catch (const std::exception&) {
+  }
+  WriteResults(out, rows, manifest, version, ranking);
   int not_passed = 0;
   for (const auto& row : rows) not_passed += row["status"] != "passed";
-  std::printf("unimouse batch collect: %zu jobs, %zu passed, %d not passed\n  results: %s\n",
-              rows.size(), rows.size() - static_cast<size_t>(not_passed), not_passed,
-              (fs::path(out) / "results.csv").c_str());
+  std::printf(
+      "unimouse batch collect: %zu jobs, %zu passed, %d not passed\n  report: %s (also "
+      "results.csv, results.json, summary.csv, junit.xml)\n",
+      rows.size(), rows.size() - static_cast<size_t>(not_passed), not_passed,
+      (fs::path(out) / "report.html").c_str());
   return not_passed == 0 ? kExitPassed : kExitFailed;
 }
 

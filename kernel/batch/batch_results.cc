@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <map>
+#include <optional>
 #include <set>
 #include <sstream>
 
@@ -86,6 +87,10 @@ json JobRows(const std::vector<std::string>& job_dirs, const std::string& out_di
     if (!row["scores"].is_object()) row["scores"] = json::object();
     row["dir"] = relative;
     row["pictures"] = pictures;
+    // what the job graded: each input file with its SHA-256
+    row["inputs"] = job.contains("command") && job["command"].contains("inputs")
+                        ? job["command"]["inputs"]
+                        : json::array();
     rows[id] = std::move(row);
   }
   json list = json::array();
@@ -93,7 +98,18 @@ json JobRows(const std::vector<std::string>& job_dirs, const std::string& out_di
   return list;
 }
 
-json Summarize(const json& rows) {
+json Summarize(const json& rows, const ScoreRanking& ranking) {
+  auto higher_better = [&](const std::string& name) {
+    return std::find(ranking.higher_is_better.begin(), ranking.higher_is_better.end(), name) !=
+           ranking.higher_is_better.end();
+  };
+  // each submission's numeric values of each score, over its jobs
+  std::map<std::string, std::map<std::string, std::vector<double>>> values;
+  for (const auto& row : rows) {
+    for (const auto& [name, value] : row["scores"].items()) {
+      if (value.is_number()) values[Text(row["submission"])][name].push_back(value.get<double>());
+    }
+  }
   std::map<std::string, json> by_submission;
   for (const auto& row : rows) {
     json& s = by_submission[Text(row["submission"])];
@@ -134,18 +150,52 @@ json Summarize(const json& rows) {
     s["mean_path_cost"] =
         costs.empty() ? json(nullptr) : json(sum / static_cast<double>(costs.size()));
     s.erase("path_costs");
+    s["scores"] = json::object();
+    for (const auto& [score, list] : values[name]) {
+      double total = 0;
+      for (double v : list) total += v;
+      const auto [low, high] = std::minmax_element(list.begin(), list.end());
+      const bool higher = higher_better(score);
+      s["scores"][score] = {{"jobs", list.size()},
+                            {"mean", total / static_cast<double>(list.size())},
+                            {"best", higher ? *high : *low},
+                            {"worst", higher ? *low : *high}};
+    }
     summary.push_back(std::move(s));
   }
+  if (ranking.score.empty()) return summary;
+  // ranked by each submission's best value of the score; those without one last, unranked
+  const bool higher = higher_better(ranking.score);
+  auto best_of = [&](const json& s) -> std::optional<double> {
+    const json& scores = s["scores"];
+    if (!scores.contains(ranking.score)) return std::nullopt;
+    return scores[ranking.score]["best"].get<double>();
+  };
+  std::stable_sort(summary.begin(), summary.end(), [&](const json& a, const json& b) {
+    const auto va = best_of(a), vb = best_of(b);
+    if (!va || !vb) return va.has_value() && !vb.has_value();
+    return higher ? *va > *vb : *va < *vb;
+  });
+  int position = 0;
+  for (auto& s : summary) s["rank"] = best_of(s) ? json(++position) : json(nullptr);
   return summary;
 }
 
 void WriteResults(const std::string& out_dir, const json& rows, const std::string& manifest,
-                  const std::string& version) {
+                  const std::string& version, const ScoreRanking& ranking) {
   const fs::path out(out_dir);
   fs::create_directories(out);
-  const json summary = Summarize(rows);
-  const json results = {
+  const json summary = Summarize(rows, ranking);
+  json results = {
       {"unimouse_version", version}, {"manifest", manifest}, {"jobs", rows}, {"summary", summary}};
+  results["rank"] = ranking.score.empty()
+                        ? json(nullptr)
+                        : json{{"score", ranking.score},
+                               {"better", std::find(ranking.higher_is_better.begin(),
+                                                    ranking.higher_is_better.end(),
+                                                    ranking.score) != ranking.higher_is_better.end()
+                                              ? "higher"
+                                              : "lower"}};
   WriteTextFile((out / "results.json").string(),
                 results.dump(2, ' ', false, json::error_handler_t::replace) + "\n");
   WriteBatchReport(results, out / "report.html");

@@ -25,14 +25,26 @@ nlohmann::json JobRows(const std::vector<std::string>& job_dirs, const std::stri
 /// Returns every directory under `root` (itself included) that holds a job.json, sorted.
 std::vector<std::string> FindJobDirectories(const std::string& root);
 
-/// Returns the per-submission summary of job rows: jobs and a count per status, the best
-/// passed job (lowest best_run_s score, else lowest sim time) and the mean of the
-/// best_run_path_cost scores (null when no job reports one).
-nlohmann::json Summarize(const nlohmann::json& rows);
+/// Which score ranks the submissions, and which scores are better high (the others are better
+/// low), as a manifest declares them (`rank:`, `higher_is_better:`).
+struct ScoreRanking {
+  std::string score;                          ///< "" for no ranking
+  std::vector<std::string> higher_is_better;  ///< score names
+};
 
-/// Writes results.json, results.csv, summary.csv, junit.xml and report.html into out_dir.
+/// Returns the per-submission summary of job rows: jobs and a count per status, the best
+/// passed job (lowest best_run_s score, else lowest sim time), the mean of the
+/// best_run_path_cost scores (null when no job reports one), and for every score any of its
+/// jobs reports `scores: {name: {jobs, mean, best, worst}}` (best and worst by the ranking's
+/// direction for that score). With a ranking score, each submission's `rank` (1 the best, by its
+/// best value of that score; null without one), and the list in rank order.
+nlohmann::json Summarize(const nlohmann::json& rows, const ScoreRanking& ranking = {});
+
+/// Writes results.json (with the ranking as `rank`), results.csv, summary.csv, junit.xml and
+/// report.html into out_dir.
 void WriteResults(const std::string& out_dir, const nlohmann::json& rows,
-                  const std::string& manifest, const std::string& version);
+                  const std::string& manifest, const std::string& version,
+                  const ScoreRanking& ranking = {});
 
 }  // namespace unimouse::batch
 

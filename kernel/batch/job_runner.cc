@@ -18,7 +18,10 @@
 #include <optional>
 #include <thread>
 
+#include "install_paths.h"
+#include "sha256.h"
 #include "text_file.h"
+#include "transport_spec.h"
 #include "unimouse/errors.h"
 
 namespace unimouse::batch {
@@ -233,10 +236,57 @@ std::string JobDirectory(const std::string& batch_out, const Job& job) {
   return (fs::path(batch_out) / "jobs" / job.id).string();
 }
 
+nlohmann::json JobInputs(const Manifest& manifest, const Job& job) {
+  const Submission& sub = manifest.submissions[static_cast<size_t>(job.submission)];
+  nlohmann::json inputs = nlohmann::json::array();
+  auto add = [&](const char* role, const std::string& file) {
+    // a file that cannot be read is the run's bad input; here it is only named
+    std::string sha256;
+    try {
+      sha256 = FileSha256(file);
+    } catch (const InputError&) {
+    }
+    inputs.push_back({{"role", role}, {"file", file}, {"sha256", sha256}});
+  };
+  // a bundled name stands for its file; a name that is none is the run's bad input
+  auto bundled = [&](const char* role, const std::string& name, const char* folder,
+                     const char* extension) {
+    try {
+      add(role, ResolveDataFile(name, folder, extension));
+    } catch (const InputError&) {
+      inputs.push_back({{"role", role}, {"file", name}, {"sha256", ""}});
+    }
+  };
+  if (!sub.controller.empty()) add("submission", sub.controller);
+  if (!sub.link.empty()) {
+    const std::string firmware = link::ParseTransportSpec(sub.link).firmware;
+    if (!firmware.empty()) add("submission", firmware);
+  }
+  // an mms program: each of its words that names a file (the program, its script)
+  for (const std::string& word : sub.mms) {
+    const fs::path file = fs::path(sub.program_dir) / word;
+    std::error_code error;
+    if (fs::is_regular_file(file, error)) add("submission", file.lexically_normal().string());
+  }
+  if (job.scenario >= 0) {
+    const ScenarioEntry& scenario = manifest.scenarios[static_cast<size_t>(job.scenario)];
+    bundled("scenario", scenario.file, "scenarios/", ".lua");
+    bundled("robot", sub.robot.empty() ? manifest.robot : sub.robot, "robots/", ".yaml");
+    const std::string maze = !job.maze_file.empty() ? job.maze_file
+                             : scenario.has_maze    ? scenario.default_maze
+                                                    : std::string();
+    if (!maze.empty()) bundled("maze", maze, "mazes/", ".txt");
+  } else if (!job.maze_file.empty()) {
+    bundled("maze", job.maze_file, "mazes/", ".txt");
+  }
+  return inputs;
+}
+
 nlohmann::json JobCommand(const Manifest& manifest, const Job& job, const std::string& batch_out) {
   const Submission& sub = manifest.submissions[static_cast<size_t>(job.submission)];
   return {{"run", RunArguments(manifest, job, JobDirectory(batch_out, job))},
-          {"limits", LimitsJson(sub.limits)}};
+          {"limits", LimitsJson(sub.limits)},
+          {"inputs", JobInputs(manifest, job)}};
 }
 
 bool JobIsDone(const Manifest& manifest, const Job& job, const std::string& batch_out) {
@@ -331,7 +381,12 @@ int RunJob(const Manifest& manifest, const Job& job, const std::string& batch_ou
     end.exit_code = -1;
   }
   const nlohmann::json result = ReadResult(dir / "result.json");
-  const JobOutcome outcome = ClassifyJob(end, result, limits);
+  JobOutcome outcome = ClassifyJob(end, result, limits);
+  // the manifest's paths are made absolute for the run; the teacher wrote them relative to it
+  const std::string beside = fs::path(manifest.file).parent_path().string() + "/";
+  for (size_t at; (at = outcome.reason.find(beside)) != std::string::npos;) {
+    outcome.reason.erase(at, beside.size());
+  }
   using P = nlohmann::json::json_pointer;
   nlohmann::json record = {
       {"id", job.id},

@@ -40,8 +40,13 @@ std::string SignalName(int signal);
 /// Returns the job's directory: batch_out/jobs/<id>.
 std::string JobDirectory(const std::string& batch_out, const Job& job);
 
-/// Returns what job.json records of how the job runs: the run's arguments and the limits.
-/// A job whose job.json records the same is done (a batch resumes without it).
+/// Returns every file the job reads (its submission's files, the scenario, the robot, the
+/// maze), each as {role, file, sha256}; sha256 is "" for a file that cannot be read.
+nlohmann::json JobInputs(const Manifest& manifest, const Job& job);
+
+/// Returns what job.json records of how the job runs: the run's arguments, the limits and the
+/// inputs with their SHA-256. A job whose job.json records the same is done (a batch resumes
+/// without it): a changed submission, scenario, robot or maze file runs it again.
 nlohmann::json JobCommand(const Manifest& manifest, const Job& job, const std::string& batch_out);
 
 /// Whether the job's directory holds a job.json for exactly this job command.

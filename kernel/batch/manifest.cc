@@ -116,7 +116,7 @@ std::vector<std::string> Words(const YamlNode& node, const std::string& what) {
 Submission ReadSubmission(const YamlNode& node, const fs::path& dir, const JobLimits& limits) {
   const MapReader r(node, "submission",
                     {"name", "link", "controller", "mms", "dir", "mms_options", "link_set",
-                     "firmware_profile", "limits"});
+                     "firmware_profile", "robot", "limits"});
   Submission s;
   s.location = node.location;
   s.name = r.Required("name").AsString("name");
@@ -154,6 +154,10 @@ Submission ReadSubmission(const YamlNode& node, const fs::path& dir, const JobLi
   s.firmware_profile = r.String("firmware_profile", "");
   if (!s.firmware_profile.empty() && link == nullptr) {
     r.Required("firmware_profile").Fail("firmware_profile goes with link");
+  }
+  if (const YamlNode* robot = r.Optional("robot")) {
+    if (mms != nullptr) robot->Fail("robot goes with link or controller: an mms program has none");
+    s.robot = DataFile(*robot, dir, "robots/", ".yaml");
   }
   s.limits = limits;
   if (const YamlNode* own = r.Optional("limits")) s.limits = ReadLimits(*own, limits);
@@ -265,9 +269,25 @@ Manifest LoadManifest(const std::string& path) {
   const fs::path dir = fs::path(m.file).parent_path();
   const YamlNode root = LoadYamlFile(path);
   const MapReader r(root, "manifest",
-                    {"robot", "submissions", "scenarios", "mazes", "seeds", "limits", "jobs"});
+                    {"robot", "trace", "rank", "higher_is_better", "submissions", "scenarios",
+                     "mazes", "seeds", "limits", "jobs"});
+  m.rank_score = r.String("rank", "");
+  if (const YamlNode* higher = r.Optional("higher_is_better")) {
+    for (const auto& item : ListOf(*higher, "higher_is_better").items) {
+      m.higher_is_better.push_back(item.AsString("score"));
+    }
+  }
   if (const YamlNode* robot = r.Optional("robot")) {
     m.robot = DataFile(*robot, dir, "robots/", ".yaml");
+  }
+  if (const YamlNode* trace = r.Optional("trace")) {
+    // a class's traces add up to gigabytes: jobs keep none unless the teacher asks
+    const MapReader t(*trace, "trace", {"period_s", "signals"});
+    char period[32];
+    std::snprintf(period, sizeof(period), "%.17g",
+                  Bounded(t.Required("period_s"), "period_s", 0, 3600));
+    m.trace_period_s = period;
+    m.trace_signals = t.String("signals", "");
   }
   const JobLimits limits =
       r.Optional("limits") ? ReadLimits(*r.Optional("limits"), {}) : JobLimits{};
@@ -434,9 +454,20 @@ std::vector<std::string> RunArguments(const Manifest& manifest, const Job& job,
     return args;
   }
   const ScenarioEntry& scenario = manifest.scenarios[static_cast<size_t>(job.scenario)];
-  std::vector<std::string> args = {
-      "run",     "--out",        out_dir,      "--seed",     std::to_string(job.seed),
-      "--robot", manifest.robot, "--scenario", scenario.file};
+  std::vector<std::string> args = {"run",
+                                   "--out",
+                                   out_dir,
+                                   "--seed",
+                                   std::to_string(job.seed),
+                                   "--robot",
+                                   sub.robot.empty() ? manifest.robot : sub.robot,
+                                   "--scenario",
+                                   scenario.file,
+                                   "--trace-period",
+                                   manifest.trace_period_s};
+  if (!manifest.trace_signals.empty()) {
+    args.insert(args.end(), {"--trace-signals", manifest.trace_signals});
+  }
   for (const auto& set : scenario.sets) args.insert(args.end(), {"--set", set});
   if (!job.maze_file.empty()) args.insert(args.end(), {"--maze", job.maze_file});
   if (!sub.controller.empty()) args.insert(args.end(), {"--controller", sub.controller});

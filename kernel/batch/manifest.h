@@ -48,7 +48,8 @@ struct Submission {
   std::string program_dir;               ///< the mms program's working directory (absolute)
   std::vector<std::string> link_sets;    ///< --link-set name=value
   std::string firmware_profile;          ///< --firmware-profile; "" for the default
-  JobLimits limits;                      ///< the manifest's limits, with this entry's overrides
+  std::string robot;  ///< its own robot file (absolute) or bundled name; "" for the manifest's
+  JobLimits limits;   ///< the manifest's limits, with this entry's overrides
   SourceLocation location;
 };
 
@@ -85,6 +86,11 @@ struct Job {
 struct Manifest {
   std::string file;  ///< absolute path of the manifest
   std::string robot = "unimouse";
+  /// --trace-period of every job: 0 (no trace) unless the manifest's `trace:` asks for one
+  std::string trace_period_s = "0";
+  std::string trace_signals;  ///< --trace-signals of every job; "" for the robot file's
+  std::string rank_score;     ///< the score that ranks the submissions (`rank:`); "" for none
+  std::vector<std::string> higher_is_better;  ///< scores better high (`higher_is_better:`)
   std::vector<Submission> submissions;
   std::vector<ScenarioEntry> scenarios;
   std::vector<Job> jobs;  ///< the product, or the explicit `jobs:` list; sorted by id

@@ -241,7 +241,9 @@ MmsResponse MmsWorld::Turn(int eighths) {
 bool MmsWorld::BodyMoved(const MmsMotion& motion) {
   contest_time_s_ += motion.time_s;
   if (body_failure_.failure.empty()) body_failure_ = motion;
-  return motion.contact;
+  // a move carried out is a move made, grazed or not, unless the strict reading is asked for
+  grazes_ += motion.contact;
+  return motion.contact && contact_is_crash_;
 }
 
 void MmsWorld::SetBody(MmsBody* body, bool true_walls) {

@@ -68,7 +68,7 @@ struct MmsStats {
 /// What carrying out one move on a body took.
 struct MmsMotion {
   double time_s = 0;     ///< the contest time it took
-  bool contact = false;  ///< the robot touched a wall on the way: the move replies `crash`
+  bool contact = false;  ///< the robot touched a wall on the way (a `crash` only when strict)
   /// "" when the move finished; else how the run ends ("stuck", "off_course", "error")
   std::string failure;
   std::string why;  ///< the failure's reason, for the log and result.json
@@ -121,6 +121,12 @@ class MmsWorld {
   /// the contest time is the body's. `true_walls`: `wall*` answers come from the maze, not the
   /// body's sensors.
   void SetBody(MmsBody* body, bool true_walls);
+  /// Whether a move or turn the body carried out but grazed a wall on replies `crash` (the
+  /// strict reading) instead of `ack`: an mms program takes `crash` for a move that did not
+  /// happen, and loses its position.
+  void set_contact_is_crash(bool strict) { contact_is_crash_ = strict; }
+  /// Returns the moves and turns carried out that touched a wall on the way.
+  long grazes() const { return grazes_; }
   /// Returns the first move the body could not finish (its `failure` is "" while none).
   const MmsMotion& body_failure() const { return body_failure_; }
   const MmsWallCounts& wall_counts() const { return wall_counts_; }
@@ -152,6 +158,8 @@ class MmsWorld {
   double contest_time_s_ = 0;
   long moves_ = 0;
   long crashes_ = 0;
+  long grazes_ = 0;
+  bool contact_is_crash_ = false;
   MmsBody* body_ = nullptr;
   bool true_walls_ = false;
   MmsMotion body_failure_;

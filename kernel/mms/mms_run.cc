@@ -17,6 +17,7 @@
 #include <optional>
 #include <thread>
 
+#include "geom_extent.h"
 #include "install_paths.h"
 #include "mms_physical.h"
 #include "mms_picture.h"
@@ -395,10 +396,31 @@ class Exchange {
   double paced_s_ = 0;
 };
 
+// a robot wider than the maze's corridors scrapes both walls of every one: the physics tier
+// cannot drive it, whatever the program does
+void WarnIfTheRobotDoesNotFit(Session& session) {
+  Kernel& kernel = session.kernel();
+  const MazeDimensions maze = kernel.world().maze_dimensions();
+  const double corridor_m = maze.cell_m - maze.wall_thickness_m;
+  const double width_m = WidthAcrossX(kernel.mj_model(), kernel.state().data());
+  if (width_m <= corridor_m) return;
+  char text[256];
+  std::snprintf(text, sizeof(text),
+                "the robot is %.0f mm wide and this %s maze's corridors are %.0f mm: it does not "
+                "fit (a half-size maze wants a half-size robot, --robot unimouse-half)",
+                width_m * 1000, maze.cell_m < 0.1 ? "half-size" : "classic", corridor_m * 1000);
+  kernel.Log(UNIMOUSE_LOG_WARNING, "mms", text);
+}
+
 void CheckOptions(const MmsRunOptions& o) {
   UNIMOUSE_THROW_UNLESS(o.program.empty() != o.port.empty(),
                         "unimouse mms: name the program after --, or a --port, not both");
   UNIMOUSE_THROW_UNLESS(o.physical || !o.true_walls, "--true-walls goes with --physical");
+  UNIMOUSE_THROW_UNLESS(o.physical || !o.strict_contacts, "--strict-contacts goes with --physical");
+  UNIMOUSE_THROW_UNLESS(
+      o.maze_class == "auto" || o.maze_class == "classic" || o.maze_class == "half",
+      "--maze-class " + o.maze_class + ": the classes are auto, classic and half");
+  UNIMOUSE_THROW_UNLESS(o.physical || o.maze_class == "auto", "--maze-class goes with --physical");
   UNIMOUSE_THROW_UNLESS(o.physical || !o.watch, "--view goes with --physical");
   UNIMOUSE_THROW_UNLESS(!o.watch || !o.realtime, "--view paces the run itself: drop --realtime");
   auto positive = [](double v) { return std::isfinite(v) && v > 0; };
@@ -424,7 +446,9 @@ int RunMms(const MmsRunOptions& options) {
   try {
     CheckOptions(options);
     const std::string maze_file = ResolveDataFile(options.maze, "mazes/", ".txt");
-    const Maze maze = LoadMaze(maze_file);
+    Maze maze = LoadMaze(maze_file);
+    // mms's goal: the maze's centre cells, whatever the file marks
+    if (options.centre_goal) maze.set_goals(CentreCells(maze.width(), maze.height()));
     SetMazeIdentity(record, maze_file, &maze);
     fs::create_directories(options.out_dir);
     signal(SIGPIPE, SIG_IGN);
@@ -441,12 +465,15 @@ int RunMms(const MmsRunOptions& options) {
       run.duration_given = true;
       run.seed = options.seed;
       run.out_dir = options.out_dir;
+      if (options.maze_class != "auto") run.maze_class = options.maze_class;
       run.driven_by_caller = true;
       run.paced_by_caller = bool(options.watch);
       session = Session::Open(run);
       if (options.watch) session->SetStepWatcher(options.watch);
+      WarnIfTheRobotDoesNotFit(*session);
       robot = std::make_unique<MmsRobot>(*session);
       world.SetBody(robot.get(), options.true_walls);
+      world.set_contact_is_crash(options.strict_contacts);
     }
     std::unique_ptr<Channel> channel;
     if (options.port.empty()) {

@@ -4,6 +4,8 @@
 #include <array>
 #include <cstdio>
 #include <map>
+#include <set>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -33,7 +35,8 @@ table { border-collapse: collapse; font-size: 0.9em; }
 th, td { border: 1px solid #ccc; padding: 0.25em 0.5em; text-align: left; vertical-align: top; }
 th { background: #eee; position: sticky; top: 0; white-space: nowrap; }
 td.num { text-align: right; font-variant-numeric: tabular-nums; white-space: nowrap; }
-td.reason { max-width: 40em; white-space: pre-wrap; overflow-wrap: anywhere; }
+td.reason { max-width: 28em; white-space: pre-wrap; overflow-wrap: anywhere; }
+.wide { max-width: 100%; overflow-x: auto; }
 tbody tr:nth-child(even) { background: #f7f7f7; }
 tbody tr:target { outline: 2px solid #1565c0; }
 .js th[data-key] { cursor: pointer; }
@@ -121,15 +124,19 @@ constexpr std::string_view kScript = R"(<script>
 
   // the address's fragment opens the page sorted and filtered (#sort=-wall_time_s&status=failed);
   // sorting clicks the column's header, once for ascending, twice for descending
+  // and summary=KEY sorts the submissions' table (#summary=scores.best_run_s.best)
   var options = new URLSearchParams(location.hash.slice(1));
-  var sort = options.get('sort') || '';
-  var descending = sort.charAt(0) === '-';
-  var name = descending ? sort.slice(1) : sort;
-  Array.prototype.forEach.call(jobs.tHead.rows[0].cells, function (th) {
-    if (name === '' || th.getAttribute('data-key') !== name) return;
-    th.click();
-    if (descending) th.click();
-  });
+  function sortFromAddress(table, sort) {
+    var descending = sort.charAt(0) === '-';
+    var name = descending ? sort.slice(1) : sort;
+    Array.prototype.forEach.call(table.tHead.rows[0].cells, function (th) {
+      if (name === '' || th.getAttribute('data-key') !== name) return;
+      th.click();
+      if (descending) th.click();
+    });
+  }
+  sortFromAddress(jobs, options.get('sort') || '');
+  sortFromAddress(document.getElementById('summary'), options.get('summary') || '');
   if (options.has('status')) statusFilter.value = options.get('status');
   if (options.has('text')) textFilter.value = options.get('text');
   filterJobs();
@@ -269,7 +276,8 @@ std::string JobTable(const json& jobs) {
   columns.push_back({"wall_time_s", "Wall time (s)", true});
   columns.push_back({"", "Pictures"});
 
-  std::string out = "<table id=\"jobs\" class=\"sortable\">\n" + HeaderRow(columns) + "<tbody>\n";
+  std::string out = "<div class=\"wide\"><table id=\"jobs\" class=\"sortable\">\n" +
+                    HeaderRow(columns) + "<tbody>\n";
   size_t index = 0;
   for (const auto& job : jobs) {
     out += "<tr id=\"job-" + std::to_string(index++) + "\" data-job=\"" +
@@ -290,7 +298,7 @@ std::string JobTable(const json& jobs) {
     out += NumberCell(Field(job, "wall_time_s"), Seconds(Field(job, "wall_time_s")));
     out += PicturesCell(job) + "</tr>\n";
   }
-  return out + "</tbody>\n</table>\n";
+  return out + "</tbody>\n</table></div>\n";
 }
 
 // the best run: its job's id, linked to the job's row when the page has it, then its other members
@@ -306,32 +314,70 @@ std::string BestCell(const json& best, const json& jobs) {
       break;
     }
   }
+  // its scores one by one, as numbers, not as the JSON they are kept in
   for (const auto& [name, value] : best.items()) {
-    if (name != "id") parts.push_back(XmlEscaped(name) + " " + XmlEscaped(Shown(value)));
+    if (name == "id") continue;
+    if (!value.is_object()) {
+      parts.push_back(XmlEscaped(name) + " " + XmlEscaped(Shown(value)));
+      continue;
+    }
+    for (const auto& [inner, number] : value.items()) {
+      parts.push_back(XmlEscaped(inner) + " " + XmlEscaped(Shown(number)));
+    }
   }
   std::string out = "<td>";
   for (size_t i = 0; i < parts.size(); ++i) out += (i == 0 ? "" : "; ") + parts[i];
   return out + "</td>";
 }
 
-std::string SummaryTable(const json& summary, const json& jobs) {
-  std::vector<Column> columns = {{"submission", "Submission"}, {"jobs", "Jobs", true}};
+// every score name any submission's summary has
+std::set<std::string> SummaryScoreNames(const json& summary) {
+  std::set<std::string> names;
+  for (const auto& row : summary) {
+    const json& scores = Field(row, "scores");
+    if (!scores.is_object()) continue;
+    for (const auto& [name, value] : scores.items()) names.insert(name);
+  }
+  return names;
+}
+
+std::string SummaryTable(const json& summary, const json& jobs, const json& rank) {
+  const bool ranked = rank.is_object();
+  std::vector<Column> columns;
+  if (ranked) columns.push_back({"rank", "Rank", true});
+  columns.push_back({"submission", "Submission"});
+  columns.push_back({"jobs", "Jobs", true});
   for (const char* status : kStatuses) columns.push_back({status, status, true});
   columns.push_back({"best", "Best run"});
   columns.push_back({"mean_path_cost", "Mean path cost", true});
-  std::string out =
-      "<table id=\"summary\" class=\"sortable\">\n" + HeaderRow(columns) + "<tbody>\n";
+  // each score the jobs report: its mean, best and worst over the submission's jobs
+  const std::set<std::string> score_names = SummaryScoreNames(summary);
+  for (const auto& name : score_names) {
+    for (const char* what : {"mean", "best", "worst"}) {
+      columns.push_back({"scores." + name + "." + what, name + " " + what, true});
+    }
+  }
+  std::string out = "<div class=\"wide\"><table id=\"summary\" class=\"sortable\">\n" +
+                    HeaderRow(columns) + "<tbody>\n";
   for (const auto& row : summary) {
-    out += "<tr>" + TextCell(Shown(Field(row, "submission")));
+    out += "<tr>";
+    if (ranked) out += NumberCell(Field(row, "rank"), Shown(Field(row, "rank")));
+    out += TextCell(Shown(Field(row, "submission")));
     out += NumberCell(Field(row, "jobs"), Shown(Field(row, "jobs")));
     for (const char* status : kStatuses) {
       out += NumberCell(Field(row, status), Shown(Field(row, status)));
     }
     out += BestCell(Field(row, "best"), jobs);
     out += NumberCell(Field(row, "mean_path_cost"), Shown(Field(row, "mean_path_cost")));
+    for (const auto& name : score_names) {
+      const json& score = Field(Field(row, "scores"), name.c_str());
+      for (const char* what : {"mean", "best", "worst"}) {
+        out += NumberCell(Field(score, what), Shown(Field(score, what)));
+      }
+    }
     out += "</tr>\n";
   }
-  return out + "</tbody>\n</table>\n";
+  return out + "</tbody>\n</table></div>\n";
 }
 
 // "12 jobs: 9 passed, 2 failed, 1 timeout"
@@ -361,7 +407,14 @@ std::string BatchReportHtml(const nlohmann::json& results) {
   out += "<h1>Batch report</h1>\n<p>Manifest <code>" + XmlEscaped(manifest) + "</code>, unimouse " +
          XmlEscaped(Shown(Field(results, "unimouse_version"))) + ". " +
          XmlEscaped(JobCounts(jobs)) + ".</p>\n";
-  out += "<h2>Submissions</h2>\n" + SummaryTable(summary, jobs);
+  const json& rank = Field(results, "rank");
+  std::string ranking;
+  if (rank.is_object()) {
+    ranking = " Ranked by the best " + XmlEscaped(Shown(Field(rank, "score"))) + " (" +
+              XmlEscaped(Shown(Field(rank, "better"))) + " is better).";
+  }
+  out += "<h2>Submissions</h2>\n<p>Each score's mean, best and worst over the submission's jobs." +
+         ranking + "</p>\n" + SummaryTable(summary, jobs, rank);
   out +=
       "<h2>Jobs</h2>\n<div id=\"controls\" hidden><label>Status <select id=\"status-filter\">"
       "<option value=\"\">all</option>";

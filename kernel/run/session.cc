@@ -180,6 +180,7 @@ void Session::Assemble() {
                         "--duration must be a positive number of seconds");
   robot_file_ = ResolveDataFile(o.robot, "robots/", ".yaml");
   robot_ = LoadRobotSpec(robot_file_);
+  ApplyTraceOptions(o.trace, robot_);
   identity_["robot"] = robot_file_;
   identity_["robot_name"] = robot_.name;
   identity_["robot_sha256"] = FileSha256(robot_file_);
@@ -227,6 +228,9 @@ void Session::Assemble() {
     if (o.maze != "none") {
       maze_file_ = ResolveDataFile(o.maze, "mazes/", ".txt");
       maze_ = std::make_unique<Maze>(LoadMaze(maze_file_));
+      if (!o.maze_class.empty()) {
+        maze_->set_class(o.maze_class == "half" ? MazeClass::kHalfSize : MazeClass::kClassic);
+      }
     }
   }
   SetMazeIdentity(identity_, maze_file_, maze_.get());

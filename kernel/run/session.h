@@ -27,6 +27,7 @@
 #include "robot_spec.h"
 #include "run_pictures.h"
 #include "scenario.h"
+#include "trace_options.h"
 
 namespace unimouse {
 
@@ -56,7 +57,10 @@ struct SessionOptions {
   std::string link;                          ///< transport spec (transport_spec.h); "" none
   std::vector<std::string> link_sets;        ///< link parameters, "name=value"
   std::string firmware_profile;  ///< what the firmware expects ("unimousesim-0.1"); "" default
-  bool realtime = false;  ///< pace to the wall clock, even a firmware in lock-step (to watch)
+  TraceOptions trace;            ///< the trace loggers' rate and signals, or no trace
+  std::string maze_class;  ///< without a scenario: "classic" or "half" builds the maze so; "" its
+                           ///< size's class
+  bool realtime = false;   ///< pace to the wall clock, even a firmware in lock-step (to watch)
   bool paced_by_caller = false;          ///< a viewer paces the run itself
   std::string scenario;                  ///< scenario file or bundled name; "" for none
   std::vector<std::string> sets;         ///< scenario parameters, "name=value"

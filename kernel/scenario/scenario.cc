@@ -265,7 +265,9 @@ void Scenario::Spend(lua_State* L, int level, int64_t instructions) {
     budget_error_ =
         ScriptLine(L, level) + "instruction budget exhausted: " +
         (instructions_ > kScenarioInstructionBudget
-             ? std::string("a loop that never waits (use sim.wait)?")
+             ? "more than " + std::to_string(std::lround(kScenarioInstructionBudget / 1e6)) +
+                   " million instructions in one call into the script, its limit per call (a "
+                   "loop that never waits? use sim.wait)"
              : "more than " + std::to_string(std::lround(kScenarioInstructionsPerSecond / 1e6)) +
                    " million instructions per simulated second on average");
   }
@@ -370,6 +372,22 @@ void Scenario::Throw(const std::string& traceback, const char* what) {
   if (kernel_ != nullptr) kernel_->Log(UNIMOUSE_LOG_INFO, "scenario", traceback);
   throw ScriptFault(Headline(traceback) + (*what != '\0' ? " (in " + std::string(what) + ")" : ""),
                     traceback);
+}
+
+bool Scenario::ReturnsFunction(const std::string& path) {
+  std::unique_ptr<Scenario> s(new Scenario());
+  s->file_ = path;
+  s->rng_ = RngStream(1, "scenario");
+  s->chunk_ = {ReadTextFile(path), "@" + path};
+  lua_State* L = s->L_ = lua_newstate(LuaMemory::Allocate, &s->memory_);
+  UNIMOUSE_DEMAND(L != nullptr);
+  *static_cast<Scenario**>(lua_getextraspace(L)) = s.get();
+  lua_sethook(L, CountInstructions, LUA_MASKCOUNT, kHookEvery);
+  // as Load does, up to what the file returns
+  s->CallStep<OpenSandbox>(0, 0, "");
+  s->CallStep<LoadChunk>(0, 1, "");
+  s->Call(0, 1, "");
+  return lua_isfunction(L, -1);
 }
 
 void Scenario::RethrowWhileLoading(const ScriptFault& fault) const {

@@ -120,6 +120,10 @@ class Scenario {
   static std::unique_ptr<Scenario> Load(const std::string& path,
                                         const std::map<std::string, std::string>& overrides,
                                         uint64_t seed, Watchdog::Expiry on_hang = {});
+  /// Runs a Lua file's top level in the scenario sandbox, starting nothing, and returns whether
+  /// it returns a function: a controller (`--controller`) rather than a scenario. Throws
+  /// ScriptFault for a script error, InputError for a file that cannot be read.
+  static bool ReturnsFunction(const std::string& path);
   ~Scenario();
 
   const std::string& name() const { return name_; }

@@ -30,7 +30,9 @@ long RoundClamped(double value, long min, long max) {
 
 int EncodingSize(Encoding encoding) { return encoding == Encoding::kF32 ? 4 : 2; }
 
-bool IsControlId(int id) { return id >= UNIMOUSE_ID_MANAGER && id <= UNIMOUSE_ID_MAZE_SIZE; }
+bool IsControlId(int id) {
+  return (id >= UNIMOUSE_ID_MANAGER && id <= UNIMOUSE_ID_MAZE_SIZE) || id == UNIMOUSE_ID_FRAME_SIZE;
+}
 
 std::vector<DataFrame> OriginalCommandFrames() {
   return {{UNIMOUSE_ID_MOTOR_LEFT, Encoding::kMotor}, {UNIMOUSE_ID_MOTOR_RIGHT, Encoding::kMotor}};
@@ -46,14 +48,53 @@ const DataFrame* FrameDecoder::Data(uint8_t id) const {
   return nullptr;
 }
 
+void FrameDecoder::EndText(std::vector<FirmwareFrame>& out) {
+  FirmwareFrame line;
+  line.id = UNIMOUSE_ID_LOG;
+  line.plain_text = true;
+  line.text = std::move(text_);
+  out.push_back(std::move(line));
+  ++text_lines_;
+  text_.clear();
+  in_text_ = false;
+}
+
+bool FrameDecoder::TakeText(uint8_t byte, std::vector<FirmwareFrame>& out) {
+  if (byte == '\r' || byte == '\n') {
+    EndText(out);
+    after_cr_ = byte == '\r';
+    return true;
+  }
+  if ((byte >= 0x20 && byte < 0x7f) || byte == '\t') {
+    text_.push_back(static_cast<char>(byte));
+    // as an overlong log frame: cut, the rest on a line of its own
+    if (text_.size() == UNIMOUSE_LOG_MAX) EndText(out);
+    return true;
+  }
+  // a print without its newline, then a frame
+  EndText(out);
+  return false;
+}
+
 void FrameDecoder::Feed(std::span<const uint8_t> bytes, std::vector<FirmwareFrame>& out) {
   for (const uint8_t byte : bytes) {
     if (skipping_log_) {
       skipping_log_ = byte != 0;
       continue;
     }
+    if (in_text_ && TakeText(byte, out)) continue;
     if (pending_.empty()) {
-      if (!ControlFromFirmware(byte) && Data(byte) == nullptr) {
+      // println ends its line with "\r\n"
+      const bool line_end = after_cr_ && byte == '\n';
+      after_cr_ = false;
+      if (line_end) continue;
+      const bool known = ControlFromFirmware(byte) || Data(byte) != nullptr;
+      if (!known && byte >= 0x20 && byte < 0x7f) {
+        in_text_ = true;
+        text_.push_back(static_cast<char>(byte));
+        continue;
+      }
+      if (!known) {
         ++unknown_bytes_;
         if (std::find(unknown_ids_.begin(), unknown_ids_.end(), byte) == unknown_ids_.end()) {
           unknown_ids_.push_back(byte);
@@ -179,6 +220,12 @@ void PutMazeInfoFrame(const BindContext::MazeInfo& maze, std::string& out) {
   frame[6] = static_cast<uint8_t>(maze.goal_y0);
   frame[7] = static_cast<uint8_t>(maze.goal_x1);
   frame[8] = static_cast<uint8_t>(maze.goal_y1);
+  out.append(reinterpret_cast<const char*>(frame), sizeof(frame));
+}
+
+void PutFrameSizeFrame(uint8_t id, Encoding encoding, std::string& out) {
+  const uint8_t frame[3] = {UNIMOUSE_ID_FRAME_SIZE, id,
+                            static_cast<uint8_t>(EncodingSize(encoding))};
   out.append(reinterpret_cast<const char*>(frame), sizeof(frame));
 }
 

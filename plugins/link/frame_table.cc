@@ -31,6 +31,8 @@ const char* ControlName(int id) {
       return "log";
     case UNIMOUSE_ID_CLOCK:
       return "clock";
+    case UNIMOUSE_ID_FRAME_SIZE:
+      return "frame size";
     case UNIMOUSE_ID_MAZE_INFO:
     case UNIMOUSE_ID_MAZE_SIZE:
       return "maze";
@@ -77,7 +79,7 @@ std::vector<TableEntry> ParseTable(const std::string& text, const Direction& dir
       const int id = ParseId(words[0]);
       UNIMOUSE_THROW_UNLESS(!IsControlId(id), "id " + std::to_string(id) + " is the protocol's " +
                                                   ControlName(id) +
-                                                  " frame (ids 7 to 15 are taken)");
+                                                  " frame (ids 7 to 15 and 127 are taken)");
       for (const TableEntry& other : entries) {
         UNIMOUSE_THROW_UNLESS(other.id != id, "id " + words[0] + " is already in " + other.where);
         UNIMOUSE_THROW_UNLESS(dir.has_period || other.signal != words[1],

@@ -16,9 +16,10 @@ constexpr int kLockstep = 1;
 constexpr int kLastFrame_s = 2;
 constexpr int kFailsafe = 3;
 constexpr int kUnknownReported = 4;
-constexpr int kRepeats = 5;    // the firmware said it resends its commands
-constexpr int kMazeAsked = 6;  // the firmware asked for the maze: it goes out with the next frames
-constexpr int kStateSize = 7;
+constexpr int kRepeats = 5;     // the firmware said it resends its commands
+constexpr int kMazeAsked = 6;   // the firmware asked for the maze: it goes out with the next frames
+constexpr int kSizesAsked = 7;  // the firmware asked for the data frames' sizes: the same
+constexpr int kStateSize = 8;
 
 // visited cells kept for the beliefs file: a firmware that reports more repeats itself
 constexpr size_t kMaxVisitedKept = 1 << 20;
@@ -125,6 +126,7 @@ void Link::Reset(const ResetContext& ctx) const {
   s[kUnknownReported] = 0;
   s[kRepeats] = 0;
   s[kMazeAsked] = 0;
+  s[kSizesAsked] = 0;
   ZeroReceived(ctx);
   decoder_ = FrameDecoder(data_frames_);
   inbox_.clear();
@@ -228,6 +230,9 @@ void Link::Apply(const SenseContext& ctx, const FirmwareFrame& f, Heard& heard) 
                 "the frame's goal rectangle holds other cells too");
           }
           break;
+        case UNIMOUSE_MANAGER_FRAME_SIZES:
+          s[kSizesAsked] = 1;
+          break;
         default:
           std::snprintf(text, sizeof(text), "unknown manager byte 0x%02x, ignored", f.value);
           ctx.Warn(text);
@@ -316,10 +321,7 @@ void Link::Receive(const SenseContext& ctx, Heard& heard) const {
   }
   read_this_step_ += inbox_.size();
   received_bytes_ += inbox_.size();
-  // what a PC-built firmware printed (printf, std::cout) is its log, as its log frames are
-  text_.clear();
-  transport_->TakeText(text_);
-  for (const std::string& line : text_) ctx.Firmware(line);
+  TakeText(ctx);
   if (transport_->Connected() != was_connected_) {
     was_connected_ = transport_->Connected();
     if (was_connected_) {
@@ -342,6 +344,12 @@ void Link::Receive(const SenseContext& ctx, Heard& heard) const {
   std::vector<FirmwareFrame> frames;
   decoder_.Feed(inbox_, frames);
   for (const FirmwareFrame& f : frames) Apply(ctx, f, heard);
+  if (decoder_.text_lines() > 0 && !text_said_) {
+    text_said_ = true;
+    ctx.Log(
+        "the firmware writes plain text between its frames (Serial.print on a board): each "
+        "line is logged as a line of its log");
+  }
 
   // each unknown id is reported once; all are counted
   std::span<double> s = ctx.state();
@@ -353,6 +361,13 @@ void Link::Receive(const SenseContext& ctx, Heard& heard) const {
     ctx.Warn(text);
   }
   s[kUnknownReported] = static_cast<double>(unknown.size());
+}
+
+void Link::TakeText(const SenseContext& ctx) const {
+  // what a PC-built firmware printed (printf, std::cout) is its log, as its log frames are
+  text_.clear();
+  transport_->TakeText(text_);
+  for (const std::string& line : text_) ctx.Firmware(line);
 }
 
 void Link::Send(const SenseContext& ctx, const std::string& frames, bool lockstep) const {
@@ -401,6 +416,8 @@ bool Link::AwaitFirmware(const SenseContext& ctx, Heard& heard, bool Heard::*unt
     const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
         deadline - std::chrono::steady_clock::now());
     if (left.count() <= 0 || !transport_->WaitReadable(left)) {
+      // the last lines a firmware printed before it hung or crashed are the ones that matter
+      TakeText(ctx);
       if (const std::string failure = transport_->Failure(); !failure.empty()) {
         ctx.Fail(failure + " at t=" + Seconds(ctx.time_s()) + " s");
         return false;
@@ -494,6 +511,10 @@ void Link::Sense(const SenseContext& ctx) const {
     PutMazeInfoFrame(maze_, out);
     s[kMazeAsked] = 0;
   }
+  if (s[kSizesAsked] != 0) {
+    for (const Outgoing& o : send_) PutFrameSizeFrame(o.entry.id, o.entry.encoding, out);
+    s[kSizesAsked] = 0;
+  }
   const bool lockstep = s[kLockstep] != 0;
   if (lockstep) PutClockFrame(static_cast<uint64_t>(std::llround(ctx.time_s() * 1e6)), out);
   Send(ctx, out, lockstep);
@@ -516,6 +537,7 @@ void Link::Sense(const SenseContext& ctx) const {
 
 void Link::Finish(const SenseContext& ctx) const {
   if (transport_ == nullptr) return;
+  TakeText(ctx);
   if (!beliefs_path_.empty()) {
     std::FILE* f = std::fopen(beliefs_path_.c_str(), "w");
     if (f == nullptr) {

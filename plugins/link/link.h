@@ -146,6 +146,8 @@ class Link final : public Component {
   // does not come within lockstep_timeout_s
   bool AwaitFirmware(const SenseContext& ctx, Heard& heard, bool Heard::*until,
                      const char* waiting_for) const;
+  // logs what the firmware printed outside the protocol since the last call
+  void TakeText(const SenseContext& ctx) const;
   // queues frames and releases them no faster than the line's baud rate
   void Send(const SenseContext& ctx, const std::string& frames, bool lockstep) const;
   // every signal the firmware writes back to 0, as after a stop or a silence
@@ -175,6 +177,7 @@ class Link final : public Component {
   mutable FrameDecoder decoder_;
   mutable std::vector<uint8_t> inbox_;
   mutable std::vector<std::string> text_;  // lines printed outside the protocol, this read
+  mutable bool text_said_ = false;         // whether the log said that plain text comes
   mutable size_t read_this_step_ = 0;
   mutable uint64_t received_bytes_ = 0;  // since the last reset
   mutable bool was_connected_ = false;

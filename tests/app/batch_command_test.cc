@@ -183,6 +183,216 @@ TEST(BatchCommandTest, AClassGetsTheRightStatusForEveryJobTheSameOnResumeAndThro
 }
 
 // an algorithm written for mms scored over mazes as each of its own `unimouse mms` runs scores
+// docs/batch.md: a job is kept only while the SHA-256 of every file it reads is unchanged
+TEST(BatchCommandTest, AResubmittedControllerOrAChangedScenarioIsGradedAgainOnResume) {
+  const std::string dir = FreshDirectory("batch_regrade");
+  const std::string controller =
+      WriteFile(dir, "student.lua", ReadTextFile(kSource + "/tests/batch/walking_mouse.lua"));
+  const std::string scenario =
+      WriteFile(dir, "contest.lua", ReadTextFile(kSource + "/scenarios/micromouse.lua"));
+  const std::string manifest = WriteFile(dir, "class.yaml", R"(
+submissions:
+  - name: student
+    controller: student.lua
+scenarios:
+  - scenario: contest.lua
+    set: {contest_s: 3, max_runs: 1}
+mazes: [japan2018]
+)");
+  const std::string out = dir + "/out";
+  const std::string batch = "batch run " + manifest + " -j 1 --out " + out;
+  auto graded = [&](const std::string& role) {
+    const json results = Results(out);
+    for (const auto& input : results["jobs"][0]["inputs"]) {
+      if (input["role"] == role) return input["sha256"].get<std::string>();
+    }
+    return std::string("none");
+  };
+  auto sha256sum = [](const std::string& file) {
+    return unimouse::testing::Shell("sha256sum " + file).output.substr(0, 64);
+  };
+
+  Outcome o = Unimouse(batch);
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  EXPECT_NE(o.output.find("1 jobs, 1 to run"), std::string::npos) << o.output;
+  EXPECT_EQ(graded("submission"), sha256sum(controller));
+  EXPECT_EQ(graded("scenario"), sha256sum(scenario));
+  EXPECT_EQ(graded("maze"), sha256sum(kSource + "/mazes/japan2018.txt"));
+  EXPECT_EQ(graded("robot"), sha256sum(kSource + "/robots/unimouse.yaml"));
+  o = Unimouse(batch);
+  EXPECT_NE(o.output.find("1 jobs, 0 to run"), std::string::npos) << o.output;
+
+  // the student resubmits: the same command line, another file
+  std::ofstream(controller, std::ios::app) << "-- resubmitted\n";
+  o = Unimouse(batch);
+  EXPECT_NE(o.output.find("1 jobs, 1 to run"), std::string::npos) << o.output;
+  EXPECT_EQ(graded("submission"), sha256sum(controller));
+
+  // the teacher changes the scenario
+  std::ofstream(scenario, std::ios::app) << "-- the rules, amended\n";
+  o = Unimouse(batch);
+  EXPECT_NE(o.output.find("1 jobs, 1 to run"), std::string::npos) << o.output;
+  EXPECT_EQ(graded("scenario"), sha256sum(scenario));
+}
+
+TEST(BatchCommandTest, ForceForgetsEveryEarlierRecordOfTheManifestsJobs) {
+  const std::string dir = FreshDirectory("batch_force");
+  const std::string manifest = WriteFile(dir, "class.yaml", R"(
+submissions:
+  - name: student
+    controller: )" + kSource + R"(/tests/batch/walking_mouse.lua
+scenarios:
+  - scenario: micromouse
+    set: {contest_s: 3, max_runs: 1}
+mazes: [japan2018, japan2019]
+)");
+  const std::string out = dir + "/out";
+  ASSERT_EQ(Unimouse("batch run " + manifest + " -j 1 --out " + out).exit_code, 0);
+  // a record of the earlier grading in each job's directory
+  for (const auto& e : fs::recursive_directory_iterator(out + "/jobs")) {
+    if (e.path().filename() == "job.json") {
+      std::ofstream(e.path().parent_path() / "earlier.txt") << "old\n";
+    }
+  }
+  // RunBatch removes each job's directory before the first job starts, so that an interrupted
+  // --force cannot leave earlier records beside new ones
+  const Outcome o = Unimouse("batch run " + manifest + " -j 1 --force --out " + out);
+  EXPECT_EQ(o.exit_code, 0) << o.output;
+  EXPECT_NE(o.output.find("2 jobs, 2 to run"), std::string::npos) << o.output;
+  for (const auto& e : fs::recursive_directory_iterator(out)) {
+    EXPECT_NE(e.path().filename(), "earlier.txt") << e.path();
+  }
+}
+
+// docs/batch.md: `robot:` at the top for every job, and per submission for its own jobs
+TEST(BatchCommandTest, ASubmissionCanBringItsOwnRobotFile) {
+  const std::string dir = FreshDirectory("batch_own_robot");
+  const std::string robot =
+      WriteFile(dir, "erin.yaml", ReadTextFile(kSource + "/robots/unimouse.yaml"));
+  const std::string manifest = WriteFile(dir, "class.yaml", R"(
+robot: unimouse
+submissions:
+  - name: dan
+    controller: )" + kSource + R"(/tests/batch/walking_mouse.lua
+  - name: erin
+    controller: )" + kSource + R"(/tests/batch/walking_mouse.lua
+    robot: erin.yaml
+scenarios:
+  - scenario: micromouse
+    set: {contest_s: 3, max_runs: 1}
+mazes: [japan2018]
+)");
+  const std::string out = dir + "/out";
+  const Outcome o = Unimouse("batch run " + manifest + " -j 1 --out " + out);
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  std::map<std::string, std::string> robots;
+  const json results = Results(out);
+  for (const auto& job : results["jobs"]) {
+    const json result =
+        json::parse(ReadTextFile(out + "/" + job["dir"].get<std::string>() + "/result.json"));
+    robots[job["submission"].get<std::string>()] = result["robot"].get<std::string>();
+  }
+  EXPECT_EQ(robots["erin"], robot);
+  EXPECT_EQ(fs::path(robots["dan"]).filename(), "unimouse.yaml");
+  EXPECT_NE(robots["dan"], robot);
+}
+
+// docs/limits.md's limit per call, named in a reason that names the file as the manifest does
+TEST(BatchCommandTest, AControllerThatNeverReturnsIsAScriptErrorNamingItsFileAndTheLimitPerCall) {
+  const std::string dir = FreshDirectory("batch_endless");
+  WriteFile(dir, "loop.lua", "return function(time_s)\n  while true do end\nend\n");
+  const std::string manifest = WriteFile(dir, "class.yaml", R"(
+submissions:
+  - {name: frank, controller: loop.lua}
+scenarios:
+  - scenario: micromouse
+    set: {contest_s: 3, max_runs: 1}
+mazes: [japan2018]
+)");
+  const std::string out = dir + "/out";
+  const Outcome o = Unimouse("batch run " + manifest + " -j 1 --out " + out);
+  EXPECT_EQ(o.exit_code, 1) << o.output;
+  const json job = Results(out)["jobs"][0];
+  EXPECT_EQ(job["status"], "script_error") << job.dump();
+  const std::string reason = job["reason"];
+  EXPECT_EQ(reason.rfind("loop.lua:2: instruction budget exhausted: more than 20 million "
+                         "instructions in one call into the script, its limit per call",
+                         0),
+            0u)
+      << reason;
+  EXPECT_EQ(reason.find(dir), std::string::npos) << reason;
+}
+
+// docs/batch.md "Traces": none unless the manifest asks
+TEST(BatchCommandTest, JobsWriteATraceOnlyWhenTheManifestAsksForOne) {
+  const std::string dir = FreshDirectory("batch_trace");
+  const std::string jobs = R"(
+submissions:
+  - name: student
+    controller: )" + kSource +
+                           R"(/tests/batch/walking_mouse.lua
+scenarios:
+  - scenario: micromouse
+    set: {contest_s: 3, max_runs: 1}
+mazes: [japan2018]
+)";
+  auto traces = [&](const std::string& out) {
+    std::vector<std::string> found;
+    for (const auto& e : fs::recursive_directory_iterator(out + "/jobs")) {
+      if (e.path().filename() == "trace.csv") found.push_back(ReadTextFile(e.path().string()));
+    }
+    return found;
+  };
+  const std::string plain = WriteFile(dir, "plain.yaml", jobs);
+  ASSERT_EQ(Unimouse("batch run " + plain + " -j 1 --out " + dir + "/plain").exit_code, 0);
+  EXPECT_TRUE(traces(dir + "/plain").empty());
+
+  const std::string asked =
+      WriteFile(dir, "asked.yaml", "trace: {period_s: 0.5, signals: tof.front_m}\n" + jobs);
+  ASSERT_EQ(Unimouse("batch run " + asked + " -j 1 --out " + dir + "/asked").exit_code, 0);
+  const std::vector<std::string> found = traces(dir + "/asked");
+  ASSERT_EQ(found.size(), 1u);
+  const std::string header = found[0].substr(0, found[0].find('\n'));
+  EXPECT_NE(header.find("tof.front_m"), std::string::npos) << header;
+  EXPECT_EQ(header.find("left.command"), std::string::npos) << header;
+}
+
+// docs/batch.md "The summary": what the teacher scored, ranked by the manifest's score
+TEST(BatchCommandTest, TheSummaryAggregatesTheScoresRanksByTheManifestsScoreAndNamesThePage) {
+  const std::string dir = FreshDirectory("batch_rank");
+  const std::string manifest = WriteFile(dir, "class.yaml", R"(
+rank: best_run_path_cost
+submissions:
+  - name: lost
+    controller: )" + kSource + R"(/tests/scenarios/wandering_mouse.lua
+  - name: good
+    controller: )" + kSource + R"(/tests/batch/walking_mouse.lua
+scenarios:
+  - scenario: micromouse
+    set: {contest_s: 3, max_runs: 1}
+mazes: [japan2018]
+seeds: [1, 2]
+)");
+  const std::string out = dir + "/out";
+  const Outcome o = Unimouse("batch run " + manifest + " -j 2 --out " + out);
+  EXPECT_EQ(o.exit_code, 1) << o.output;
+  EXPECT_NE(o.output.find("report: " + out + "/report.html"), std::string::npos) << o.output;
+  const json results = Results(out);
+  EXPECT_EQ(results["rank"]["score"], "best_run_path_cost");
+  const json& first = results["summary"][0];
+  EXPECT_EQ(first["submission"], "good") << results["summary"].dump(1);
+  EXPECT_EQ(first["rank"], 1);
+  // walking_mouse.lua's path by hand: 7 cells north, a quarter turn, 7 cells east
+  const json& cost = first["scores"]["best_run_path_cost"];
+  EXPECT_EQ(cost["jobs"], 2);
+  EXPECT_DOUBLE_EQ(cost["mean"].get<double>(), 15);
+  EXPECT_DOUBLE_EQ(cost["best"].get<double>(), 15);
+  EXPECT_DOUBLE_EQ(cost["worst"].get<double>(), 15);
+  EXPECT_TRUE(results["summary"][1]["rank"].is_null());
+  const std::string page = ReadTextFile(out + "/report.html");
+  EXPECT_NE(page.find("data-key=\"scores.best_run_path_cost.mean\""), std::string::npos);
+}
+
 TEST(BatchCommandTest, MmsProgramsAreScoredOverTheMazesAsTheirOwnRunsScoreThem) {
   const std::string dir = FreshDirectory("batch_mms");
   const std::string manifest = WriteFile(dir, "mms.yaml",
@@ -314,6 +524,8 @@ bool ProcessWith(const std::string& text) {
   return false;
 }
 
+// the flood reaches the file-size limit through the trace, which logs every line (the run's log
+// stops showing them after 1 MiB)
 TEST(BatchCommandTest, ASubmissionThatForksOrFloodsHarmsNoOtherJob) {
   for (const std::string sandbox : {"none", "auto"}) {
     const std::string dir = FreshDirectory("batch_untrusted_" + sandbox);
@@ -331,6 +543,7 @@ submissions:
 scenarios:
   - scenario: micromouse
     set: {contest_s: 3, max_runs: 1}
+trace: {period_s: 0.01}
 limits: {wall_time_s: 60, file_size_mb: 1, sandbox: )" +
                                                sandbox + "}\n");
     const std::string out = dir + "/out";

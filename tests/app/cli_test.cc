@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -50,7 +51,7 @@ std::string ReadMaze(const std::string& name) {
 }
 
 TEST_F(CliTest, RunWritesAResultWithPoseTimeAndSpeed) {
-  const Outcome o = Unimouse("run --duration 0.5 --seed 3 --out " + dir_.string());
+  const Outcome o = Unimouse("run --scenario none --duration 0.5 --seed 3 --out " + dir_.string());
   ASSERT_EQ(o.exit_code, 0) << o.output;
   EXPECT_NE(o.output.find("in maze japan2018 (16x16)"), std::string::npos) << o.output;
   std::ifstream in(dir_ / "result.json");
@@ -299,6 +300,23 @@ TEST_F(CliTest, ARobotFileWhoseAliasHoldsItselfIsBadInputForCheckRunAndADirector
   EXPECT_EQ(result["error"], expected);
 }
 
+// docs/robots.md: `unimouse check DIR` checks "a class's submissions", which are controllers
+TEST_F(CliTest, CheckRecognisesTheLuaControllersOfAClassBesideItsScenarios) {
+  fs::create_directories(dir_ / "class");
+  std::ifstream speed(fs::path(UNIMOUSE_SOURCE_DIR) / "tests/scenarios/speed_controller.lua");
+  const std::string good =
+      Write("class/alice.lua", std::string(std::istreambuf_iterator<char>(speed), {}));
+  Write("class/bob.lua", "return function(time_s)\n  sim.motor(\nend\n");
+  const std::string scenario =
+      Write("class/open.lua", "return sim.scenario { name = 'open', run = function() end }\n");
+  const Outcome o = Unimouse("check " + (dir_ / "class").string());
+  EXPECT_EQ(o.exit_code, 2) << o.output;
+  EXPECT_NE(o.output.find(good + ": ok: controller"), std::string::npos) << o.output;
+  EXPECT_NE(o.output.find("bob.lua:3: unexpected symbol"), std::string::npos) << o.output;
+  EXPECT_NE(o.output.find(scenario + ": ok: scenario 'open'"), std::string::npos) << o.output;
+  EXPECT_EQ(Unimouse("check " + good).exit_code, 0);
+}
+
 TEST_F(CliTest, CheckStartsNothingAndWritesNothing) {
   // the test process's own TMPDIR, which the program inherits, and the directory checked
   const fs::path tmp = fs::temp_directory_path();
@@ -313,6 +331,39 @@ TEST_F(CliTest, CheckStartsNothingAndWritesNothing) {
                              std::string(UNIMOUSE_SOURCE_DIR) + "/robots");
   EXPECT_EQ(o.exit_code, 0) << o.output;
   EXPECT_EQ(entries(tmp), before);
+}
+
+// the bundled robot with one line changed
+std::string BundledRobotWith(const std::string& line, const std::string& instead) {
+  std::string robot = unimouse::testing::ReadBundledRobot();
+  const size_t at = robot.find(line);
+  EXPECT_NE(at, std::string::npos) << line;
+  if (at != std::string::npos) robot.replace(at, line.size(), instead);
+  return robot;
+}
+
+TEST_F(CliTest, CheckWarnsAboutARobotThatCannotStandAsBuilt) {
+  Outcome o = Unimouse("check unimouse");
+  EXPECT_EQ(o.exit_code, 0) << o.output;
+  EXPECT_EQ(o.output.find("warning"), std::string::npos) << o.output;
+
+  // the caster 6 mm higher than the floor the wheels stand on (its centre 11 mm below the axle)
+  const std::string lifted = Write(
+      "lifted.yaml", BundledRobotWith("pos_m: [-0.055, 0, -0.011]", "pos_m: [-0.055, 0, -0.005]"));
+  o = Unimouse("check " + lifted);
+  EXPECT_EQ(o.exit_code, 0) << o.output;
+  EXPECT_NE(o.output.find("warning: 'caster' is 6.0 mm above the floor at rest: only the wheels "
+                          "touch it"),
+            std::string::npos)
+      << o.output;
+
+  // the left wheel 3 mm higher than the right one
+  const std::string wheel =
+      Write("wheel.yaml", BundledRobotWith("pos_m: [0, 0.048, 0]", "pos_m: [0, 0.048, 0.003]"));
+  o = Unimouse("check " + wheel);
+  EXPECT_NE(o.output.find("warning: wheel 'left_wheel' is 3.0 mm above the floor at rest"),
+            std::string::npos)
+      << o.output;
 }
 
 TEST_F(CliTest, CheckRefusesAMotorOnABallJointAtTheActuatorsLine) {
@@ -427,6 +478,96 @@ TEST_F(CliTest, MissingFilesAndBadOptionsExitWithCode2) {
   EXPECT_EQ(Unimouse("run --duration -1").exit_code, 2);
   EXPECT_EQ(Unimouse("run --duration abc").exit_code, 2);
   EXPECT_EQ(Unimouse("frobnicate").exit_code, 2);
+}
+
+TEST_F(CliTest, AMisspeltCommandIsNamedWithTheNearestCommandAndExitCode2) {
+  Outcome o = Unimouse("rnu");
+  EXPECT_EQ(o.exit_code, 2) << o.output;
+  EXPECT_NE(o.output.find("unimouse: error: unknown command 'rnu'; did you mean 'run'?"),
+            std::string::npos)
+      << o.output;
+  // an option's value before it is not taken for the command
+  o = Unimouse("--plugin-path /nowhere chekc robots");
+  EXPECT_EQ(o.exit_code, 2) << o.output;
+  EXPECT_NE(o.output.find("unknown command 'chekc'; did you mean 'check'?"), std::string::npos)
+      << o.output;
+  o = Unimouse("maze shwo japan2018");
+  EXPECT_EQ(o.exit_code, 2) << o.output;
+  EXPECT_NE(o.output.find("unknown command 'shwo' of 'maze'; did you mean 'show'?"),
+            std::string::npos)
+      << o.output;
+}
+
+TEST_F(CliTest, HelpForAnUnknownCommandIsBadInputNotTheProgramsHelp) {
+  for (const char* command : {"rnu --help", "frobnicate --help", "maze shwo --help"}) {
+    const Outcome o = Unimouse(command);
+    EXPECT_EQ(o.exit_code, 2) << command << ": " << o.output;
+    EXPECT_NE(o.output.find("unknown command"), std::string::npos) << o.output;
+    EXPECT_EQ(o.output.find("Usage"), std::string::npos) << o.output;
+  }
+}
+
+// README: "`unimouse run` with no options is this job"; the robot, the maze and the duration
+// change how the contest runs, not whether it runs
+TEST_F(CliTest, MazeRobotAndDurationAloneKeepTheContestWithTheBundledFirmware) {
+  const std::vector<std::string> runs = {"--maze japan2019 --duration 3", "--duration 3",
+                                         "--robot unimouse --duration 3"};
+  for (size_t i = 0; i < runs.size(); ++i) {
+    const fs::path out = dir_ / std::to_string(i);
+    const Outcome o = Unimouse("run " + runs[i] + " --no-pictures --out " + out.string());
+    // the contest is not decided in 3 s
+    EXPECT_EQ(o.exit_code, 1) << runs[i] << ": " << o.output;
+    std::ifstream in(out / "result.json");
+    const nlohmann::json result = nlohmann::json::parse(in);
+    EXPECT_EQ(result["scenario"]["name"], "micromouse") << runs[i];
+    EXPECT_EQ(result["driver"]["link"]["transport"], "inproc") << runs[i];
+    EXPECT_NEAR(result["sim_time_s"].get<double>(), 3, 1e-9) << runs[i];
+    // the firmware has set off from the start cell, (0.09, 0.09) facing north
+    const double moved = std::hypot(result["robot_pose"]["x_m"].get<double>() - 0.09,
+                                    result["robot_pose"]["y_m"].get<double>() - 0.09);
+    EXPECT_GT(moved, 0.09) << runs[i] << ": " << result["robot_pose"].dump();
+    EXPECT_EQ(o.output.find("nothing drives the robot"), std::string::npos) << o.output;
+  }
+  std::ifstream in(dir_ / "0" / "result.json");
+  EXPECT_NE(nlohmann::json::parse(in)["maze"].get<std::string>().find("japan2019.txt"),
+            std::string::npos);
+}
+
+TEST_F(CliTest, ScenarioNoneRunsTheRobotAlone) {
+  const Outcome o =
+      Unimouse("run --scenario none --duration 0.05 --no-pictures --out " + dir_.string());
+  EXPECT_EQ(o.exit_code, 0) << o.output;
+  EXPECT_NE(o.output.find("warning: nothing drives the robot"), std::string::npos) << o.output;
+  std::ifstream in(dir_ / "result.json");
+  EXPECT_FALSE(nlohmann::json::parse(in).contains("scenario"));
+}
+
+TEST_F(CliTest, TheTracesRateAndChannelsAreRunOptionsAndZeroIsNoTrace) {
+  const std::string run = "run --scenario none --maze none --duration 0.2 --no-pictures --out ";
+  Outcome o = Unimouse(run + (dir_ / "none").string() + " --trace-period 0");
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  EXPECT_FALSE(fs::exists(dir_ / "none" / "trace.csv"));
+  EXPECT_TRUE(fs::exists(dir_ / "none" / "result.json"));
+
+  o = Unimouse(run + (dir_ / "some").string() +
+               " --trace-period 0.05 --trace-signals tof.front_m,left.command");
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  std::ifstream in(dir_ / "some" / "trace.csv");
+  std::string header;
+  std::getline(in, header);
+  EXPECT_NE(header.find("tof.front_m"), std::string::npos) << header;
+  EXPECT_NE(header.find("left.command"), std::string::npos) << header;
+  EXPECT_EQ(header.find("battery.voltage_v"), std::string::npos) << header;
+  std::vector<double> times;
+  for (std::string row; std::getline(in, row);) times.push_back(std::stod(row));
+  // a row every 0.05 s of the 0.2 s, not every 10 ms
+  ASSERT_GE(times.size(), 4u);
+  ASSERT_LE(times.size(), 5u);
+  EXPECT_NEAR(times[1] - times[0], 0.05, 1e-9);
+
+  o = Unimouse(run + (dir_ / "bad").string() + " --trace-signals no.such_signal");
+  EXPECT_EQ(o.exit_code, 2) << o.output;
+  EXPECT_NE(o.output.find("no.such_signal"), std::string::npos) << o.output;
 }
 
 TEST_F(CliTest, EverySubcommandHasHelp) {

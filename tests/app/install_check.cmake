@@ -7,7 +7,7 @@ execute_process(COMMAND ${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${PREFI
 if(NOT rc EQUAL 0)
   message(FATAL_ERROR "install failed")
 endif()
-execute_process(COMMAND ${PREFIX}/bin/unimouse run --duration 0.05 --out ${PREFIX}/out
+execute_process(COMMAND ${PREFIX}/bin/unimouse run --scenario none --duration 0.05 --out ${PREFIX}/out
                 WORKING_DIRECTORY /
                 RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
 if(NOT rc EQUAL 0 OR NOT out MATCHES "share/unimouse/mazes/japan2018.txt|in maze japan2018")

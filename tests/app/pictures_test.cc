@@ -49,7 +49,8 @@ int CountFiles(const std::string& dir) {
 TEST(PicturesTest, SnapshotsAtTheTimesAskedAndFramesAtTheRateAsked) {
   SkipWithoutEgl();
   const auto r = UnimouseRun(
-      "--maze japan2018 --duration 2 --snapshot-every 1s --snapshot-at 0.5 --snapshot-size "
+      "--scenario none --maze japan2018 --duration 2 --snapshot-every 1s --snapshot-at 0.5 "
+      "--snapshot-size "
       "320x240 --frames-fps 5 --snapshot-end --camera chase",
       "pictures_times");
   ASSERT_EQ(r.outcome.exit_code, 0) << r.outcome.output;
@@ -67,22 +68,25 @@ TEST(PicturesTest, SnapshotsAtTheTimesAskedAndFramesAtTheRateAsked) {
 
 TEST(PicturesTest, AFinalPictureWheneverTheMachineCanDraw) {
   SkipWithoutEgl();
-  const auto r = UnimouseRun("--maze japan2018 --duration 0.1", "pictures_default");
+  const auto r = UnimouseRun("--scenario none --maze japan2018 --duration 0.1", "pictures_default");
   ASSERT_EQ(r.outcome.exit_code, 0) << r.outcome.output;
   ExpectPng(Out("pictures_default") + "/final.png", 640, 480);
-  const auto none = UnimouseRun("--maze japan2018 --duration 0.1 --no-pictures", "pictures_none");
+  const auto none =
+      UnimouseRun("--scenario none --maze japan2018 --duration 0.1 --no-pictures", "pictures_none");
   ASSERT_EQ(none.outcome.exit_code, 0) << none.outcome.output;
   EXPECT_FALSE(std::filesystem::exists(Out("pictures_none") + "/final.png"));
 }
 
 TEST(PicturesTest, WithoutEglAskedPicturesStopWithOneLineAndTheRestRuns) {
   const auto asked =
-      UnimouseRun("--maze japan2018 --duration 0.1 --snapshot-every 1s", "pictures_noegl", kNoEgl);
+      UnimouseRun("--scenario none --maze japan2018 --duration 0.1 --snapshot-every 1s",
+                  "pictures_noegl", kNoEgl);
   EXPECT_EQ(asked.outcome.exit_code, 2) << asked.outcome.output;
   EXPECT_NE(asked.outcome.output.find("unimouse: error: no EGL display"), std::string::npos)
       << asked.outcome.output;
   // a run that asked for none still runs, and says why it has no final picture
-  const auto plain = UnimouseRun("--maze japan2018 --duration 0.1", "pictures_noegl", kNoEgl);
+  const auto plain =
+      UnimouseRun("--scenario none --maze japan2018 --duration 0.1", "pictures_noegl", kNoEgl);
   EXPECT_EQ(plain.outcome.exit_code, 0) << plain.outcome.output;
   EXPECT_NE(plain.outcome.output.find("no pictures: no EGL display"), std::string::npos);
   EXPECT_EQ(plain.result["status"], "completed");
@@ -170,7 +174,8 @@ TEST(PicturesTest, VideoOfTheRunThroughFfmpeg) {
   SkipWithoutEgl();
   if (!HaveFfmpeg()) GTEST_SKIP() << "ffmpeg is not installed";
   const auto r = UnimouseRun(
-      "--maze japan2018 --duration 1 --video run.mp4 --video-fps 10 --snapshot-size 160x120",
+      "--scenario none --maze japan2018 --duration 1 --video run.mp4 --video-fps 10 "
+      "--snapshot-size 160x120",
       "pictures_video");
   ASSERT_EQ(r.outcome.exit_code, 0) << r.outcome.output;
   const std::string video = Out("pictures_video") + "/run.mp4";

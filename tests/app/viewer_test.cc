@@ -63,9 +63,9 @@ bool HaveXvfb() { return std::system("command -v xvfb-run > /dev/null 2>&1") == 
 
 TEST(ViewerTest, OpensUnderXvfbDrawsFramesAndItsScreenshotShowsTheMaze) {
   if (!HaveXvfb()) GTEST_SKIP() << "xvfb-run is not installed (apt install xvfb xauth)";
-  const auto r =
-      testing::UnimouseRun("--maze japan2018 --duration 5 --view --view-frames 30 --no-pictures",
-                           "viewer_xvfb", "xvfb-run -a -s '-screen 0 1280x1024x24' ");
+  const auto r = testing::UnimouseRun(
+      "--scenario none --maze japan2018 --duration 5 --view --view-frames 30 --no-pictures",
+      "viewer_xvfb", "xvfb-run -a -s '-screen 0 1280x1024x24' ");
   ASSERT_EQ(r.outcome.exit_code, 0) << r.outcome.output;
   EXPECT_EQ(r.result["view"]["frames"], 30);
   EXPECT_GT(r.result["sim_time_s"].get<double>(), 0);
@@ -113,6 +113,39 @@ TEST(ViewerTest, AnMmsProgramOnTheRobotIsShownUntilTheWindowClosesWhichInterrupt
     cyan += rgb[i + 1] > rgb[i] + 60 && rgb[i + 2] > rgb[i] + 60;
   }
   EXPECT_GT(cyan, 100);
+}
+
+// an X server of its own, which the test then takes away while the window shows a long run
+TEST(ViewerTest, ADisplayThatGoesAwayEndsTheRunWithItsResultAndExitCode3) {
+  if (std::system("command -v Xvfb > /dev/null 2>&1") != 0) {
+    GTEST_SKIP() << "Xvfb is not installed (apt install xvfb)";
+  }
+  const std::string out = testing::FreshDirectory("viewer_display_lost");
+  // -displayfd: the server picks a free display and says which
+  const std::string script =
+      "exec 3>" + out +
+      "/display; Xvfb -displayfd 3 -screen 0 1280x1024x24 -nolisten tcp "
+      "2>/dev/null & server=$!; "
+      "for i in $(seq 100); do [ -s " +
+      out +
+      "/display ] && break; sleep 0.1; done; "
+      "DISPLAY=:$(cat " +
+      out +
+      "/display) " UNIMOUSE_BINARY
+      " run --scenario none --maze none --duration 100000 --view --no-pictures --out " +
+      out +
+      "/run & run=$!; "
+      // the run's log exists once the window is open and the run assembled
+      "for i in $(seq 300); do [ -e " +
+      out +
+      "/run/log.txt ] && break; sleep 0.1; done; "
+      "sleep 1; kill $server; wait $run; echo \"exit code $?\"";
+  const testing::Outcome o = testing::Shell("sh -c '" + script + "'");
+  EXPECT_NE(o.output.find("exit code 3"), std::string::npos) << o.output;
+  const nlohmann::json result = nlohmann::json::parse(ReadTextFile(out + "/run/result.json"));
+  EXPECT_EQ(result["exit_code"], 3) << result.dump(1);
+  EXPECT_NE(result.dump().find("the viewer's display went away"), std::string::npos)
+      << result.dump(1);
 }
 
 TEST(ViewerTest, WithoutADisplayItIsBadInput) {

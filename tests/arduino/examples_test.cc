@@ -6,8 +6,10 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "inline_assets.h"
 #include "run_program.h"
 #include "text_file.h"
 
@@ -37,6 +39,37 @@ TEST(ArduinoExamplesTest, WallDistancePassesItsScenarioTheSameWayEveryTime) {
   EXPECT_EQ(a.result["scenario"]["status"], "passed") << a.result["scenario"]["reason"];
   const ExampleRun b = RunExample("wall_distance", "wall_distance", "unimouse_example_wd");
   EXPECT_EQ(a.result, b.result);
+}
+
+// docs/robots.md "An extra sensor for the firmware", steps 1 and 2: the robot entry and the
+// send entry; the example, which does not read the sensor, is not changed
+TEST(ArduinoExamplesTest, AnUnchangedExampleDrivesARobotWithAnExtraSensorOnTheLink) {
+  std::string robot = testing::ReadBundledRobot();
+  const std::string right_site = "euler_deg: [0, 0, -45] }\n";
+  const size_t at = robot.find(right_site);
+  ASSERT_NE(at, std::string::npos);
+  robot.insert(at + right_site.size(),
+               "    - { name: tof_rear, pos_m: [-0.060, 0, 0], euler_deg: [0, 0, 180] }\n");
+  robot +=
+      "  - type: unimouse.tof_sensor\n"
+      "    name: tof.rear\n"
+      "    params: { site: tof_rear, range_out: tof.rear_m }\n";
+  const std::string dir = testing::FreshDirectory("extra_sensor");
+  const std::string file = dir + "/my_robot.yaml";
+  std::ofstream(file) << robot;
+  const std::string send =
+      "send=3 left.encoder_counts i16; 4 right.encoder_counts i16; 0 tof.left_m tof 0.03; 1 "
+      "tof.right_m tof 0.03; 2 tof.front_m tof 0.03; 17 tof.rear_m tof 0.03";
+  for (const char* host : {"native:", "inproc:"}) {
+    const std::string firmware =
+        std::string(UNIMOUSE_FIRMWARE_DIR "/wall_distance") + (host[0] == 'i' ? ".so" : "");
+    const testing::RunResult r =
+        testing::UnimouseRun("--robot " + file + " --scenario wall_distance --no-pictures --link " +
+                                 host + firmware + " --link-set '" + send + "'",
+                             "extra_sensor_run");
+    EXPECT_EQ(r.outcome.exit_code, 0) << host << r.outcome.output;
+    EXPECT_EQ(r.result["scenario"]["status"], "passed") << r.result["scenario"]["reason"];
+  }
 }
 
 TEST(ArduinoExamplesTest, SpeedControlPassesItsScenario) {

@@ -46,6 +46,33 @@ TEST(FirmwareSensorFramesTest, AFrameSplitAtEveryByteIsAssembledWithoutWaiting) 
   EXPECT_FALSE(rig.left.hasNewData());
 }
 
+// a robot with a fourth ToF sensor sends it as frame 17; its payload bytes 0x09 0x02 would read
+// as the start of a clock frame and of a front ToF frame, had the reader not learnt its size
+TEST(FirmwareSensorFramesTest, AFrameTheSimulatorDeclaredIsSteppedOverByItsDeclaredSize) {
+  Rig rig;
+  const std::vector<uint8_t> extra = Tof(17, 0x0209);
+  std::vector<uint8_t> bytes = {UNIMOUSE_ID_FRAME_SIZE, 17, 2};
+  for (int i = 0; i < 3; ++i) {
+    bytes.insert(bytes.end(), extra.begin(), extra.end());
+    const std::vector<uint8_t> front = Tof(UNIMOUSE_ID_TOF_FRONT, 1000 + i);
+    bytes.insert(bytes.end(), front.begin(), front.end());
+  }
+  rig.stream.Arrive(bytes);
+  rig.manager.updateSensors();
+  EXPECT_EQ(rig.manager.payloadSize(17), 2);
+  EXPECT_EQ(rig.manager.unclaimedFrames(), 3u);
+  EXPECT_EQ(rig.manager.skippedBytes(), 0u);
+  EXPECT_NEAR(rig.front.distance(), 1002 * 1.2 / 65535, 1e-6);
+
+  // and a sketch that reads it registers a sensor of that id
+  DistanceSensor rear{17};
+  rig.manager.addSensor(rear);
+  rig.stream.Arrive(Tof(17, 32768));
+  rig.manager.updateSensors();
+  EXPECT_TRUE(rear.hasNewData());
+  EXPECT_NEAR(rear.distance(), 32768 * 1.2 / 65535, 1e-6);
+}
+
 TEST(FirmwareSensorFramesTest, UnregisteredIdsAreSkippedWholeAndNonIdsSteppedOver) {
   Rig rig;
   std::vector<uint8_t> bytes = Tof(UNIMOUSE_ID_TOF_RIGHT, 0x0707);     // nobody listens to right

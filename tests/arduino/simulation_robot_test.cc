@@ -17,6 +17,7 @@ unsigned long millis() { return now_ms; }
 unsigned long micros() { return now_ms * 1000; }
 void unimousePcClock(uint32_t) {}
 void unimousePcAwaitInput() {}
+void unimousePcSetIdle(void (*)(void*), void*) {}
 
 namespace unimouse {
 namespace {
@@ -25,8 +26,9 @@ TEST(FirmwareSimulationRobotTest, BeginAsksForSensorsAnnouncesItselfAndAsksForLo
   ByteStream stream;
   SimulationRobot robot(stream);
   robot.begin(true);
-  // sensors on, "I resend my commands" (so silence may stop the motors), lock-step on
-  EXPECT_EQ(stream.out, (std::vector<uint8_t>{7, 0x02, 7, 0x12, 7, 0x10}));
+  // the sizes of the data frames, sensors on, "I resend my commands" (so silence may stop the
+  // motors), lock-step on
+  EXPECT_EQ(stream.out, (std::vector<uint8_t>{7, 0x14, 7, 0x02, 7, 0x12, 7, 0x10}));
   EXPECT_FLOAT_EQ(robot.frontDistance(), 1.2f);  // nothing yet: the full scale
 }
 

@@ -80,6 +80,34 @@ TEST_F(BatchResultsTest, TheSummaryCountsStatusesAndPicksTheFastestPassedRun) {
   EXPECT_DOUBLE_EQ(summary[0]["mean_path_cost"].get<double>(), 17.5);  // (20 + 15) / 2
 }
 
+TEST_F(BatchResultsTest, TheSummaryAggregatesEveryScoreAndRanksByTheDeclaredOne) {
+  const json rows = JobRows(
+      {Job(Record("amy/micromouse/a/seed-1", "passed", {{"best_run_s", 5.0}, {"laps", 2}}, 9)),
+       Job(Record("amy/micromouse/b/seed-1", "passed", {{"best_run_s", 4.0}, {"laps", 3}}, 9)),
+       Job(Record("amy/micromouse/c/seed-1", "failed", {{"best_run_s", 9.0}, {"laps", 1}}, 9)),
+       Job(Record("bo/micromouse/a/seed-1", "passed", {{"best_run_s", 3.5}, {"laps", 1}}, 9)),
+       Job(Record("cy/micromouse/a/seed-1", "failed", {{"laps", 0}}, 9))},
+      out_);
+  const json summary = Summarize(rows, {"best_run_s", {"laps"}});
+  ASSERT_EQ(summary.size(), 3u);
+  // ranked by each one's best best_run_s, lower better: bo 3.5, amy 4.0, cy none
+  EXPECT_EQ(summary[0]["submission"], "bo");
+  EXPECT_EQ(summary[0]["rank"], 1);
+  EXPECT_EQ(summary[1]["submission"], "amy");
+  EXPECT_EQ(summary[1]["rank"], 2);
+  EXPECT_EQ(summary[2]["submission"], "cy");
+  EXPECT_TRUE(summary[2]["rank"].is_null());
+  // amy's three jobs: best_run_s 5, 4, 9 and laps 2, 3, 1 (laps: higher is better)
+  const json& amy = summary[1]["scores"];
+  EXPECT_EQ(amy["best_run_s"]["jobs"], 3);
+  EXPECT_DOUBLE_EQ(amy["best_run_s"]["mean"].get<double>(), 6.0);
+  EXPECT_DOUBLE_EQ(amy["best_run_s"]["best"].get<double>(), 4.0);
+  EXPECT_DOUBLE_EQ(amy["best_run_s"]["worst"].get<double>(), 9.0);
+  EXPECT_DOUBLE_EQ(amy["laps"]["mean"].get<double>(), 2.0);
+  EXPECT_DOUBLE_EQ(amy["laps"]["best"].get<double>(), 3.0);
+  EXPECT_DOUBLE_EQ(amy["laps"]["worst"].get<double>(), 1.0);
+}
+
 TEST_F(BatchResultsTest, TheFilesSayTheSameAsTheRows) {
   const json rows =
       JobRows({Job(Record("amy/micromouse/japan2018/seed-1", "passed",

@@ -89,6 +89,8 @@ seeds: [7]
                                              "unimouse",
                                              "--scenario",
                                              m.scenarios[0].file,
+                                             "--trace-period",
+                                             "0",
                                              "--set",
                                              "contest_s=30",
                                              "--maze",

@@ -178,6 +178,31 @@ TEST_F(MmsPhysicalRunTest, FloodFillClientReachesTheGoalOfAllJapan2018OnTheRobot
   EXPECT_LT(result["physical"]["worst_offset_m"].get<double>(), 0.03);
 }
 
+// docs/mms.md: --maze-class as the micromouse scenario's maze_class, and a robot too wide for the
+// class's corridors is warned about
+TEST_F(MmsPhysicalRunTest, AHalfSizeMazeIsBuiltAtHalfSizeAndARobotTooWideForItIsWarnedAbout) {
+  // the bundled robot, 128 mm across its wheels, in a 16 x 16 maze built with 90 mm cells
+  const std::string client = Client("ask mazeWidth\n");
+  nlohmann::json result = Mms("--maze-class half --maze japan2018 -- " + client, 3);
+  ASSERT_TRUE(result.is_object()) << output_;
+  EXPECT_NE(result["physical"]["warnings"].dump().find(
+                "the robot is 128 mm wide and this half-size maze's corridors are 84 mm: it does "
+                "not fit"),
+            std::string::npos)
+      << result["physical"].dump(1);
+  // the half-size robot fits the half-size maze, the bundled robot the classic one
+  result = Mms("--maze-class half --robot unimouse-half --maze japan2018 -- " + client, 3);
+  EXPECT_EQ(result["physical"]["warnings"].dump().find("does not fit"), std::string::npos)
+      << result["physical"].dump(1);
+  result = Mms("--maze japan2018 -- " + client, 3);
+  EXPECT_EQ(result["physical"]["warnings"].dump().find("does not fit"), std::string::npos)
+      << result["physical"].dump(1);
+  // the class goes with the physics tier only
+  const testing::Outcome logic =
+      testing::Unimouse("mms --maze-class half --out " + out_ + " -- " + client);
+  EXPECT_EQ(logic.exit_code, 2) << logic.output;
+}
+
 TEST_F(MmsPhysicalRunTest, WallQueriesAreAnsweredFromTheSensors) {
   // up the west side to the north-west corner (0, 4)
   const std::string client =

@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <optional>
+
 #include "inline_assets.h"
 
 namespace unimouse {
@@ -93,6 +95,30 @@ TEST_F(MmsWorldTest, AMoveIntoAWallCrashesWithoutMotionButIsCharged) {
   EXPECT_EQ(Ask("moveForward 0"), "crash");
   EXPECT_EQ(Ask("getStat total-distance"), "2");
   EXPECT_EQ(world_.crashes(), 2);
+}
+
+// a body that carries out every move and turn, grazing a wall each time
+class GrazingBody : public MmsBody {
+ public:
+  MmsMotion Drive(long) override { return {0.5, /*contact=*/true, "", ""}; }
+  MmsMotion Turn(int) override { return {0.3, /*contact=*/true, "", ""}; }
+  std::optional<bool> SensedWall(int) override { return std::nullopt; }
+  void Reset() override {}
+};
+
+TEST_F(MmsWorldTest, AMoveTheBodyCarriedOutRepliesAckThoughItGrazedAWallUnlessStrict) {
+  GrazingBody body;
+  world_.SetBody(&body, /*true_walls=*/true);
+  EXPECT_EQ(Ask("moveForward"), "ack");
+  EXPECT_EQ(Ask("turnRight"), "ack");
+  EXPECT_EQ(world_.cell(), (Cell{0, 1}));
+  EXPECT_EQ(world_.crashes(), 0);
+  EXPECT_EQ(world_.grazes(), 2);
+  // the strict reading: a graze is a crash, though the mouse moved
+  world_.set_contact_is_crash(true);
+  EXPECT_EQ(Ask("moveForward"), "crash");
+  EXPECT_EQ(world_.cell(), (Cell{1, 1}));
+  EXPECT_EQ(world_.crashes(), 1);
 }
 
 TEST_F(MmsWorldTest, HalfStepsAndFortyFiveDegreeTurnsFollowTheHalfCellGrid) {

@@ -19,6 +19,7 @@
 #include <cstdlib>
 #include <deque>
 #include <filesystem>
+#include <fstream>
 
 #include "inline_assets.h"
 #include "png_file.h"
@@ -150,6 +151,33 @@ echo "$reply" >&2
   // 2 + 2 + 2 cells at 0.5 s (the crash stops after two) and a quarter turn
   EXPECT_DOUBLE_EQ(run.result["contest_time_s"].get<double>(), 3.5);
   EXPECT_NE(run.outcome.output.find("crash"), std::string::npos);
+}
+
+// docs/mms.md: mms's goal is the centre; a maze file may mark another, which --centre-goal
+// overrides
+TEST_F(MmsRunTest, CentreGoalMakesTheCentreTheGoalWhateverTheMazeFileMarks) {
+  // the open 5 x 5 maze with its goal marked in the north-east corner cell
+  std::string text = testing::kOpenMaze5x5;
+  const std::string dir = FreshDirectory("mms_centre_goal");
+  // two cells north of the start: neither the marked goal nor the centre (2, 2)
+  const std::string client = ShellClient(R"(ask "moveForward 2"
+ask turnRight
+ask "moveForward 2"
+)");
+  const std::string marked = dir + "/corner.txt";
+  {
+    // the last row's first line of cells is the north row: its last cell is (4, 4)
+    const size_t row = text.find('\n') + 1;
+    const size_t cell = text.find('|', row) + 2 + 4 * 4;
+    ASSERT_EQ(text[cell], ' ') << text;
+    text[cell] = 'G';
+    std::ofstream(marked) << text;
+  }
+  MmsOutcome run = Mms("--maze " + marked + " -- " + client);
+  EXPECT_EQ(run.result["goal_reached"], false) << run.outcome.output;
+  run = Mms("--centre-goal --maze " + marked + " -- " + client);
+  EXPECT_EQ(run.result["goal_reached"], true) << run.outcome.output;
+  EXPECT_EQ(run.result["status"], "goal_reached") << run.outcome.output;
 }
 
 TEST_F(MmsRunTest, InvalidCommandsAreDroppedAndLoggedAndTheRunGoesOn) {

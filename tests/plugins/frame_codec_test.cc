@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -137,6 +139,35 @@ TEST(FrameCodecTest, UnknownIdsAreCountedAndSkipped) {
   EXPECT_EQ(f[0].value, 16);
   EXPECT_EQ(decoder.unknown_bytes(), 3u);
   EXPECT_EQ(decoder.unknown_ids(), (std::vector<uint8_t>{0xEE, 0x03}));
+}
+
+// Serial.println("t=12 left=0.500") on a board, between the library's frames: "\r\n" would
+// otherwise read as a debug value ('\r' = 0x0D) and a debug walls frame ('\n' = 0x0A)
+TEST(FrameCodecTest, PrintedTextBetweenFramesIsReadAsLogLinesWhateverTheReadsPieces) {
+  std::vector<uint8_t> bytes = Bytes("t=12 left=0.500\r\n");
+  bytes.insert(bytes.end(), {0x05, 0x64, 0x00});  // left motor 100
+  bytes.push_back('x');                           // a print without its newline
+  bytes.insert(bytes.end(), {0x07, 0x01, 0x08, 'h', 'i', 0x00, 0x0B, 2, 3});
+  for (const size_t piece : {bytes.size(), size_t{1}, size_t{4}}) {
+    FrameDecoder decoder;
+    std::vector<FirmwareFrame> f;
+    for (size_t at = 0; at < bytes.size(); at += piece) {
+      decoder.Feed(std::span(bytes).subspan(at, std::min(piece, bytes.size() - at)), f);
+    }
+    ASSERT_EQ(f.size(), 6u) << piece;
+    EXPECT_EQ(f[0].id, UNIMOUSE_ID_LOG);
+    EXPECT_TRUE(f[0].plain_text);
+    EXPECT_EQ(f[0].text, "t=12 left=0.500");
+    EXPECT_EQ(f[1].value, 100);
+    EXPECT_EQ(f[2].text, "x");
+    EXPECT_TRUE(f[2].plain_text);
+    EXPECT_EQ(f[3].id, UNIMOUSE_ID_MANAGER);
+    EXPECT_EQ(f[4].text, "hi");
+    EXPECT_FALSE(f[4].plain_text);
+    EXPECT_EQ(f[5].data, (std::vector<uint8_t>{2, 3}));
+    EXPECT_EQ(decoder.unknown_bytes(), 0u);
+    EXPECT_EQ(decoder.text_lines(), 2u);
+  }
 }
 
 TEST(FrameCodecTest, DebugFrames) {

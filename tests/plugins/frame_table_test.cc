@@ -75,13 +75,16 @@ TEST(FrameTableTest, EachEncodingBelongsToItsDirection) {
 }
 
 TEST(FrameTableTest, ControlIdsCannotBeTaken) {
-  EXPECT_EQ(SendError("7 a i16"),
-            "send entry 1 ('7 a i16'): id 7 is the protocol's manager frame (ids 7 to 15 are "
-            "taken)");
-  EXPECT_EQ(ReceiveError("8 a i16"),
-            "receive entry 1 ('8 a i16'): id 8 is the protocol's log frame (ids 7 to 15 are "
-            "taken)");
+  EXPECT_EQ(
+      SendError("7 a i16"),
+      "send entry 1 ('7 a i16'): id 7 is the protocol's manager frame (ids 7 to 15 and 127 are "
+      "taken)");
+  EXPECT_EQ(
+      ReceiveError("8 a i16"),
+      "receive entry 1 ('8 a i16'): id 8 is the protocol's log frame (ids 7 to 15 and 127 are "
+      "taken)");
   EXPECT_NE(SendError("9 a f32").find("clock frame"), std::string::npos);
+  EXPECT_NE(SendError("127 a i16").find("frame size frame"), std::string::npos);
   for (int id = 10; id <= 13; ++id) {
     EXPECT_NE(ReceiveError(std::to_string(id) + " a i16").find("debug frame"), std::string::npos);
   }

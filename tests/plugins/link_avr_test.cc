@@ -109,6 +109,30 @@ TEST(AvrRunTest, AStackIntoTheDataEndsTheRunWithExitCode3AndItsHighWaterMark) {
   EXPECT_NE(error.find("(recurse)"), std::string::npos) << error;
 }
 
+// tests/avr/printing_robot.ino: Serial.print, Serial.println and printf every 100 ms
+TEST(AvrRunTest, SerialPrintAndPrintfOnTheBoardAreItsLogAndLeaveTheProtocolAlone) {
+  const std::string image = Image("printing_robot");
+  if (image.empty()) GTEST_SKIP() << "no AVR test firmware: gcc-avr or arduino-core-avr missing";
+  const testing::RunResult r = testing::UnimouseRun(
+      "--maze none --duration 0.35 --no-pictures --link avr:" + image, "unimouse_avr_print");
+  ASSERT_EQ(r.outcome.exit_code, 0) << r.outcome.output;
+  const std::string log = ReadTextFile(
+      (std::filesystem::temp_directory_path() / "unimouse_avr_print" / "log.txt").string());
+  for (const char* line : {"\tlink\tprint at 100\n", "\tlink\tprintf at 100 ms\n",
+                           "\tlink\tprint at 300\n", "\tlink\tprintf at 300 ms\n"}) {
+    EXPECT_NE(log.find(line), std::string::npos) << line << " not in\n" << log;
+  }
+  EXPECT_EQ(log.find("unknown frame id"), std::string::npos) << log;
+  EXPECT_EQ(log.find("debug value"), std::string::npos) << log;
+  EXPECT_NE(log.find(", 0 unknown bytes"), std::string::npos) << log;
+  // said once
+  const size_t said = log.find("plain text between its frames");
+  ASSERT_NE(said, std::string::npos) << log;
+  EXPECT_EQ(log.find("plain text between its frames", said + 1), std::string::npos) << log;
+  // the robot was driven all along
+  EXPECT_GT(r.result["robot_pose"]["y_m"].get<double>(), 0.02) << r.result["robot_pose"].dump();
+}
+
 TEST(AvrRunTest, AFirmwareThatNeverReadsLosesBytesAndTheRunSaysHowMany) {
   const std::string image = Image("rx_overflow");
   if (image.empty()) GTEST_SKIP() << "no AVR test firmware: gcc-avr or arduino-core-avr missing";

@@ -6,6 +6,7 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -129,6 +130,51 @@ TEST_F(BatchReportBrowserTest, SortsDescendingWhenItsHeaderIsClickedTwice) {
   EXPECT_EQ(RowOrder(dom), (std::vector<std::string>{"b/seed-1", "f/seed-1", "e/seed-1", "a/seed-1",
                                                      "c/seed-1", "g/seed-1", "d/seed-1"}));
   EXPECT_NE(dom.find("aria-sort=\"descending\""), std::string::npos);
+}
+
+TEST_F(BatchReportBrowserTest, SortsTheSubmissionsByAScoreFromTheAddress) {
+  json results = kResults;
+  results["summary"] = json::parse(R"([
+    {"submission": "a", "jobs": 1, "scores": {"best_run_s": {"jobs": 1, "mean": 9, "best": 9, "worst": 9}}},
+    {"submission": "b", "jobs": 1, "scores": {"best_run_s": {"jobs": 1, "mean": 10, "best": 10, "worst": 10}}},
+    {"submission": "c", "jobs": 1, "scores": {"best_run_s": {"jobs": 1, "mean": 2, "best": 2, "worst": 2}}}])");
+  WriteBatchReport(results, dir_ / "report.html");
+  const std::string dom = RenderedDom("summary=-scores.best_run_s.best");
+  const size_t summary = dom.find("id=\"summary\"");
+  ASSERT_NE(summary, std::string::npos);
+  const size_t b = dom.find("<td>b</td>", summary), a = dom.find("<td>a</td>", summary),
+               c = dom.find("<td>c</td>", summary);
+  EXPECT_LT(b, a);
+  EXPECT_LT(a, c);
+}
+
+// a page in a 1280 px wide window, measured by a page beside it that holds it in a frame
+TEST_F(BatchReportBrowserTest, FitsAWindow1280PixelsWideWhateverItsColumns) {
+  json results = kResults;
+  for (auto& job : results["jobs"]) {
+    for (int i = 0; i < 12; ++i) job["scores"]["a_long_score_name_number_" + std::to_string(i)] = i;
+    job["reason"] = std::string(300, 'x');
+  }
+  WriteBatchReport(results, dir_ / "report.html");
+  std::ofstream(dir_ / "measure.html")
+      << "<!DOCTYPE html><html><body style=\"margin:0\"><iframe id=\"page\" src=\"report.html\" "
+         "style=\"width:1280px;height:800px;border:0\"></iframe><script>"
+         "document.getElementById('page').onload = function () {"
+         "  var d = this.contentDocument.documentElement;"
+         "  document.body.setAttribute('data-width', String(d.scrollWidth));"
+         "};</script></body></html>";
+  const fs::path profile = dir_ / "chromium-profile";
+  const testing::Outcome chromium = testing::Shell(
+      "XDG_CONFIG_HOME=" + profile.string() + " XDG_CACHE_HOME=" + profile.string() + " " +
+      chromium_ +
+      " --headless --no-sandbox --disable-gpu --no-first-run --allow-file-access-from-files "
+      "--virtual-time-budget=5000 --user-data-dir=" +
+      profile.string() + " --dump-dom 'file://" + (dir_ / "measure.html").string() +
+      "' 2>/dev/null");
+  const std::string marker = "data-width=\"";
+  const size_t at = chromium.output.find(marker);
+  ASSERT_NE(at, std::string::npos) << chromium.output;
+  EXPECT_LE(std::stoi(chromium.output.substr(at + marker.size())), 1280) << chromium.output;
 }
 
 TEST_F(BatchReportBrowserTest, HidesTheJobsOfOtherStatusesWhenFiltered) {

@@ -165,6 +165,30 @@ TEST(BatchReportTest, SummarisesEachSubmissionAndLinksItsBestRun) {
             std::string::npos);
 }
 
+TEST(BatchReportTest, ShowsEachScoresMeanBestAndWorstAsNumbersAndTheRank) {
+  const json results = json::parse(R"({
+    "manifest": "class.yaml", "rank": {"score": "best_run_s", "better": "lower"},
+    "jobs": [{"id": "amy/a/seed-1", "submission": "amy", "status": "passed",
+              "scores": {"best_run_s": 4.25}}],
+    "summary": [{"submission": "amy", "jobs": 1, "passed": 1, "rank": 1,
+                 "best": {"id": "amy/a/seed-1", "scores": {"best_run_s": 4.25}},
+                 "scores": {"best_run_s": {"jobs": 1, "mean": 4.25, "best": 4.25,
+                                           "worst": 4.25}}}]})");
+  const std::string page = BatchReportHtml(results);
+  for (const char* what : {"mean", "best", "worst"}) {
+    EXPECT_NE(page.find(std::string("data-key=\"scores.best_run_s.") + what + "\""),
+              std::string::npos)
+        << what;
+  }
+  EXPECT_NE(page.find("<td class=\"num\" data-value=\"4.25\">4.25</td>"), std::string::npos);
+  EXPECT_NE(page.find("data-key=\"rank\""), std::string::npos);
+  EXPECT_NE(page.find("Ranked by the best best_run_s (lower is better)"), std::string::npos);
+  // the best run's scores as numbers, not as the JSON they are kept in
+  EXPECT_NE(page.find("best_run_s 4.25</td>"), std::string::npos) << page;
+  EXPECT_EQ(page.find("{&quot;"), std::string::npos);
+  EXPECT_EQ(page.find("{\""), std::string::npos);
+}
+
 TEST(BatchReportTest, ShowsMissingFieldsAsEmptyCells) {
   const std::string html = BatchReportHtml(json::parse(R"({"jobs": [{"id": "x"}]})"));
   EXPECT_EQ(Occurrences(html, "<tr id=\"job-"), 1u);

@@ -61,7 +61,8 @@ std::string WorldError(const std::string& path) {
 }
 
 constexpr const char* kBudgetSpent =
-    "instruction budget exhausted: a loop that never waits (use sim.wait)?";
+    "instruction budget exhausted: more than 20 million instructions in one call into the "
+    "script, its limit per call (a loop that never waits? use sim.wait)";
 constexpr const char* kMemoryFull = "not enough memory: a scenario holds at most 256 MiB";
 constexpr const char* kAllocationsSpent =
     "allocation budget exhausted: more than 2048 MiB allocated between two waits (strings built "

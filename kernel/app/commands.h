@@ -16,7 +16,7 @@ struct RunOptions {
   uint64_t seed = 1;
   std::string out_dir = "out";
   std::string plugin_path;
-  std::string link;  ///< firmware link transport, "" for none: pty, serial:PATH@BAUD, tcp::PORT
+  std::string link;  ///< firmware link transport spec (transport_spec.h), "" for none
   std::vector<std::string> link_sets;  ///< link parameters, "name=value"
   std::string firmware_profile;        ///< "unimousesim-0.1" for the original's firmware
   bool realtime = false;               ///< pace to the wall clock; always on with a link

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "install_paths.h"
+#include "transport_spec.h"
 #include "unimouse/errors.h"
 
 extern char** environ;
@@ -135,16 +136,19 @@ int FirmwareBuild(const FirmwareBuildOptions& options) {
       Run({"cmake", "--build", (work / "build").string(), "-j", jobs}) != 0) {
     throw InputError(options.sketch + ": the sketch did not build (the messages are above)");
   }
+  using link::FirmwareHost;
+  using link::FirmwareSpec;
   if (avr) {
-    std::printf(
-        "built %s\nrun it on the emulated board: unimouse run --link avr:%s --scenario ...\n",
-        (out / (name + ".elf")).c_str(), (out / (name + ".elf")).c_str());
+    const std::string image = (out / (name + ".elf")).string();
+    std::printf("built %s\nrun it on the emulated board: unimouse run --link %s --scenario ...\n",
+                image.c_str(), FirmwareSpec(FirmwareHost::kEmulatedBoard, image).c_str());
   } else {
+    const std::string program = (out / name).string(), module = program + ".so";
     std::printf(
-        "built %s and %s\nrun it: unimouse run --link native:%s --scenario ...\n"
-        "or in the simulator's process, faster: --link inproc:%s\n",
-        (out / name).c_str(), (out / (name + ".so")).c_str(), (out / name).c_str(),
-        (out / (name + ".so")).c_str());
+        "built %s and %s\nrun it: unimouse run --link %s --scenario ...\n"
+        "or in the simulator's process, faster: --link %s\n",
+        program.c_str(), module.c_str(), FirmwareSpec(FirmwareHost::kProcess, program).c_str(),
+        FirmwareSpec(FirmwareHost::kInProcess, module).c_str());
   }
   return kExitPassed;
 }

@@ -336,7 +336,8 @@ int main(int argc, char** argv) {
       "--out", firmware.out_dir,
       "directory for the built files (default: the sketch's folder; the build tree goes "
       "in its .unimouse-build)");
-  firmware_build_cmd->add_option("--board", firmware.board, "pc, or mega2560 for avr:")
+  firmware_build_cmd
+      ->add_option("--board", firmware.board, "pc, or mega2560 for the emulated board")
       ->capture_default_str();
   firmware_build_cmd->add_option("--name", firmware.name,
                                  "name of the built files (default: the sketch's)");

@@ -136,15 +136,28 @@ std::string TransportSpec::WithFirmware(const std::string& file) const {
 
 int TransportSpec::LineBaud() const { return kind->open == &OpenSerial ? SerialLineBaud(rest) : 0; }
 
-std::string BundledFirmwareSpec(FirmwareHost host, const std::string& firmware_dir,
-                                const std::string& name) {
+namespace {
+
+const TransportKind& KindRunning(FirmwareHost host) {
   const TransportKind* found = nullptr;
   for (const TransportKind& kind : kTransports) {
     if (kind.firmware == host && kind.bundled_suffix != nullptr) found = &kind;
   }
   UNIMOUSE_DEMAND(found != nullptr);
-  return std::string(found->scheme) + ":" +
-         (std::filesystem::path(firmware_dir) / (name + found->bundled_suffix)).string();
+  return *found;
+}
+
+}  // namespace
+
+std::string FirmwareSpec(FirmwareHost host, const std::string& file) {
+  return std::string(KindRunning(host).scheme) + ":" + file;
+}
+
+std::string BundledFirmwareSpec(FirmwareHost host, const std::string& firmware_dir,
+                                const std::string& name) {
+  return FirmwareSpec(
+      host,
+      (std::filesystem::path(firmware_dir) / (name + KindRunning(host).bundled_suffix)).string());
 }
 
 std::string ResolveBundledFirmware(const std::string& text, const std::string& firmware_dir) {

@@ -73,6 +73,9 @@ struct TransportSpec {
 /// firmware transport without its file parses (its `firmware` is ""): opening it says so.
 TransportSpec ParseTransportSpec(const std::string& spec);
 
+/// Returns the spec that runs the firmware `file` on `host` (not kBoard): "native:FILE".
+std::string FirmwareSpec(FirmwareHost host, const std::string& file);
+
 /// Returns the spec that runs the bundled firmware `name` (e.g. "micromouse") from
 /// `firmware_dir` on `host`.
 std::string BundledFirmwareSpec(FirmwareHost host, const std::string& firmware_dir,

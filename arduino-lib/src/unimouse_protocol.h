@@ -39,8 +39,9 @@ enum {
                                      firmware works with; the simulator warns if they differ */
   UNIMOUSE_ID_FRAME_SIZE = 127    /* sim -> MCU, 2 bytes, once asked (UNIMOUSE_MANAGER_FRAME_SIZES):
                                      a data frame's id and its payload bytes, one frame for each
-                                     entry of the link's send table, so that the firmware can step
-                                     over frames it has no sensor for (a robot's extra sensor) */
+                                     entry of the link's send table that the protocol does not size
+                                     itself, so that the firmware can step over frames it has no
+                                     sensor for (a robot's extra sensor) */
 };
 
 /* manager codes */

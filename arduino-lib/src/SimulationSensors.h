@@ -77,10 +77,12 @@ class StreamSimulationSensorManager : public ISimulationSensorManager {
   /// what the simulator declared for a data frame of its send table (a frame size frame, sent
   /// when asked with UNIMOUSE_MANAGER_FRAME_SIZES: SimulationRobot::begin asks); -2 unknown.
   int payloadSize(uint8_t id) const {
+    const int size = unimouse_payload_size(id);
+    if (size != -2) return size;
     for (uint8_t i = 0; i < declaredCount_; ++i) {
       if (declared_[i][0] == id) return declared_[i][1];
     }
-    return unimouse_payload_size(id);
+    return size;
   }
 
   /// Bytes stepped over because they could not start a frame.

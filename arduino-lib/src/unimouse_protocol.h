@@ -47,8 +47,9 @@ enum {
   UNIMOUSE_ID_ACCEL_Z = 37,
   UNIMOUSE_ID_FRAME_SIZE = 127 /* sim -> MCU, 2 bytes, once asked (UNIMOUSE_MANAGER_FRAME_SIZES):
                                   a data frame's id and its payload bytes, one frame for each
-                                  entry of the link's send table, so that the firmware can step
-                                  over frames it has no sensor for (a robot's extra sensor) */
+                                  entry of the link's send table that the protocol does not size
+                                  itself, so that the firmware can step over frames it has no
+                                  sensor for (a robot's extra sensor) */
 };
 
 /* manager codes */

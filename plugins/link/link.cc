@@ -512,7 +512,12 @@ void Link::Sense(const SenseContext& ctx) const {
     s[kMazeAsked] = 0;
   }
   if (s[kSizesAsked] != 0) {
-    for (const Outgoing& o : send_) PutFrameSizeFrame(o.entry.id, o.entry.encoding, out);
+    // the protocol sizes its own sensor frames: only the others need saying
+    for (const Outgoing& o : send_) {
+      if (unimouse_payload_size(o.entry.id) != EncodingSize(o.entry.encoding)) {
+        PutFrameSizeFrame(o.entry.id, o.entry.encoding, out);
+      }
+    }
     s[kSizesAsked] = 0;
   }
   const bool lockstep = s[kLockstep] != 0;

@@ -129,9 +129,11 @@ TEST(ViewerTest, ADisplayThatGoesAwayEndsTheRunWithItsResultAndExitCode3) {
       "for i in $(seq 100); do [ -s " +
       out +
       "/display ] && break; sleep 0.1; done; "
+      // what the window held lives with the display that went away and is not freed: the
+      // sanitizer build's leak check at exit would count it and change the exit code
       "DISPLAY=:$(cat " +
       out +
-      "/display) " UNIMOUSE_BINARY
+      "/display) ASAN_OPTIONS=detect_leaks=0 " UNIMOUSE_BINARY
       " run --scenario none --maze none --duration 100000 --view --no-pictures --out " +
       out +
       "/run & run=$!; "

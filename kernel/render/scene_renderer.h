@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// Pictures of a run: the physics model's floor and robot, the scenery model's walls and posts
+// Pictures of a run: the physics model's floor and robot, the scenery models' walls and posts
 // (see world.h), the ToF beams (green on a hit, red on a miss, as in the original), what the
 // firmware (or an mms program) believes about the maze (walls, visited cells, its path, cell
 // colours as floor tiles, cell texts as labels), and the scenario's HUD, drawn with MuJoCo's

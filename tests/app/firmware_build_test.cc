@@ -151,6 +151,75 @@ TEST(FirmwareBuildTest, TheDocumentedCommandsBuildAndRunASketchFolderBesideThem)
   EXPECT_TRUE(fs::is_regular_file(work + "/my_follower/my_follower.ino")) << "the sketch is kept";
 }
 
+// The same page's commands for the emulated board, word for word, in the same layout.
+TEST(FirmwareBuildTest, TheDocumentedCommandsBuildAndRunASketchFolderOnTheEmulatedBoard) {
+  if (std::system("command -v avr-g++ >/dev/null") != 0) {
+    GTEST_SKIP() << "no avr-g++ (gcc-avr): no board builds";
+  }
+  const std::vector<std::string> commands =
+      testing::DocumentedCommands("docs/firmware.md", "For the emulated board (an");
+  ASSERT_EQ(commands.size(), 2u);
+  ASSERT_EQ(commands[0], "unimouse firmware build my_follower --board mega2560");
+  const std::string work = FreshDirectory("fw_documented_board");
+  WriteSketch(work);
+  for (const std::string& command : commands) {
+    const auto outcome = testing::RunDocumented(command, work);
+    if (outcome.output.find("this build has no emulated board") != std::string::npos) {
+      GTEST_SKIP() << "this build has no emulated board (libsimavr-dev)";
+    }
+    ASSERT_EQ(outcome.exit_code, 0) << command << ": " << outcome.output;
+  }
+  EXPECT_TRUE(fs::is_regular_file(work + "/my_follower/my_follower.elf"));
+}
+
+// The README's words for a sketch of one's own: the folder my_sketch/my_sketch.ino, built by
+// `unimouse firmware build my_sketch`, run with `--link native:my_sketch/my_sketch`.
+TEST(FirmwareBuildTest, TheReadmesCommandsBuildAndRunASketchOfOnesOwn) {
+  const std::string readme = ReadTextFile(UNIMOUSE_SOURCE_DIR "/README.md");
+  const std::string build = "unimouse firmware build my_sketch",
+                    link = "--link native:my_sketch/my_sketch";
+  ASSERT_NE(readme.find("`" + build + "`, then `" + link + "`"), std::string::npos);
+  const std::string work = FreshDirectory("fw_readme");
+  fs::create_directories(work + "/my_sketch");
+  WriteTextFile(work + "/my_sketch/my_sketch.ino", kSketch);
+  const auto built = testing::RunDocumented(build, work);
+  ASSERT_EQ(built.exit_code, 0) << built.output;
+  const auto ran = testing::RunDocumented("unimouse run --scenario wall_distance " + link, work);
+  EXPECT_EQ(ran.exit_code, 0) << ran.output;
+}
+
+// docs/robots.md's recipe for an extra sensor, in its layout: the robot file my_robot.yaml (the
+// bundled robot with the recipe's site and component) and the sketch folder my_follower (the
+// follower above with the recipe's library call) beside each other; the page's run command
+// word for word.
+TEST(FirmwareBuildTest, TheExtraSensorRecipeRunsAsRobotsMdShows) {
+  const std::vector<std::string> run =
+      testing::DocumentedCommands("docs/robots.md", "2. **The `send` entry.**");
+  ASSERT_EQ(run.size(), 1u);
+  const std::string work = FreshDirectory("fw_extra_sensor");
+  std::string robot = ReadTextFile(UNIMOUSE_SOURCE_DIR "/robots/unimouse.yaml");
+  const std::string sites = "  sites:\n";
+  ASSERT_NE(robot.find(sites), std::string::npos);
+  robot.insert(robot.find(sites) + sites.size(),
+               "    - { name: tof_rear, pos_m: [-0.060, 0, 0], euler_deg: [0, 0, 180] }\n");
+  robot +=
+      "  - type: unimouse.tof_sensor\n"
+      "    name: tof.rear\n"
+      "    params: { site: tof_rear, range_out: tof.rear_m }\n";
+  WriteTextFile(work + "/my_robot.yaml", robot);
+  std::string sketch = kSketch;
+  const std::string setup = "  robot.begin();";
+  sketch.replace(sketch.find(setup), setup.size(), "  robot.addSensor(rear);\n  robot.begin();");
+  sketch.replace(sketch.find("float previous"), 0, "DistanceSensor rear(17);\n");
+  WriteSketch(work, sketch);
+  const auto build = testing::RunDocumented("unimouse firmware build my_follower", work);
+  ASSERT_EQ(build.exit_code, 0) << build.output;
+  const auto outcome = testing::RunDocumented(run[0], work);
+  EXPECT_EQ(outcome.exit_code, 0) << run[0] << ": " << outcome.output;
+  EXPECT_NE(outcome.output.find("scenario wall_distance: passed"), std::string::npos)
+      << outcome.output;
+}
+
 TEST(FirmwareBuildTest, AProgramThatWouldTakeAFoldersPlaceIsRefusedWithoutBlamingTheSketch) {
   const std::string work = FreshDirectory("fw_collision");
   const std::string sketch = WriteSketch(work);

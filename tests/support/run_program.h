@@ -5,6 +5,7 @@
 
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 namespace unimouse::testing {
 
@@ -30,6 +31,16 @@ struct RunResult {
 /// directory, and reads the result.json it wrote there; `environment` as for Unimouse.
 RunResult UnimouseRun(const std::string& arguments, const std::string& out_name,
                       const std::string& environment = "");
+
+/// Returns the lines of the first block of code (fenced by ```, or indented by four spaces or
+/// more) after the first occurrence of `after` in the page `doc` (a path from the source tree,
+/// e.g. "docs/robots.md"), as a user copies them: indentation removed, a line ending in a
+/// backslash joined with the next. Empty when the page or the text is not there.
+std::vector<std::string> DocumentedCommands(const std::string& doc, const std::string& after);
+
+/// Runs a documented `unimouse ...` command word for word in `directory`, with the built program
+/// in the place of `unimouse`. Result records are collected as Unimouse does.
+Outcome RunDocumented(const std::string& command, const std::string& directory);
 
 /// Makes a new, empty directory in the temporary directory, named after `stem` and unique to
 /// this call, and returns its path.

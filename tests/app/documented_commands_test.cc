@@ -1,0 +1,67 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The commands the docs show a user, run word for word from the layout their page describes:
+// the bundled robots and controllers from a clone of this repository, the bundled gyro example,
+// the board image of an IMU driver in the working directory.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "run_program.h"
+#include "text_file.h"
+
+namespace unimouse {
+namespace {
+
+namespace fs = std::filesystem;
+using testing::DocumentedCommands;
+using testing::FreshDirectory;
+using testing::RunDocumented;
+
+// a working directory laid out as a clone of this repository is, for the paths a command names
+std::string CloneLikeDirectory(const std::string& stem) {
+  const std::string dir = FreshDirectory(stem);
+  fs::create_directory_symlink(fs::path(UNIMOUSE_SOURCE_DIR) / "tests", fs::path(dir) / "tests");
+  return dir;
+}
+
+TEST(DocumentedCommandsTest, TheOtherWheelLayoutsPassTheWallDistanceChallengeAsRobotsMdShows) {
+  const std::vector<std::string> commands =
+      DocumentedCommands("docs/robots.md", "(`BundledScenario.wall_distance.*`):");
+  ASSERT_EQ(commands.size(), 2u);
+  EXPECT_EQ(commands[0].rfind("unimouse run --robot unimouse-skid ", 0), 0u) << commands[0];
+  EXPECT_EQ(commands[1].rfind("unimouse run --robot unimouse-six ", 0), 0u) << commands[1];
+  for (const std::string& command : commands) {
+    const std::string dir = CloneLikeDirectory("documented_layouts");
+    const testing::Outcome o = RunDocumented(command, dir);
+    EXPECT_EQ(o.exit_code, 0) << command << "\n" << o.output;
+    EXPECT_NE(o.output.find("scenario wall_distance: passed"), std::string::npos) << o.output;
+  }
+}
+
+TEST(DocumentedCommandsTest, TheGyroExampleRunsOnTheGyroRobotAsFirmwareMdShows) {
+  const std::vector<std::string> commands =
+      DocumentedCommands("docs/firmware.md", "The library's `gyro_turn` example");
+  ASSERT_EQ(commands.size(), 1u);
+  const testing::Outcome o = RunDocumented(commands[0], FreshDirectory("documented_gyro"));
+  EXPECT_EQ(o.exit_code, 0) << commands[0] << "\n" << o.output;
+}
+
+TEST(DocumentedCommandsTest, AnImuDriverOnTheEmulatedBoardRunsAsFirmwareMdShows) {
+#ifndef UNIMOUSE_AVR_TEST_FIRMWARE_DIR
+  GTEST_SKIP() << "no AVR toolchain (gcc-avr, avr-libc, arduino-core-avr): no image to run";
+#else
+  const std::vector<std::string> commands =
+      DocumentedCommands("docs/firmware.md", "`tests/avr/imu_spi.ino` is such a driver");
+  ASSERT_EQ(commands.size(), 1u);
+  // the driver's image in the working directory, as the command names it
+  const std::string dir = FreshDirectory("documented_imu_spi");
+  fs::copy_file(UNIMOUSE_AVR_TEST_FIRMWARE_DIR "/imu_spi.elf", dir + "/imu_spi.elf");
+  const testing::Outcome o = RunDocumented(commands[0], dir);
+  EXPECT_EQ(o.exit_code, 0) << commands[0] << "\n" << o.output;
+#endif
+}
+
+}  // namespace
+}  // namespace unimouse

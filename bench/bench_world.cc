@@ -111,12 +111,12 @@ void Command(Kernel& kernel, double left, double right) {
 
 constexpr int kSteps = 60000;
 
-// seconds of wall time for one 60 s run of a kernel from its reset
-double TimeRun(Kernel& kernel, double left, double right) {
+// seconds of wall time for one run of `steps` steps (60 s by default) of a kernel from its reset
+double TimeRun(Kernel& kernel, double left, double right, int steps = kSteps) {
   kernel.Reset();
   if (kernel.model().FindSignal("left.command") >= 0) Command(kernel, left, right);
   const auto start = std::chrono::steady_clock::now();
-  for (int i = 0; i < kSteps; ++i) kernel.Step();
+  for (int i = 0; i < steps; ++i) kernel.Step();
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
@@ -199,12 +199,7 @@ void BM_FullRobotInGeneratedMaze(benchmark::State& bench) {
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   double best_s = 1e9;
   for (auto _ : bench) {
-    full->Reset();
-    Command(*full, 500, -500);
-    const auto t0 = std::chrono::steady_clock::now();
-    for (int i = 0; i < 10000; ++i) full->Step();
-    best_s = std::min(best_s,
-                      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+    best_s = std::min(best_s, TimeRun(*full, 500, -500, 10000));
   }
   bench.counters["real_time_factor"] = 10 / best_s;
   bench.counters["world_build_s"] = build_s;

@@ -75,11 +75,18 @@ class World {
 
   /// Walls, posts and obstacles as drawn and as seen by rays.
   const std::vector<StaticBox>& scenery() const { return scenery_; }
+
+  struct ModelDeleter {
+    void operator()(mjModel* m) const { mj_deleteModel(m); }
+  };
+  struct DataDeleter {
+    void operator()(mjData* d) const { mj_deleteData(d); }
+  };
   /// The scenery as MuJoCo models of a few hundred boxes each (with their data, placed), in the
   /// order of scenery(): what pictures draw.
   struct SceneryChunk {
-    std::unique_ptr<mjModel, void (*)(mjModel*)> model{nullptr, &mj_deleteModel};
-    std::unique_ptr<mjData, void (*)(mjData*)> data{nullptr, &mj_deleteData};
+    std::unique_ptr<mjModel, ModelDeleter> model;
+    std::unique_ptr<mjData, DataDeleter> data;
   };
   const std::vector<SceneryChunk>& scenery_chunks() const { return scenery_chunks_; }
 
@@ -113,13 +120,6 @@ class World {
 
  private:
   World() = default;
-
-  struct ModelDeleter {
-    void operator()(mjModel* m) const { mj_deleteModel(m); }
-  };
-  struct DataDeleter {
-    void operator()(mjData* d) const { mj_deleteData(d); }
-  };
 
   std::string mjcf_;
   std::unique_ptr<mjModel, ModelDeleter> model_;

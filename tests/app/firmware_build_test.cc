@@ -126,24 +126,15 @@ TEST(FirmwareBuildTest, ASketchOutsideTheTreeBuildsForTheEmulatedBoardAndPassesI
 // The commands of docs/firmware.md's "Build your own sketch", word for word, in the layout it
 // describes: the sketch folder my_follower/ in the working directory.
 TEST(FirmwareBuildTest, TheDocumentedCommandsBuildAndRunASketchFolderBesideThem) {
-  const std::string doc = ReadTextFile(UNIMOUSE_SOURCE_DIR "/docs/firmware.md");
-  const size_t section = doc.find("## Build your own sketch");
-  ASSERT_NE(section, std::string::npos);
   // the first block of commands in the section, one per line
-  std::vector<std::string> commands;
-  size_t at = doc.find("\n    unimouse ", section);
-  while (at != std::string::npos && doc.compare(at, 14, "\n    unimouse ") == 0) {
-    const size_t end = doc.find('\n', at + 5);
-    commands.push_back(doc.substr(at + 5, end - at - 5));
-    at = end;
-  }
+  const std::vector<std::string> commands =
+      testing::DocumentedCommands("docs/firmware.md", "## Build your own sketch");
   ASSERT_EQ(commands.size(), 2u);
   ASSERT_EQ(commands[0], "unimouse firmware build my_follower");
   const std::string work = FreshDirectory("fw_documented");
   WriteSketch(work);
   for (const std::string& command : commands) {
-    const auto outcome = testing::Shell("cd " + work + " && " UNIMOUSE_BINARY +
-                                        command.substr(std::string("unimouse").size()));
+    const auto outcome = testing::RunDocumented(command, work);
     ASSERT_EQ(outcome.exit_code, 0) << command << ": " << outcome.output;
   }
   EXPECT_TRUE(fs::is_regular_file(work + "/my_follower/my_follower"));

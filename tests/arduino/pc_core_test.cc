@@ -58,7 +58,9 @@ TEST(PcCoreTest, DelayAndDelayMicrosecondsWaitInSimTimeWhileTheSimulationRunsOn)
     for (size_t i = 0; i < delays.values.size(); ++i) {
       EXPECT_EQ(delays.values[i], "50") << link;
       EXPECT_EQ(micro.values[i], "3000") << link;
-      if (i > 0) EXPECT_NEAR(delays.times_s[i] - delays.times_s[i - 1], 0.054, 1e-9) << link;
+      if (i > 0) {
+        EXPECT_NEAR(delays.times_s[i] - delays.times_s[i - 1], 0.054, 1e-9) << link;
+      }
     }
     // the motors ran all along: 0.5 s at 400/1023 of 6 V carries the robot north of the origin,
     // where an open floor starts it

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "install_paths.h"
+#include "text_file.h"
 #include "transport_spec.h"
 #include "unimouse/errors.h"
 
@@ -28,16 +29,16 @@ namespace fs = std::filesystem;
 // the sketch's file: NAME/NAME.ino for a folder, as the Arduino IDE lays sketches out
 fs::path SketchFile(const std::string& sketch) {
   const fs::path path = fs::absolute(sketch).lexically_normal();
-  if (fs::is_directory(path)) {
+  if (IsDirectory(path)) {
     const fs::path folder = path.has_filename() ? path : path.parent_path();
     const fs::path ino = folder / (folder.filename().string() + ".ino");
-    if (!fs::is_regular_file(ino)) {
+    if (!IsRegularFile(ino)) {
       throw InputError(sketch + ": a sketch folder holds a sketch of its name, " +
                        ino.filename().string() + ", and this one does not");
     }
     return ino;
   }
-  if (!fs::is_regular_file(path)) throw InputError(sketch + ": no such sketch file or folder");
+  if (!IsRegularFile(path)) throw InputError(sketch + ": no such sketch file or folder");
   const std::string extension = path.extension().string();
   if (extension != ".ino" && extension != ".cc" && extension != ".cpp") {
     throw InputError(sketch + ": a sketch is an .ino file (or a .cc or .cpp written like one)");
@@ -89,7 +90,7 @@ int FirmwareBuild(const FirmwareBuildOptions& options) {
     throw InputError("--board " + options.board + ": the boards are pc and mega2560");
   }
   const fs::path config = FirmwareCMakeDirectory();
-  if (!fs::is_regular_file(config / "UnimouseFirmwareConfig.cmake")) {
+  if (!IsRegularFile(config / "UnimouseFirmwareConfig.cmake")) {
     throw InputError("the Arduino library is not installed (no " + config.string() +
                      "/UnimouseFirmwareConfig.cmake): install the arduino-unimousesim package");
   }
@@ -104,7 +105,7 @@ int FirmwareBuild(const FirmwareBuildOptions& options) {
   // the program of the sketch folder's name cannot collide with the folder itself
   const fs::path out = options.out_dir.empty() ? sketch.parent_path()
                                                : fs::absolute(options.out_dir).lexically_normal();
-  if (!avr && fs::is_directory(out / name)) {
+  if (!avr && IsDirectory(out / name)) {
     throw InputError((out / name).string() + " is a directory, so the built program cannot go " +
                      "there: give --out another directory or --name another name");
   }

@@ -45,10 +45,10 @@ std::string Text(const json& value) {
 
 std::vector<std::string> FindJobDirectories(const std::string& root) {
   std::vector<std::string> dirs;
-  UNIMOUSE_THROW_UNLESS(fs::is_directory(root), root + ": no such directory");
-  if (fs::exists(fs::path(root) / "job.json")) dirs.push_back(root);
+  UNIMOUSE_THROW_UNLESS(IsDirectory(root), root + ": no such directory");
+  if (PathExists(fs::path(root) / "job.json")) dirs.push_back(root);
   for (const auto& e : fs::recursive_directory_iterator(root)) {
-    if (e.is_directory() && fs::exists(e.path() / "job.json")) dirs.push_back(e.path().string());
+    if (e.is_directory() && PathExists(e.path() / "job.json")) dirs.push_back(e.path().string());
   }
   std::sort(dirs.begin(), dirs.end());
   return dirs;

@@ -129,7 +129,7 @@ void EndOrphans() {
 
 nlohmann::json ReadResult(const fs::path& file) {
   try {
-    if (fs::exists(file)) return nlohmann::json::parse(ReadTextFile(file.string()));
+    if (PathExists(file)) return nlohmann::json::parse(ReadTextFile(file.string()));
   } catch (const std::exception&) {
     // a half-written or garbled file is no result
   }

@@ -10,6 +10,7 @@
 #include "install_paths.h"
 #include "maze.h"
 #include "scenario.h"
+#include "text_file.h"
 #include "transport_spec.h"
 #include "unimouse/errors.h"
 
@@ -29,7 +30,7 @@ std::string DataFile(const YamlNode& node, const fs::path& dir, const std::strin
                      const std::string& extension) {
   const std::string& name = node.AsString(folder.substr(0, folder.size() - 2));
   const std::string beside = FromManifest(dir, name);
-  if (fs::exists(beside)) return beside;
+  if (PathExists(beside)) return beside;
   try {
     return fs::absolute(ResolveDataFile(name, folder, extension)).string();
   } catch (const InputError& e) {
@@ -97,7 +98,7 @@ std::string LinkSpec(const YamlNode& node, const fs::path& dir) {
     node.Fail("link " + text + ": name the file, like " + spec.kind->usage);
   // a file beside the manifest, else as given (a bundled firmware's name)
   const std::string beside = FromManifest(dir, spec.firmware);
-  return fs::exists(beside) ? spec.WithFirmware(beside) : text;
+  return PathExists(beside) ? spec.WithFirmware(beside) : text;
 }
 
 // "python3 main.py" as words; no shell in between, as for a native link
@@ -136,7 +137,7 @@ Submission ReadSubmission(const YamlNode& node, const fs::path& dir, const JobLi
   if (const YamlNode* own = r.Optional("dir")) {
     if (mms == nullptr) own->Fail("dir is where an mms program runs; it goes with mms");
     s.program_dir = FromManifest(dir, own->AsString("dir"));
-    if (!fs::is_directory(s.program_dir)) own->Fail(s.program_dir + ": no such directory");
+    if (!IsDirectory(s.program_dir)) own->Fail(s.program_dir + ": no such directory");
   }
   if (const YamlNode* options = r.Optional("mms_options")) {
     if (mms == nullptr) options->Fail("mms_options go with mms");
@@ -219,7 +220,7 @@ std::vector<MazeEntry> ReadMazes(const YamlNode& node, const fs::path& dir) {
   const std::string beside = FromManifest(dir, text);
   std::vector<std::string> files;
   try {
-    files = FindMazeFiles({fs::exists(beside) ? beside : text});
+    files = FindMazeFiles({PathExists(beside) ? beside : text});
   } catch (const InputError& e) {
     node.Fail(e.what());
   }

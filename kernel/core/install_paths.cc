@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <utility>
 
+#include "text_file.h"
 #include "unimouse/errors.h"
 
 namespace unimouse {
@@ -38,9 +39,9 @@ std::string FirmwareCMakeDirectory() {
 
 std::string ResolveDataFile(const std::string& name, const std::string& folder,
                             const std::string& extension) {
-  if (fs::is_regular_file(name)) return name;
+  if (IsRegularFile(name)) return name;
   const fs::path bundled = fs::path(DataDirectory()) / folder / (name + extension);
-  if (name.find('/') == std::string::npos && fs::is_regular_file(bundled)) {
+  if (name.find('/') == std::string::npos && IsRegularFile(bundled)) {
     return bundled.string();
   }
   throw InputError(name + ": no such file, and no bundled " + folder.substr(0, folder.size() - 1) +

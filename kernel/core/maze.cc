@@ -261,7 +261,7 @@ std::vector<std::string> FindMazeFiles(const std::vector<std::string>& names) {
   namespace fs = std::filesystem;
   std::vector<std::string> files;
   for (const auto& name : names) {
-    if (fs::is_directory(name)) {
+    if (IsDirectory(name)) {
       std::vector<std::string> found;
       for (const auto& e : fs::recursive_directory_iterator(name)) {
         if (e.is_regular_file() && e.path().extension() == ".txt") {

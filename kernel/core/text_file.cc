@@ -10,8 +10,23 @@
 
 namespace unimouse {
 
+bool IsRegularFile(const std::string& path) noexcept {
+  std::error_code error;
+  return std::filesystem::is_regular_file(path, error);
+}
+
+bool IsDirectory(const std::string& path) noexcept {
+  std::error_code error;
+  return std::filesystem::is_directory(path, error);
+}
+
+bool PathExists(const std::string& path) noexcept {
+  std::error_code error;
+  return std::filesystem::exists(path, error);
+}
+
 std::string ReadTextFile(const std::string& path) {
-  if (std::filesystem::is_directory(path)) {
+  if (IsDirectory(path)) {
     throw InputError(path + ": is a directory, not a file");
   }
   std::ifstream in(path, std::ios::binary);

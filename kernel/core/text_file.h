@@ -11,6 +11,13 @@ namespace unimouse {
 /// the largest maze (about 1 MB) and any hand-written file.
 inline constexpr size_t kMaxInputFile_bytes = 16 << 20;
 
+/// Whether a path names a regular file, a directory, or anything at all. A name the system cannot
+/// look up (longer than PATH_MAX, a component longer than NAME_MAX, no permission) is none of
+/// them: these never throw, because the names come from users' files.
+bool IsRegularFile(const std::string& path) noexcept;
+bool IsDirectory(const std::string& path) noexcept;
+bool PathExists(const std::string& path) noexcept;
+
 /// Returns the whole content of a file; throws InputError "path: reason" when it cannot be read
 /// or is larger than kMaxInputFile_bytes.
 std::string ReadTextFile(const std::string& path);

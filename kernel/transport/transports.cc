@@ -170,12 +170,13 @@ std::string ResolveBundledFirmware(const std::string& text, const std::string& f
     return text;
   }
   const std::string& name = spec.firmware;
+  std::error_code error;  // a name the system cannot look up is no file, not an exception
   if (spec.kind->bundled_suffix == nullptr || name.find('/') != std::string::npos ||
-      fs::is_regular_file(name)) {
+      fs::is_regular_file(name, error)) {
     return text;
   }
   const fs::path bundled = fs::path(firmware_dir) / (name + spec.kind->bundled_suffix);
-  return fs::is_regular_file(bundled) ? spec.WithFirmware(bundled.string()) : text;
+  return fs::is_regular_file(bundled, error) ? spec.WithFirmware(bundled.string()) : text;
 }
 
 std::unique_ptr<Transport> OpenTransport(const std::string& text) {

@@ -237,5 +237,25 @@ TEST_F(ManifestTest, MistakesAreRefusedWithFileLineAndColumn) {
             std::string::npos);
 }
 
+TEST_F(ManifestTest, ANameTheSystemCannotLookUpIsAMistakeAtItsNodeNotACrash) {
+  // 300 characters is longer than a file name may be (NAME_MAX 255): looking it up fails with
+  // ENAMETOOLONG, which is the same answer as no such file, for every kind of name a manifest has
+  const std::string head = "submissions: [{name: amy, controller: a.lua}]\n";
+  const std::string file = dir_ + "/manifest.yaml";
+  const std::string long_name(300, 'x');
+  EXPECT_EQ(ErrorOf(head + "scenarios: [" + long_name + "]\n").rfind(file + ":2:13: ", 0), 0u);
+  EXPECT_EQ(ErrorOf(head + "scenarios: [micromouse]\nmazes: [" + long_name + "]\n")
+                .rfind(file + ":3:9: ", 0),
+            0u);
+  EXPECT_EQ(ErrorOf("submissions: [{name: amy, controller: a.lua, robot: " + long_name +
+                    "}]\nscenarios: [micromouse]\n")
+                .rfind(file + ":1:", 0),
+            0u);
+  const Manifest m = LoadManifest(
+      Write("m.yaml", "submissions: [{name: amy, link: \"native:" + long_name +
+                          "\"}]\nscenarios: [micromouse]\n"));
+  EXPECT_EQ(m.submissions[0].link, "native:" + long_name);
+}
+
 }  // namespace
 }  // namespace unimouse::batch

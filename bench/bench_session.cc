@@ -22,6 +22,8 @@ void RunSessionBenchmark(benchmark::State& bench, SessionOptions options) {
     const SessionResult result = session->Finish();
     bench.counters["real_time_factor"] = result.record["real_time_factor"].get<double>();
     bench.counters["sim_time_s"] = result.record["sim_time_s"].get<double>();
+    bench.counters["us_per_step"] =
+        1e6 * result.record["wall_time_s"].get<double>() / result.record["steps"].get<double>();
   }
   std::filesystem::remove_all(options.out_dir);
 }
@@ -47,6 +49,35 @@ void BM_MainJobJapan2018(benchmark::State& bench) {
   RunSessionBenchmark(bench, options);
 }
 BENCHMARK(BM_MainJobJapan2018)->Unit(benchmark::kMillisecond)->Iterations(3)->UseRealTime();
+
+// a step with one full robot (its components, the bundled firmware in-process, in lock-step)
+// exploring All Japan 2018, and with two: the second from the opposite corner, its own copy of
+// the firmware. Set side by side: us_per_step of the two against that of the one
+void BM_OneFullRobotStepJapan2018(benchmark::State& bench) {
+  SessionOptions options;
+  options.maze = "japan2018";
+  options.duration_s = 30;
+  options.link = "inproc:" UNIMOUSE_FIRMWARE_DIR "/micromouse.so";
+  RunSessionBenchmark(bench, options);
+}
+BENCHMARK(BM_OneFullRobotStepJapan2018)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(5)
+    ->UseRealTime();
+
+void BM_TwoFullRobotsStepJapan2018(benchmark::State& bench) {
+  SessionOptions options;
+  options.maze = "japan2018";
+  options.duration_s = 30;
+  const std::string link = "inproc:" UNIMOUSE_FIRMWARE_DIR "/micromouse.so";
+  options.robots = {{"unimouse", "", link, {}, "", "", ""},
+                    {"unimouse", "", link, {}, "", "", "15,15,S"}};
+  RunSessionBenchmark(bench, options);
+}
+BENCHMARK(BM_TwoFullRobotsStepJapan2018)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(5)
+    ->UseRealTime();
 
 }  // namespace
 }  // namespace unimouse

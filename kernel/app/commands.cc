@@ -88,9 +88,12 @@ int RunOnce(const RunOptions& options, Viewer* viewer) {
   o.scenario = options.scenario;
   o.sets = options.sets;
   o.controller = options.controller;
+  o.start = options.start;
+  o.robots = options.robots;
   o.snapshot_on = options.snapshot_on;
   o.only_asked_pictures = options.no_pictures;
   try {
+    if (!options.bad_options.empty()) throw InputError(options.bad_options);
     o.pictures = PicturesFor(options);
   } catch (const InputError& e) {
     // a run that could not start says so where its result would be

@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "session.h"
+
 namespace unimouse {
 
 struct RunOptions {
@@ -40,6 +42,13 @@ struct RunOptions {
   double video_fps = 30;
   bool view = false;    ///< a live window instead of a headless run
   int view_frames = 0;  ///< close the window after so many frames; 0 never
+  std::string start;    ///< the robot's start cell and heading, "X,Y,H"; "" the scenario's
+  /// Two or more robots, each with its own link, controller and start (`--robot A --link ...
+  /// --robot B ...`), in place of robot, link, link_sets, firmware_profile, controller, start.
+  std::vector<SessionRobot> robots;
+  /// Why the options could not be read (a --link before the first of several --robot): the
+  /// run writes it as its result and exits with code 2.
+  std::string bad_options;
 };
 
 /// Runs a simulation headless and writes out_dir/result.json; returns the exit code.

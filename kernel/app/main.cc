@@ -1,10 +1,12 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // unimouse: a micromouse and mobile-robot simulator.
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <csignal>
 #include <cstdio>
 #include <exception>
 #include <filesystem>
+#include <map>
 #include <memory>
 
 #include "batch.h"
@@ -77,6 +79,71 @@ std::string UnknownCommand(CLI::App& app, int argc, char** argv) {
 
 }  // namespace
 
+namespace {
+
+// `unimouse run --robot A [--link X] --robot B [--controller c.lua] ...`: with several robots
+// each robot's options are those after its --robot; with one, they may come anywhere, once
+// each. Returns why they cannot be read, or "".
+std::string GroupRobotOptions(const CLI::App& run_cmd, unimouse::RunOptions& run) {
+  const char* const own[] = {"--link",       "--link-set", "--firmware-profile",
+                             "--controller", "--start",    "--name"};
+  const auto value = [&](const char* option, size_t i) {
+    return run_cmd.get_option(option)->as<std::vector<std::string>>().at(i);
+  };
+  if (run_cmd.get_option("--robot")->count() < 2) {
+    for (const char* option : own) {
+      if (run_cmd.get_option(option)->count() > 1 && std::string(option) != "--link-set") {
+        return std::string(option) + " is given twice for one robot";
+      }
+    }
+    const auto one = [&](const char* option, std::string& into) {
+      if (run_cmd.get_option(option)->count() == 1) into = value(option, 0);
+    };
+    one("--robot", run.robot);
+    one("--link", run.link);
+    one("--firmware-profile", run.firmware_profile);
+    one("--controller", run.controller);
+    one("--start", run.start);
+    if (run_cmd.get_option("--name")->count() > 0) {
+      return "--name tells robots apart: it goes with two or more --robot";
+    }
+    return "";
+  }
+  std::map<const CLI::Option*, size_t> seen;
+  for (const CLI::Option* option : run_cmd.parse_order()) {
+    const std::string name = option->get_name();
+    const std::string text = value(name.c_str(), seen[option]++);
+    if (name == "--robot") {
+      run.robots.push_back({});
+      run.robots.back().robot = text;
+      continue;
+    }
+    if (std::find(std::begin(own), std::end(own), name) == std::end(own)) continue;
+    if (run.robots.empty()) {
+      return name + " " + text +
+             " comes before the first --robot: with several robots, each robot's options "
+             "follow its --robot";
+    }
+    unimouse::SessionRobot& robot = run.robots.back();
+    std::string* single = name == "--link"               ? &robot.link
+                          : name == "--firmware-profile" ? &robot.firmware_profile
+                          : name == "--controller"       ? &robot.controller
+                          : name == "--start"            ? &robot.start
+                          : name == "--name"             ? &robot.name
+                                                         : nullptr;
+    if (single == nullptr) {
+      robot.link_sets.push_back(text);
+    } else if (!single->empty()) {
+      return name + " is given twice for robot " + robot.robot;
+    } else {
+      *single = text;
+    }
+  }
+  return "";
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
   using namespace unimouse;
   // a firmware or a reader that closes its end of a pipe is an error to report, not the end of
@@ -91,9 +158,15 @@ int main(int argc, char** argv) {
                  "and the installed plugins");
 
   RunOptions run;
+  // several robots: each --robot starts a robot, and the options for one robot after it are its
+  // own (GroupRobotOptions)
+  std::vector<std::string> robot_files, robot_links, robot_profiles, robot_controllers,
+      robot_starts, robot_names;
   CLI::App* run_cmd = app.add_subcommand("run", "run a simulation headless and write a result");
-  run_cmd->add_option("--robot", run.robot, "robot YAML file, or the name of a bundled robot")
-      ->capture_default_str();
+  run_cmd->add_option("--robot", robot_files,
+                      "robot YAML file, or the name of a bundled robot (default unimouse); give "
+                      "it again for each robot of a run with several, each followed by its own "
+                      "--link, --link-set, --firmware-profile, --controller, --start and --name");
   run_cmd->add_option("--maze", run.maze, "maze file, a bundled maze's name, or none")
       ->capture_default_str();
   run_cmd->add_option("--duration", run.duration_s, "simulated seconds")->capture_default_str();
@@ -112,17 +185,22 @@ int main(int argc, char** argv) {
                       "for the robot alone (without --scenario, --set, --controller and --link "
                       "the run is the contest driven by the bundled firmware)");
   run_cmd->add_option("--set", run.sets, "scenario parameter, name=value (repeatable)");
-  run_cmd->add_option("--controller", run.controller,
+  run_cmd->add_option("--controller", robot_controllers,
                       "Lua file returning function(time_s) that drives the robot through sim.*");
+  run_cmd->add_option("--start", robot_starts,
+                      "the robot's start: a cell and a heading, X,Y,H (H one of N, E, S, W), "
+                      "e.g. 15,15,S");
+  run_cmd->add_option("--name", robot_names,
+                      "the robot's name among several (default: its file's name, then -2, -3)");
   run_cmd->add_flag("--realtime", run.realtime,
                     "pace the simulation to the wall clock, even a firmware in lock-step, to "
                     "watch it (a board or a program on a link, from --link or the robot file, "
                     "is paced anyway until it turns lock-step on)");
-  run_cmd->add_option("--link", run.link, LinkHelp());
+  run_cmd->add_option("--link", robot_links, LinkHelp());
   run_cmd->add_option("--link-set", run.link_sets,
                       "a link parameter, name=value, as `unimouse plugins` lists them for "
                       "unimouse.link (repeatable), e.g. --link-set failsafe_s=0");
-  run_cmd->add_option("--firmware-profile", run.firmware_profile,
+  run_cmd->add_option("--firmware-profile", robot_profiles,
                       "what the firmware expects: unimouse (this project's library, the "
                       "default) or unimousesim-0.1 (built against the original UnimouseSim's "
                       "library: 1.0 m ToF scale, commands held while silent, no extensions)");
@@ -394,6 +472,7 @@ int main(int argc, char** argv) {
     run.duration_given = run_cmd->get_option("--duration")->count() > 0;
     run.maze_given = run_cmd->get_option("--maze")->count() > 0;
     if (run_cmd->parsed()) {
+      run.bad_options = GroupRobotOptions(*run_cmd, run);
       // the main job: no challenge and no driver chosen, so the contest with the bundled
       // micromouse firmware; the robot, the maze, the duration, the seed, the pacing and the
       // pictures change how it runs, not what runs. An open floor has no contest, and
@@ -408,6 +487,7 @@ int main(int argc, char** argv) {
         run.sets = {"end_on_log=done"};
         run.link = link::BundledFirmwareSpec(link::FirmwareHost::kInProcess, FirmwareDirectory(),
                                              "micromouse");
+        for (SessionRobot& robot : run.robots) robot.link = run.link;
       }
       return RunCommand(run);
     }

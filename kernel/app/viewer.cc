@@ -125,7 +125,8 @@ void Viewer::Draw(Session& run, const std::string& state) {
     controls_.preset.clear();
   }
   if (controls_.follow) {
-    const Pose2D p = run.kernel().world().RobotPose(run.kernel().state().data());
+    const int robot = controls_.followed % run.kernel().robot_count();
+    const Pose2D p = run.kernel().world().RobotPose(run.kernel().state().data(), robot);
     camera_.lookat[0] = p.x_m;
     camera_.lookat[1] = p.y_m;
   }

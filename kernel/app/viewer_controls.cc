@@ -31,6 +31,11 @@ bool ViewerControls::Key(int key) {
     case GLFW_KEY_F:
       follow = !follow;
       return true;
+    case GLFW_KEY_TAB:
+      // the next robot of several, followed
+      follow = true;
+      ++followed;
+      return true;
     case GLFW_KEY_1:
       preset = "top";
       return true;
@@ -69,11 +74,12 @@ bool ViewerControls::Key(int key) {
 }
 
 const char* ViewerControls::HelpKeys() {
-  return "Space\nRight, N\n+ - 0\nF\n1 2 3\nR\nB\nU\nS\nBackspace\nQ, Esc\nmouse";
+  return "Space\nRight, N\n+ - 0\nF\nTab\n1 2 3\nR\nB\nU\nS\nBackspace\nQ, Esc\nmouse";
 }
 
 const char* ViewerControls::HelpActions() {
   return "pause, resume\none step (pauses)\nfaster, slower, real time\nfollow the robot\n"
+         "follow the next robot\n"
          "camera: top, chase, free\nToF beams\nfirmware's walls\nHUD\nscreenshot\n"
          "start the run again\nquit\ndrag: orbit (left), pan (right); wheel: zoom";
 }

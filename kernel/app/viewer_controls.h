@@ -12,6 +12,7 @@ struct ViewerControls {
   int steps_wanted = 0;  ///< physics steps to take while paused
   double speed = 1;      ///< sim seconds per wall second
   bool follow = false;   ///< the camera's centre stays on the robot
+  int followed = 0;      ///< which robot it follows, counted on through the run's robots
   bool beams = true;
   bool beliefs = true;
   bool hud = true;

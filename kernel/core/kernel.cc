@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <iostream>
 #include <sstream>
 
@@ -40,10 +41,11 @@ struct Kernel::BindSession {
   int component;
   std::string prefix;  // "file:line:col: component 'x' (type): "
   std::string error;
+  std::string names;  // what the component's robot puts before its names: "" or "robot/"
 
   int Lookup(mjtObj type, const char* kind, const char* name, int count) {
     const mjModel& m = kernel->mj_model();
-    const int id = mj_name2id(&m, type, name);
+    const int id = mj_name2id(&m, type, (names + name).c_str());
     if (id < 0 && error.empty()) {
       error = prefix + "no " + kind + " named '" + name +
               "' (the robot has: " + Names(m, type, count) + ")";
@@ -51,8 +53,9 @@ struct Kernel::BindSession {
     return id;
   }
 
-  int Signal(const char* name, bool write) {
+  int Signal(const char* own_name, bool write) {
     Kernel& k = *kernel;
+    const std::string name = names + own_name;
     int id = k.model_.FindSignal(name);
     if (id < 0) {
       id = static_cast<int>(k.model_.signal_names.size());
@@ -79,8 +82,9 @@ struct Kernel::BindSession {
     return id;
   }
 
-  int Rng(const char* name) {
+  int Rng(const char* own_name) {
     Kernel& k = *kernel;
+    const std::string name = names + own_name;
     for (const auto& existing : k.model_.rng_names) {
       if (existing == name) {
         if (error.empty()) error = prefix + "random stream '" + name + "' is already in use";
@@ -94,11 +98,12 @@ struct Kernel::BindSession {
 
 namespace {
 
-// what the robot file calls each of the world's joints, and where, for messages about them
-std::vector<std::string> JointPlaces(const RobotSpec& robot, const mjModel& m) {
-  std::vector<std::string> places(m.njnt);
-  const auto name = [&m, &places](const std::string& joint, const std::string& place) {
-    const int id = mj_name2id(&m, mjOBJ_JOINT, joint.c_str());
+// what the robot file calls each of its joints in the world, and where, for messages about them
+void AddJointPlaces(const RobotSpec& robot, const std::string& prefix, const mjModel& m,
+                    std::vector<std::string>& places) {
+  places.resize(static_cast<size_t>(m.njnt));
+  const auto name = [&](const std::string& joint, const std::string& place) {
+    const int id = mj_name2id(&m, mjOBJ_JOINT, (prefix + joint).c_str());
     if (id >= 0) places[id] = place;
     return id;
   };
@@ -119,7 +124,6 @@ std::vector<std::string> JointPlaces(const RobotSpec& robot, const mjModel& m) {
       }
     }
   }
-  return places;
 }
 
 }  // namespace
@@ -127,58 +131,85 @@ std::vector<std::string> JointPlaces(const RobotSpec& robot, const mjModel& m) {
 std::unique_ptr<Kernel> Kernel::Create(const RobotSpec& robot, const Maze* maze,
                                        const PluginRegistry& registry,
                                        const KernelOptions& options) {
+  return Create({KernelRobot{robot, "", options.spawn}}, maze, registry, options);
+}
+
+std::unique_ptr<Kernel> Kernel::Create(const std::vector<KernelRobot>& robots, const Maze* maze,
+                                       const PluginRegistry& registry,
+                                       const KernelOptions& options) {
   // MuJoCo would otherwise print to stdout, write MUJOCO_LOG.TXT into the working directory
   // and, on errors, exit(1); an error becomes a fault of the run, which still writes its result
   InstallMujocoHandlers();
+  UNIMOUSE_DEMAND(!robots.empty());
   std::unique_ptr<Kernel> k(new Kernel(options));
-  k->model_.world = World::Build(robot, maze, options.spawn, options.boxes);
-  k->model_.joint_places = JointPlaces(robot, k->model_.mj());
+  Model& model = k->model_;
+  std::vector<WorldRobot> placed;
+  for (const KernelRobot& r : robots) {
+    // several robots have distinct names, and the only one none
+    UNIMOUSE_DEMAND(r.name.empty() == (robots.size() == 1));
+    model.robot_names.push_back(r.name);
+    model.robot_prefixes.push_back(r.name.empty() ? "" : r.name + "/");
+    model.robot_traits.push_back(0);
+    k->output_dirs_.push_back(r.name.empty() ? options.output_dir
+                                             : options.output_dir + "/" + r.name);
+    placed.push_back({&r.spec, model.robot_prefixes.back(), r.spawn ? r.spawn : options.spawn});
+  }
+  model.world = World::Build(placed, maze, options.boxes);
+  for (size_t i = 0; i < robots.size(); ++i) {
+    AddJointPlaces(robots[i].spec, model.robot_prefixes[i], model.mj(), model.joint_places);
+  }
 
   // inputs are written from outside: the firmware link or a scenario
-  for (const auto& input : robot.inputs) {
-    k->model_.signal_names.push_back(input);
-    k->signal_writer_.push_back(kOutsideWriter);
-    k->signal_first_reader_.push_back(-1);
-    k->signal_readers_.emplace_back();
+  for (size_t i = 0; i < robots.size(); ++i) {
+    for (const auto& input : robots[i].spec.inputs) {
+      model.signal_names.push_back(model.robot_prefixes[i] + input);
+      k->signal_writer_.push_back(kOutsideWriter);
+      k->signal_first_reader_.push_back(-1);
+      k->signal_readers_.emplace_back();
+    }
   }
 
   // create every component from validated parameters
   std::vector<std::string> known;
   for (const auto& [name, entry] : registry.entries()) known.push_back(name);
-  for (const auto& spec : robot.components) {
-    const PluginRegistry::Entry* entry = registry.Find(spec.type);
-    if (entry == nullptr) {
-      const std::string near = NearestWord(spec.type, known);
-      throw InputError(spec.location.ToString() + ": component '" + spec.name +
-                       "': unknown type '" + spec.type + "'" +
-                       (near.empty() ? "" : " (did you mean '" + near + "'?)") +
-                       "; `unimouse plugins` lists the types found");
-    }
-    unimouse_config config = ValidateParams(*entry->type, spec);
-    if (options.trust_robot_file) config.from_data_file.clear();
-    ComponentInstance c;
-    c.type = entry->type;
-    c.name = spec.name;
-    c.location = spec.location;
-    char error[512] = "";
-    c.self = c.type->create(&config, &ConfigHost(), error, sizeof(error));
-    if (c.self == nullptr) {
-      throw InputError(spec.location.ToString() + ": component '" + spec.name + "' (" + spec.type +
-                       "): " + error);
-    }
-    const double period_s = spec.period_s.value_or(c.type->default_period_s);
-    if (period_s > 0) {
-      const double steps = period_s / k->timestep_s();
-      c.every_n_steps = static_cast<int>(std::lround(steps));
-      if (c.every_n_steps < 1 || std::fabs(steps - c.every_n_steps) > 1e-6 * steps) {
-        k->model_.components.push_back(c);  // destroyed with the model
-        std::ostringstream why;
-        why << spec.location.ToString() << ": component '" << spec.name << "': period_s "
-            << period_s << " is not a whole number of " << k->timestep_s() << " s physics steps";
-        throw InputError(why.str());
+  for (size_t robot = 0; robot < robots.size(); ++robot) {
+    for (const auto& spec : robots[robot].spec.components) {
+      const PluginRegistry::Entry* entry = registry.Find(spec.type);
+      if (entry == nullptr) {
+        const std::string near = NearestWord(spec.type, known);
+        throw InputError(spec.location.ToString() + ": component '" + spec.name +
+                         "': unknown type '" + spec.type + "'" +
+                         (near.empty() ? "" : " (did you mean '" + near + "'?)") +
+                         "; `unimouse plugins` lists the types found");
       }
+      unimouse_config config = ValidateParams(*entry->type, spec);
+      if (options.trust_robot_file) config.from_data_file.clear();
+      ComponentInstance c;
+      c.type = entry->type;
+      c.name = model.robot_prefixes[robot] + spec.name;
+      c.file_name = spec.name;
+      c.robot = static_cast<int>(robot);
+      c.location = spec.location;
+      char error[512] = "";
+      c.self = c.type->create(&config, &ConfigHost(), error, sizeof(error));
+      if (c.self == nullptr) {
+        throw InputError(spec.location.ToString() + ": component '" + spec.name + "' (" +
+                         spec.type + "): " + error);
+      }
+      const double period_s = spec.period_s.value_or(c.type->default_period_s);
+      if (period_s > 0) {
+        const double steps = period_s / k->timestep_s();
+        c.every_n_steps = static_cast<int>(std::lround(steps));
+        if (c.every_n_steps < 1 || std::fabs(steps - c.every_n_steps) > 1e-6 * steps) {
+          k->model_.components.push_back(c);  // destroyed with the model
+          std::ostringstream why;
+          why << spec.location.ToString() << ": component '" << spec.name << "': period_s "
+              << period_s << " is not a whole number of " << k->timestep_s() << " s physics steps";
+          throw InputError(why.str());
+        }
+      }
+      k->model_.components.push_back(c);
     }
-    k->model_.components.push_back(c);
   }
 
   for (size_t i = 0; i < k->model_.components.size(); ++i) k->BindComponent(static_cast<int>(i));
@@ -206,7 +237,12 @@ std::unique_ptr<Kernel> Kernel::Create(const RobotSpec& robot, const Maze* maze,
   k->state_ = std::make_unique<State>(k->mj_model(), k->model_.component_state_size,
                                       static_cast<int>(k->model_.signal_names.size()));
   k->message_cursor_.assign(k->model_.components.size(), 0);
+  k->pace_setter_.assign(k->model_.components.size(), 0);
   if (options.start_components) {
+    for (const std::string& dir : k->output_dirs_) {
+      std::error_code error;  // a folder that cannot be made fails where a file is written
+      std::filesystem::create_directories(dir, error);
+    }
     for (size_t i = 0; i < k->model_.components.size(); ++i) {
       k->StartComponent(static_cast<int>(i));
     }
@@ -219,15 +255,16 @@ void Kernel::BindComponent(int index) {
   ComponentInstance& c = model_.components[index];
   BindSession session{
       this, index,
-      c.location.ToString() + ": component '" + c.name + "' (" + c.type->name + "): ", ""};
+      c.location.ToString() + ": component '" + c.name + "' (" + c.type->name + "): ", "",
+      model_.robot_prefixes[c.robot]};
   unimouse_bind b{};
   b.size = sizeof(b);
   b.ctx = &session;
   b.model = &mj_model();
   b.timestep_s = timestep_s();
-  b.component_name = c.name.c_str();
+  b.component_name = c.file_name.c_str();
   b.period_s = c.every_n_steps * timestep_s();
-  b.output_dir = options_.output_dir.c_str();
+  b.output_dir = output_dirs_[c.robot].c_str();
   if (const Maze* maze = world().maze()) {
     b.maze_width_cells = maze->width();
     b.maze_height_cells = maze->height();
@@ -284,7 +321,10 @@ void Kernel::BindComponent(int index) {
     model.beams.push_back({site, length_signal, range_max_m});
   };
   b.declare_traits = [](void* ctx, int traits) {
-    static_cast<BindSession*>(ctx)->kernel->model_.traits |= traits;
+    auto* s = static_cast<BindSession*>(ctx);
+    Model& model = s->kernel->model_;
+    model.traits |= traits;
+    model.robot_traits[model.components[s->component].robot] |= traits;
   };
 
   char error[512] = "";
@@ -336,8 +376,9 @@ void Kernel::RunHook(int index, void (*hook)(const void*, const unimouse_tick*))
   t.ray_cast = [](void* ctx, const double origin[3], const double direction[3], double max_m) {
     Kernel& k = *static_cast<HookContext*>(ctx)->kernel;
     // no exception crosses back into the component: the fault ends the run after its hook
+    const int robot = k.model_.components[static_cast<HookContext*>(ctx)->component].robot;
     try {
-      return k.model_.world->CastRay(k.state_->data(), origin, direction, max_m);
+      return k.model_.world->CastRay(k.state_->data(), origin, direction, max_m, robot);
     } catch (const RuntimeFault& e) {
       if (k.fault_.empty()) k.fault_ = e.what();
       return -1.0;
@@ -352,13 +393,16 @@ void Kernel::RunHook(int index, void (*hook)(const void*, const unimouse_tick*))
   t.report = [](void* ctx, const unimouse_report* report) {
     auto* h = static_cast<HookContext*>(ctx);
     if (report == nullptr || report->size < sizeof(unimouse_report)) return;
-    const std::string& source = h->kernel->model_.components[h->component].name;
-    for (const auto& listener : h->kernel->report_listeners_) listener(source, *report);
+    const ComponentInstance& from = h->kernel->model_.components[h->component];
+    for (const auto& listener : h->kernel->report_listeners_) {
+      listener(from.name, from.robot, *report);
+    }
   };
   t.set_firmware_paced = [](void* ctx, int paced) {
     auto* h = static_cast<HookContext*>(ctx);
-    h->kernel->firmware_paced_ = paced != 0;
-    h->kernel->pace_setter_ = paced != 0 ? h->component : -1;
+    char& setter = h->kernel->pace_setter_[h->component];
+    h->kernel->paced_count_ += (paced != 0) - setter;
+    setter = paced != 0;
   };
   // a component's own call into MuJoCo (a plugin may make them) is guarded at its hook, and its
   // error is the component's, as one it logged
@@ -461,7 +505,7 @@ void Kernel::Reset() {
   mjData& d = state_->data();
   GuardMujoco([&] {
     mj_resetData(&m, &d);
-    model_.world->PlaceRobot(d, model_.world->spawn());
+    for (int r = 0; r < robot_count(); ++r) model_.world->PlaceRobot(d, model_.world->spawn(r), r);
     model_.world->UpdateCollisionProxies(d);
     mj_forward(&m, &d);
   });
@@ -471,8 +515,8 @@ void Kernel::Reset() {
   state_->rngs().clear();
   for (const auto& name : model_.rng_names) state_->rngs().emplace_back(seed_, name);
   state_->set_step(0);
-  firmware_paced_ = false;
-  pace_setter_ = -1;
+  std::fill(pace_setter_.begin(), pace_setter_.end(), 0);
+  paced_count_ = 0;
   tick_times_ = {};
 
   messages_.clear();
@@ -492,7 +536,7 @@ double Kernel::RunPhase(int64_t step,
   for (size_t i = 0; i < model_.components.size(); ++i) {
     const ComponentInstance& c = model_.components[i];
     if (c.type->*hook == nullptr || step % c.every_n_steps != 0) continue;
-    if (static_cast<int>(i) != pace_setter_) {
+    if (!pace_setter_[i]) {
       RunHook(static_cast<int>(i), c.type->*hook);
       continue;
     }

@@ -66,8 +66,19 @@ struct TickTimes {
                             ///< firmware it waits for in lock-step
 };
 
-/// Receives every typed report a component hands the host, with the component's name.
-using ReportSink = std::function<void(const std::string& component, const unimouse_report&)>;
+/// Receives every typed report a component hands the host, with the component's name and the
+/// robot it belongs to.
+using ReportSink =
+    std::function<void(const std::string& component, int robot, const unimouse_report&)>;
+
+/// One robot of a run. With several, each has a distinct name: its components, signals, random
+/// streams and physics names are then "name/..." and its files go to the output directory's
+/// folder `name`; the only robot of a run has name "" and keeps the names of its file.
+struct KernelRobot {
+  RobotSpec spec;
+  std::string name;
+  std::optional<Pose2D> spawn;  ///< default: KernelOptions::spawn, else the maze's start
+};
 
 class Kernel {
  public:
@@ -77,6 +88,10 @@ class Kernel {
   /// Builds the world, validates, creates and binds every component, and resets. Throws
   /// InputError with file:line:col.
   static std::unique_ptr<Kernel> Create(const RobotSpec& robot, const Maze* maze,
+                                        const PluginRegistry& registry,
+                                        const KernelOptions& options);
+  /// Builds several robots in one world, each as above.
+  static std::unique_ptr<Kernel> Create(const std::vector<KernelRobot>& robots, const Maze* maze,
                                         const PluginRegistry& registry,
                                         const KernelOptions& options);
   /// Same, with default options and the given seed.
@@ -106,9 +121,16 @@ class Kernel {
   /// Hands every typed report (unimouse_report) to `listener`.
   void AddReportListener(ReportSink listener) { report_listeners_.push_back(std::move(listener)); }
   /// Whether a component said that the firmware sets the pace (lock-step) since the last reset.
-  bool firmware_paced() const { return firmware_paced_; }
+  bool firmware_paced() const { return paced_count_ > 0; }
   /// Whether a component declared `trait` (UNIMOUSE_TRAIT_*) at bind.
   bool declared(int trait) const { return (model_.traits & trait) != 0; }
+  /// Whether a component of robot `robot` declared `trait`.
+  bool declared(int trait, int robot) const { return (model_.robot_traits[robot] & trait) != 0; }
+  int robot_count() const { return static_cast<int>(model_.robot_names.size()); }
+  /// A robot's name: "" for the only robot of a run.
+  const std::string& robot_name(int robot) const { return model_.robot_names[robot]; }
+  /// A robot's prefix of signal names: "" or "name/".
+  const std::string& robot_prefix(int robot) const { return model_.robot_prefixes[robot]; }
   /// Returns where the wall time of the ticks since the last reset went.
   const TickTimes& tick_times() const { return tick_times_; }
 
@@ -164,8 +186,10 @@ class Kernel {
   std::function<void()> boundary_hook_;
   std::vector<LogSink> listeners_;
   std::vector<ReportSink> report_listeners_;
-  bool firmware_paced_ = false;
-  int pace_setter_ = -1;  // the component that said the firmware sets the pace
+  // the components that said their firmware sets the pace (lock-step), and how many they are
+  std::vector<char> pace_setter_;
+  int paced_count_ = 0;
+  std::vector<std::string> output_dirs_;  // per robot: where its components write
   TickTimes tick_times_;
   std::string fault_;
   // the run's messages, oldest first; what each component has already been shown of them

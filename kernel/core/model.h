@@ -20,7 +20,9 @@ namespace unimouse {
 struct ComponentInstance {
   const unimouse_component_type* type = nullptr;
   void* self = nullptr;  ///< owned: destroyed through type->destroy with the Model
-  std::string name;
+  std::string name;      ///< as the run's messages name it: "b/link" when robot b is one of several
+  std::string file_name;  ///< as the robot file names it: "link"
+  int robot = 0;          ///< which robot of the run it belongs to
   SourceLocation location;
   int every_n_steps = 1;
   int state_offset = 0;
@@ -67,6 +69,11 @@ struct Model {
   int component_state_size = 0;
   /// What the components declared themselves to be: UNIMOUSE_TRAIT_* bits of all, or-ed.
   int traits = 0;
+  /// Per robot: its name ("" for the only robot of a run), the prefix of its names in the
+  /// physics model and among the signals ("" or "name/"), and its components' traits.
+  std::vector<std::string> robot_names;
+  std::vector<std::string> robot_prefixes;
+  std::vector<int> robot_traits;
 };
 
 }  // namespace unimouse

@@ -89,9 +89,9 @@ void WriteAssets(Mjcf& x, bool floor_texture = true) {
     << "</asset>\n";
 }
 
-void WriteGeom(Mjcf& x, const GeomSpec& g) {
+void WriteGeom(Mjcf& x, const GeomSpec& g, const std::string& prefix) {
   x << "<geom";
-  if (!g.name.empty()) x << " name='" << XmlEscaped(g.name) << "'";
+  if (!g.name.empty()) x << " name='" << XmlEscaped(prefix + g.name) << "'";
   x << " type='" << g.type << "' group='" << kGroupRobot << "' ";
   x << (g.contact ? kRobotContact : "contype='0' conaffinity='0'");
   if (g.type == "box") {
@@ -108,8 +108,9 @@ void WriteGeom(Mjcf& x, const GeomSpec& g) {
                      << ' ' << g.rgba[3] << "'/>\n";
 }
 
-void WriteBody(Mjcf& x, const BodySpec& b, bool is_chassis) {
-  x << "<body name='" << XmlEscaped(b.name) << "'";
+// a robot's bodies; every name it brings into the model starts with `prefix`
+void WriteBody(Mjcf& x, const BodySpec& b, bool is_chassis, const std::string& prefix) {
+  x << "<body name='" << XmlEscaped(prefix + b.name) << "'";
   if (!is_chassis) {
     x << " pos='";
     x.Vec(b.pos_m) << "' euler='";
@@ -117,24 +118,24 @@ void WriteBody(Mjcf& x, const BodySpec& b, bool is_chassis) {
   }
   x << ">\n";
   if (is_chassis) {
-    x << "<freejoint name='" << XmlEscaped(b.name) << "_free'/>\n";
+    x << "<freejoint name='" << XmlEscaped(prefix + b.name) << "_free'/>\n";
   } else {
     const JointSpec& j = *b.joint;
-    x << "<joint name='" << XmlEscaped(j.name) << "' type='" << j.type << "'";
+    x << "<joint name='" << XmlEscaped(prefix + j.name) << "' type='" << j.type << "'";
     if (j.type == "hinge") {
       x << " axis='";
       x.Vec(j.axis) << "'";
     }
     x << " damping='" << j.damping_nm_s << "' armature='" << j.armature_kg_m2 << "'/>\n";
   }
-  for (const auto& g : b.geoms) WriteGeom(x, g);
+  for (const auto& g : b.geoms) WriteGeom(x, g, prefix);
   for (const auto& s : b.sites) {
-    x << "<site name='" << XmlEscaped(s.name) << "' group='" << kGroupRobot
+    x << "<site name='" << XmlEscaped(prefix + s.name) << "' group='" << kGroupRobot
       << "' size='0.003' pos='";
     x.Vec(s.pos_m) << "' euler='";
     x.Vec(s.euler_deg) << "'/>\n";
   }
-  for (const auto& child : b.bodies) WriteBody(x, child, false);
+  for (const auto& child : b.bodies) WriteBody(x, child, false, prefix);
   x << "</body>\n";
 }
 
@@ -292,7 +293,15 @@ World::~World() = default;
 std::unique_ptr<World> World::Build(const RobotSpec& robot, const Maze* maze,
                                     std::optional<Pose2D> spawn,
                                     const std::vector<StaticBox>& boxes) {
+  return Build({WorldRobot{&robot, "", spawn}}, maze, boxes);
+}
+
+std::unique_ptr<World> World::Build(const std::vector<WorldRobot>& robots, const Maze* maze,
+                                    const std::vector<StaticBox>& boxes) {
+  UNIMOUSE_DEMAND(!robots.empty());
+  const RobotSpec& robot = *robots.front().spec;
   std::unique_ptr<World> w(new World());
+  Pose2D default_spawn;
   double floor_centre_x = 0, floor_centre_y = 0, floor_half_m = 5;
   if (maze != nullptr) {
     if (maze->width() > kMaxMazeSide_cells || maze->height() > kMaxMazeSide_cells) {
@@ -309,11 +318,14 @@ std::unique_ptr<World> World::Build(const RobotSpec& robot, const Maze* maze,
     floor_centre_x = dims.cell_m * maze->width() / 2;
     floor_centre_y = dims.cell_m * maze->height() / 2;
     floor_half_m = dims.cell_m * std::max(maze->width(), maze->height()) / 2 + 0.5;
-    w->spawn_ = CellCentre(maze->start(), maze->start_heading(), dims);
+    default_spawn = CellCentre(maze->start(), maze->start_heading(), dims);
   } else {
-    w->spawn_ = {0, 0, std::numbers::pi / 2};
+    default_spawn = {0, 0, std::numbers::pi / 2};
   }
-  if (spawn) w->spawn_ = *spawn;
+  w->robots_.resize(robots.size());
+  for (size_t i = 0; i < robots.size(); ++i) {
+    w->robots_[i].spawn = robots[i].spawn.value_or(default_spawn);
+  }
   for (const StaticBox& b : boxes) {
     w->scenery_.push_back(b);
     w->collision_shapes_.push_back(b);
@@ -344,54 +356,60 @@ std::unique_ptr<World> World::Build(const RobotSpec& robot, const Maze* maze,
     << "<geom name='floor' type='plane' group='" << kGroupWorld << "' " << kStaticContact
     << " material='floor' friction='0.1 0.005 0.0001' pos='" << floor_centre_x << ' '
     << floor_centre_y << " 0' size='" << floor_half_m << ' ' << floor_half_m << " 0.05'/>\n";
-  const int proxies = w->collision_shapes_.empty() ? 0 : kProxyCount;
+  const int proxies =
+      w->collision_shapes_.empty() ? 0 : kProxyCount * static_cast<int>(robots.size());
   for (int i = 0; i < proxies; ++i) {
     x << "<geom name='proxy" << i << "' type='box' group='" << kGroupProxy << "' " << kStaticContact
       << " friction='0.6 0.005 0.0001' pos='0 0 " << kParkedZ_m
       << "' size='0.01 0.01 0.01' rgba='1 0 1 0.3'/>\n";
   }
-  WriteBody(x, robot.chassis, true);
+  for (const WorldRobot& r : robots) WriteBody(x, r.spec->chassis, true, r.prefix);
   x << "</worldbody>\n<actuator>\n";
-  for (const auto& a : robot.actuators) {
-    x << "<motor name='" << XmlEscaped(a.name) << "' joint='" << XmlEscaped(a.joint)
-      << "' gear='1'/>\n";
+  for (const WorldRobot& r : robots) {
+    for (const auto& a : r.spec->actuators) {
+      x << "<motor name='" << XmlEscaped(r.prefix + a.name) << "' joint='"
+        << XmlEscaped(r.prefix + a.joint) << "' gear='1'/>\n";
+    }
   }
   x << "</actuator>\n</mujoco>\n";
   w->mjcf_ = x.str();
   w->model_.reset(CompileMjcf(w->mjcf_, robot.file));
 
   const mjModel& m = *w->model_;
-  w->robot_body_ = mj_name2id(&m, mjOBJ_BODY, robot.chassis.name.c_str());
-  UNIMOUSE_DEMAND(w->robot_body_ > 0);
-  const int free_joint = m.body_jntadr[w->robot_body_];
-  w->robot_qpos_ = m.jnt_qposadr[free_joint];
-  w->robot_qvel_ = m.jnt_dofadr[free_joint];
   w->proxy_count_ = proxies;
   w->first_proxy_ = proxies > 0 ? mj_name2id(&m, mjOBJ_GEOM, "proxy0") : -1;
   w->proxy_shape_.assign(static_cast<size_t>(proxies), -1);
+  for (size_t i = 0; i < robots.size(); ++i) {
+    RobotSlot& slot = w->robots_[i];
+    const RobotSpec& spec = *robots[i].spec;
+    slot.body = mj_name2id(&m, mjOBJ_BODY, (robots[i].prefix + spec.chassis.name).c_str());
+    UNIMOUSE_DEMAND(slot.body > 0);
+    const int free_joint = m.body_jntadr[slot.body];
+    slot.qpos = m.jnt_qposadr[free_joint];
+    slot.qvel = m.jnt_dofadr[free_joint];
 
-  // find the resting height and reach of the robot from its geometry: lift it to 1 m, then see
-  // how far its lowest contact geom hangs below and how far any geom sticks out sideways
-  {
+    // find the resting height and reach of the robot from its geometry: lift it to 1 m, then see
+    // how far its lowest contact geom hangs below and how far any geom sticks out sideways
     std::unique_ptr<mjData, DataDeleter> d;
     GuardMujoco([&] { d.reset(mj_makeData(&m)); });
-    d->qpos[w->robot_qpos_ + 2] = 1;
+    d->qpos[slot.qpos + 2] = 1;
     GuardMujoco([&] { mj_kinematics(&m, d.get()); });
     double lowest = std::numeric_limits<double>::infinity();
     double reach = 0;
     for (int g = 0; g < m.ngeom; ++g) {
-      if (m.body_rootid[m.geom_bodyid[g]] != w->robot_body_) continue;
+      if (m.body_rootid[m.geom_bodyid[g]] != slot.body) continue;
+      slot.geoms.push_back(g);
       const mjtNum* gp = d->geom_xpos + 3 * g;
       reach = std::max(reach, std::hypot(gp[0], gp[1]) + m.geom_rbound[g]);
       if (m.geom_contype[g] != 0) lowest = std::min(lowest, gp[2] - ReachBelow(m, *d, g));
     }
     if (!std::isfinite(lowest)) {
-      throw InputError(robot.chassis.location.ToString() +
+      throw InputError(spec.chassis.location.ToString() +
                        ": the robot has no geom with contact: true, so it would fall through the "
                        "floor");
     }
-    w->robot_rest_height_m_ = 1 - lowest + kRestClearance_m;
-    w->robot_radius_m_ = reach;
+    slot.rest_height_m = 1 - lowest + kRestClearance_m;
+    slot.radius_m = reach;
   }
 
   // scenery: every static box, for rays and pictures, in models of a few hundred boxes each:
@@ -426,20 +444,30 @@ std::unique_ptr<World> World::Build(const RobotSpec& robot, const Maze* maze,
   return w;
 }
 
-void World::PlaceRobot(mjData& d, const Pose2D& pose) const {
-  mjtNum* q = d.qpos + robot_qpos_;
+int World::RobotOfBody(int body) const {
+  if (body <= 0) return -1;
+  const int root = model_->body_rootid[body];
+  for (size_t i = 0; i < robots_.size(); ++i) {
+    if (robots_[i].body == root) return static_cast<int>(i);
+  }
+  return -1;
+}
+
+void World::PlaceRobot(mjData& d, const Pose2D& pose, int robot) const {
+  const RobotSlot& slot = robots_[robot];
+  mjtNum* q = d.qpos + slot.qpos;
   q[0] = pose.x_m;
   q[1] = pose.y_m;
-  q[2] = robot_rest_height_m_;
+  q[2] = slot.rest_height_m;
   q[3] = std::cos(pose.yaw_rad / 2);
   q[4] = 0;
   q[5] = 0;
   q[6] = std::sin(pose.yaw_rad / 2);
-  for (int i = 0; i < 6; ++i) d.qvel[robot_qvel_ + i] = 0;
+  for (int i = 0; i < 6; ++i) d.qvel[slot.qvel + i] = 0;
 }
 
-Pose2D World::RobotPose(const mjData& d) const {
-  const mjtNum* q = d.qpos + robot_qpos_;
+Pose2D World::RobotPose(const mjData& d, int robot) const {
+  const mjtNum* q = d.qpos + robots_[robot].qpos;
   // heading of the body's x axis projected on the floor
   const double yaw =
       std::atan2(2 * (q[3] * q[6] + q[4] * q[5]), 1 - 2 * (q[5] * q[5] + q[6] * q[6]));
@@ -448,8 +476,15 @@ Pose2D World::RobotPose(const mjData& d) const {
 
 void World::UpdateCollisionProxies(const mjData& d) {
   if (proxy_count_ == 0) return;
-  const mjtNum* p = d.qpos + robot_qpos_;
-  const double reach = robot_radius_m_ + kProxyMargin_m;
+  for (size_t robot = 0; robot < robots_.size(); ++robot) {
+    UpdateProxiesOf(d, static_cast<int>(robot));
+  }
+}
+
+void World::UpdateProxiesOf(const mjData& d, int robot) {
+  const RobotSlot& r = robots_[robot];
+  const mjtNum* p = d.qpos + r.qpos;
+  const double reach = r.radius_m + kProxyMargin_m;
 
   // the shapes within reach, in index order: those of the squares around the robot, filtered
   near_.clear();
@@ -460,21 +495,22 @@ void World::UpdateCollisionProxies(const mjData& d) {
       candidates_.push_back(i);
     }
   }
-  if (static_cast<int>(candidates_.size()) > proxy_count_) {
+  if (static_cast<int>(candidates_.size()) > kProxyCount) {
     // keep the nearest; ties by index keep it deterministic
     std::sort(candidates_.begin(), candidates_.end(), [&](int a, int b) {
       const double da = FloorDistance(collision_shapes_[a], shape_cos_sin_[a], p[0], p[1]);
       const double db = FloorDistance(collision_shapes_[b], shape_cos_sin_[b], p[0], p[1]);
       return da != db ? da < db : a < b;
     });
-    candidates_.resize(static_cast<size_t>(proxy_count_));
+    candidates_.resize(static_cast<size_t>(kProxyCount));
     std::sort(candidates_.begin(), candidates_.end());
     ++proxy_overflows_;
   }
 
   mjModel& m = *model_;
-  for (int slot = 0; slot < proxy_count_; ++slot) {
-    const int shape = slot < static_cast<int>(candidates_.size()) ? candidates_[slot] : -1;
+  for (int own = 0; own < kProxyCount; ++own) {
+    const int slot = robot * kProxyCount + own;
+    const int shape = own < static_cast<int>(candidates_.size()) ? candidates_[own] : -1;
     if (shape < 0 && proxy_shape_[slot] < 0) continue;
     proxy_shape_[slot] = shape;
     const int g = first_proxy_ + slot;
@@ -507,18 +543,37 @@ void World::UpdateCollisionProxies(const mjData& d) {
   }
 }
 
-bool World::RobotTouchesScenery(const mjData& d) const {
+bool World::RobotTouchesScenery(const mjData& d, int robot) const {
+  const mjModel& m = *model_;
+  const int body = robots_[robot].body;
   for (int i = 0; i < d.ncon; ++i) {
     const mjContact& c = d.contact[i];
     const bool proxy1 = c.geom1 >= first_proxy_ && c.geom1 < first_proxy_ + proxy_count_;
     const bool proxy2 = c.geom2 >= first_proxy_ && c.geom2 < first_proxy_ + proxy_count_;
-    if ((proxy1 || proxy2) && c.dist <= 0) return true;
+    if (proxy1 == proxy2 || c.dist > 0) continue;
+    const int other = proxy1 ? c.geom2 : c.geom1;
+    if (m.body_rootid[m.geom_bodyid[other]] == body) return true;
   }
   return false;
 }
 
+int World::RobotTouchesRobot(const mjData& d, int robot) const {
+  const mjModel& m = *model_;
+  int touched = -1;
+  for (int i = 0; i < d.ncon && robots_.size() > 1; ++i) {
+    const mjContact& c = d.contact[i];
+    if (c.dist > 0) continue;
+    const int a = RobotOfBody(m.geom_bodyid[c.geom1]);
+    const int b = RobotOfBody(m.geom_bodyid[c.geom2]);
+    if (a < 0 || b < 0 || a == b || (a != robot && b != robot)) continue;
+    const int other = a == robot ? b : a;
+    if (touched < 0 || other < touched) touched = other;
+  }
+  return touched;
+}
+
 double World::CastRay(const mjData& d, const double origin[3], const double direction[3],
-                      double max_m) const {
+                      double max_m, int from) const {
   for (int k = 0; k < 3; ++k) {
     if (!std::isfinite(origin[k]) || !std::isfinite(direction[k])) return -1;
   }
@@ -537,6 +592,23 @@ double World::CastRay(const mjData& d, const double origin[3], const double dire
     const RayBox& b = ray_boxes_[static_cast<size_t>(i)];
     const double wall = mju_rayGeom(b.pos, b.mat, b.size, origin, direction, mjGEOM_BOX);
     if (wall >= 0 && (best < 0 || wall < best)) best = wall;
+  }
+  // other robots are surfaces too: each one whose reach the ray's line passes near, geom by geom
+  const mjModel& m = *model_;
+  for (size_t r = 0; r < robots_.size() && robots_.size() > 1; ++r) {
+    if (static_cast<int>(r) == from) continue;
+    const RobotSlot& slot = robots_[r];
+    const mjtNum* c = d.qpos + slot.qpos;
+    const double to[3] = {c[0] - origin[0], c[1] - origin[1], c[2] - origin[2]};
+    const double along = mju_dot3(to, direction) / mju_dot3(direction, direction);
+    double off[3];
+    for (int k = 0; k < 3; ++k) off[k] = to[k] - along * direction[k];
+    if (mju_norm3(off) > slot.radius_m + 0.1) continue;
+    for (const int g : slot.geoms) {
+      const double hit = mju_rayGeom(d.geom_xpos + 3 * g, d.geom_xmat + 9 * g, m.geom_size + 3 * g,
+                                     origin, direction, m.geom_type[g]);
+      if (hit >= 0 && (best < 0 || hit < best)) best = hit;
+    }
   }
   return best >= 0 && best <= max_m ? best : -1;
 }

@@ -51,6 +51,14 @@ std::vector<StaticBox> MazeCollisionBoxes(const Maze& maze);
 /// Returns the world position of a cell's centre.
 Pose2D CellCentre(Cell c, Heading h, const MazeDimensions& dims = {});
 
+/// One robot of a world: its file, the prefix of every name it brings into the physics model
+/// ("" for the only robot of a run, "name/" when there are several), and where it starts.
+struct WorldRobot {
+  const RobotSpec* spec = nullptr;
+  std::string prefix;
+  std::optional<Pose2D> spawn;  ///< default: the maze's start, or the origin facing north
+};
+
 class World {
  public:
   World(const World&) = delete;
@@ -66,6 +74,9 @@ class World {
   /// scenario adds. Throws InputError, also for a maze beyond kMaxMazeSide_cells a side.
   static std::unique_ptr<World> Build(const RobotSpec& robot, const Maze* maze,
                                       std::optional<Pose2D> spawn = std::nullopt,
+                                      const std::vector<StaticBox>& boxes = {});
+  /// Builds several robots in one maze; they collide with each other and see each other.
+  static std::unique_ptr<World> Build(const std::vector<WorldRobot>& robots, const Maze* maze,
                                       const std::vector<StaticBox>& boxes = {});
 
   const mjModel& model() const { return *model_; }
@@ -90,36 +101,44 @@ class World {
   };
   const std::vector<SceneryChunk>& scenery_chunks() const { return scenery_chunks_; }
 
-  Pose2D spawn() const { return spawn_; }
+  int robot_count() const { return static_cast<int>(robots_.size()); }
+  /// Where robot `robot` starts.
+  Pose2D spawn(int robot = 0) const { return robots_[robot].spawn; }
   /// The maze the world was built from, or null on an open floor.
   const Maze* maze() const { return maze_ ? &*maze_ : nullptr; }
   /// The maze's dimensions; classic ones on an open floor.
   MazeDimensions maze_dimensions() const { return maze_ ? maze_->dimensions() : MazeDimensions{}; }
-  int robot_body() const { return robot_body_; }
-  double robot_radius_m() const { return robot_radius_m_; }
+  int robot_body(int robot = 0) const { return robots_[robot].body; }
+  double robot_radius_m(int robot = 0) const { return robots_[robot].radius_m; }
+  /// The robot whose body tree holds MuJoCo body `body`, or -1 (the world, a proxy).
+  int RobotOfBody(int body) const;
   int proxy_count() const { return proxy_count_; }
   /// Ticks on which more static shapes were near the robot than there are proxies.
   long proxy_overflows() const { return proxy_overflows_; }
 
-  /// Puts the robot at rest on the floor at `pose`.
-  void PlaceRobot(mjData& d, const Pose2D& pose) const;
-  /// Returns the robot's pose on the floor.
-  Pose2D RobotPose(const mjData& d) const;
+  /// Puts a robot at rest on the floor at `pose`.
+  void PlaceRobot(mjData& d, const Pose2D& pose, int robot = 0) const;
+  /// Returns a robot's pose on the floor.
+  Pose2D RobotPose(const mjData& d, int robot = 0) const;
 
-  /// Returns whether any part of the robot touches a wall, post or obstacle.
-  bool RobotTouchesScenery(const mjData& d) const;
+  /// Returns whether any part of a robot touches a wall, post or obstacle.
+  bool RobotTouchesScenery(const mjData& d, int robot = 0) const;
+  /// Returns the lowest-numbered other robot that a robot touches, or -1.
+  int RobotTouchesRobot(const mjData& d, int robot) const;
 
-  /// Moves the collision proxies onto the static shapes near the robot. A function of the robot's
-  /// position alone, called before every step, so it keeps runs deterministic.
+  /// Moves the collision proxies onto the static shapes near each robot. A function of the
+  /// robots' positions alone, called before every step, so it keeps runs deterministic.
   void UpdateCollisionProxies(const mjData& d);
 
-  /// Returns the distance along unit `direction` to the first surface that is not part of a
-  /// robot, or -1 when there is none within max_m (or an argument is not finite).
-  double CastRay(const mjData& d, const double origin[3], const double direction[3],
-                 double max_m) const;
+  /// Returns the distance along unit `direction` to the first surface that is not part of robot
+  /// `from` (other robots are surfaces; -1: no robot's own sensor), or -1 when there is none
+  /// within max_m (or an argument is not finite).
+  double CastRay(const mjData& d, const double origin[3], const double direction[3], double max_m,
+                 int from = -1) const;
 
  private:
   World() = default;
+  void UpdateProxiesOf(const mjData& d, int robot);
 
   std::string mjcf_;
   std::unique_ptr<mjModel, ModelDeleter> model_;
@@ -132,13 +151,19 @@ class World {
     double pos[3], mat[9], size[3];
   };
   std::vector<RayBox> ray_boxes_;
-  Pose2D spawn_;
   std::optional<Maze> maze_;
-  int robot_body_ = -1;
-  int robot_qpos_ = -1;
-  int robot_qvel_ = -1;
-  double robot_rest_height_m_ = 0;
-  double robot_radius_m_ = 0;
+  // each robot's place in the physics model; its collision proxies are slots
+  // [robot * kProxiesPerRobot, (robot + 1) * kProxiesPerRobot)
+  struct RobotSlot {
+    Pose2D spawn;
+    int body = -1;
+    int qpos = -1;
+    int qvel = -1;
+    double rest_height_m = 0;
+    double radius_m = 0;
+    std::vector<int> geoms;  // that other robots' rays can hit
+  };
+  std::vector<RobotSlot> robots_;
   int first_proxy_ = -1;
   int proxy_count_ = 0;
   std::vector<int> proxy_shape_;         // shape index per proxy slot, -1 when parked

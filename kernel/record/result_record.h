@@ -16,7 +16,7 @@ namespace unimouse {
 /// The version of result.json's schema, major.minor. A new key, or a new value where the schema
 /// lists them, raises the minor: a reader of 1.0 reads every 1.x record. A key removed or
 /// renamed, or one whose type or meaning changes, raises the major.
-inline constexpr const char* kResultSchemaVersion = "1.3";
+inline constexpr const char* kResultSchemaVersion = "1.4";
 
 /// Returns the start of every record: its schema (name, version, where it is described), the
 /// version of unimouse, and the command that wrote it ("run" or "mms").

@@ -3,9 +3,11 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <csignal>
 #include <filesystem>
+#include <numbers>
 #include <variant>
 
 #include "install_paths.h"
@@ -72,10 +74,10 @@ std::string DefaultOf(const PluginRegistry& registry, const std::string& type,
 
 // who drives the robot: a controller file, a firmware over a link (from --link or the robot
 // file), both, or neither; each file the run started with its SHA-256
-nlohmann::json DriverJson(const SessionOptions& options, const RobotSpec& robot,
+nlohmann::json DriverJson(const std::string& controller, const RobotSpec& robot,
                           const PluginRegistry& registry) {
   nlohmann::json driver = {{"controller", nullptr}, {"link", nullptr}};
-  if (!options.controller.empty()) driver["controller"] = FileIdentity(options.controller);
+  if (!controller.empty()) driver["controller"] = FileIdentity(controller);
   for (const ComponentSpec& c : robot.components) {
     if (c.type != "unimouse.link") continue;
     const std::string spec = LastScalar(c.params, "transport");
@@ -90,6 +92,36 @@ nlohmann::json DriverJson(const SessionOptions& options, const RobotSpec& robot,
          parsed.firmware.empty() ? nlohmann::json(nullptr) : FileIdentity(parsed.firmware)}};
   }
   return driver;
+}
+
+// a start "X,Y,H" as a pose in the cell's centre; throws InputError naming `option`
+Pose2D ParseStart(const std::string& text, const MazeDimensions& dims, const std::string& option) {
+  int x = 0, y = 0;
+  char heading = 0;
+  int used = 0;
+  const bool read = std::sscanf(text.c_str(), "%d,%d,%c%n", &x, &y, &heading, &used) == 3 &&
+                    used == static_cast<int>(text.size());
+  const std::string headings = "NESW";
+  UNIMOUSE_THROW_UNLESS(read && headings.find(heading) != std::string::npos && x >= 0 && y >= 0,
+                        option + " " + text +
+                            ": write a cell and a heading, X,Y,H, e.g. 15,15,S (H one of N, E, "
+                            "S, W)");
+  const Heading h[] = {Heading::kNorth, Heading::kEast, Heading::kSouth, Heading::kWest};
+  return CellCentre({x, y}, h[headings.find(heading)], dims);
+}
+
+// a robot's name as the result, sim.robots() and its folder use it
+bool IsRobotName(const std::string& name) {
+  return !name.empty() && name.size() <= 64 && name != "." && name != ".." &&
+         name.find_first_not_of(
+             "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-.") ==
+             std::string::npos;
+}
+
+// the cell a pose is in
+std::string CellOf(const Pose2D& pose, const MazeDimensions& dims) {
+  return "(" + std::to_string(static_cast<int>(std::floor(pose.x_m / dims.cell_m))) + ", " +
+         std::to_string(static_cast<int>(std::floor(pose.y_m / dims.cell_m))) + ")";
 }
 
 volatile std::sig_atomic_t interrupt_signal = 0;
@@ -174,23 +206,96 @@ std::unique_ptr<Session> Session::Open(const SessionOptions& options) {
 
 Session::~Session() = default;
 
+void Session::LoadRobots() {
+  const SessionOptions& o = options_;
+  std::vector<SessionRobot> given = o.robots;
+  if (given.empty()) {
+    given.push_back({o.robot, "", o.link, o.link_sets, o.firmware_profile, o.controller, o.start});
+  }
+  UNIMOUSE_THROW_UNLESS(
+      given.size() <= static_cast<size_t>(kMaxRobots),
+      std::to_string(given.size()) + " robots: a run has at most " + std::to_string(kMaxRobots));
+  for (const SessionRobot& r : given) {
+    Robot robot;
+    robot.options = r;
+    robot.file = ResolveDataFile(r.robot, "robots/", ".yaml");
+    robot.spec = LoadRobotSpec(robot.file);
+    ApplyTraceOptions(o.trace, robot.spec);
+    UNIMOUSE_THROW_UNLESS((r.link_sets.empty() && r.firmware_profile.empty()) || !r.link.empty(),
+                          "--link-set and --firmware-profile go with --link");
+    if (!r.link.empty()) {
+      robot.spec.components.push_back(
+          LinkComponent(link::ResolveBundledFirmware(r.link, FirmwareDirectory()),
+                        r.firmware_profile, r.link_sets));
+    }
+    robot.name = r.name.empty() ? robot.spec.name : r.name;
+    robots_.push_back(std::move(robot));
+  }
+  // several robots are told apart by name: a name given twice is a mistake, two robots of one
+  // file are "unimouse" and "unimouse-2"
+  const auto taken = [this](const std::string& name, size_t before) {
+    for (size_t k = 0; k < before; ++k) {
+      if (robots_[k].name == name) return true;
+    }
+    return false;
+  };
+  for (size_t i = 0; i < robots_.size() && robots_.size() > 1; ++i) {
+    Robot& r = robots_[i];
+    UNIMOUSE_THROW_UNLESS(
+        IsRobotName(r.name),
+        "robot name '" + r.name + "': use letters, digits, '_', '-' and '.' (give --name NAME)");
+    if (!taken(r.name, i)) continue;
+    UNIMOUSE_THROW_UNLESS(r.options.name.empty(),
+                          "--name " + r.name + " is given to two robots; names must differ");
+    const std::string base = r.name;
+    for (int n = 2; taken(r.name, i); ++n) r.name = base + "-" + std::to_string(n);
+  }
+  identity_["robot"] = robots_.front().file;
+  identity_["robot_name"] = robots_.front().spec.name;
+  identity_["robot_sha256"] = FileSha256(robots_.front().file);
+}
+
+// where each robot starts: --start, else the scenario's place for it, else the maze's start;
+// two robots in one cell is a mistake
+void Session::PlaceRobots(ScenarioWorld& world) {
+  const MazeDimensions dims = maze_ ? maze_->dimensions() : MazeDimensions{};
+  for (size_t i = 0; i < robots_.size(); ++i) {
+    Robot& r = robots_[i];
+    if (!r.options.start.empty()) {
+      r.start = ParseStart(r.options.start, dims, "--start");
+      UNIMOUSE_THROW_UNLESS(
+          !maze_ || maze_->Contains({static_cast<int>(r.start->x_m / dims.cell_m),
+                                     static_cast<int>(r.start->y_m / dims.cell_m)}),
+          "--start " + r.options.start + ": not a cell of the " + std::to_string(maze_->width()) +
+              "x" + std::to_string(maze_->height()) + " maze");
+    } else if (i == 0) {
+      r.start = world.spawn;
+    } else if (world.robot_spawns.contains(static_cast<int>(i))) {
+      r.start = world.robot_spawns.at(static_cast<int>(i));
+    }
+  }
+  if (robots_.size() < 2) return;
+  Pose2D maze_start = {0, 0, std::numbers::pi / 2};
+  if (maze_) maze_start = CellCentre(maze_->start(), maze_->start_heading(), dims);
+  for (size_t i = 0; i < robots_.size(); ++i) {
+    const std::string a = CellOf(robots_[i].start.value_or(maze_start), dims);
+    for (size_t j = 0; j < i; ++j) {
+      UNIMOUSE_THROW_UNLESS(a != CellOf(robots_[j].start.value_or(maze_start), dims),
+                            "robots '" + robots_[j].name + "' and '" + robots_[i].name +
+                                "' both start in cell " + a + ": give one of them --start X,Y,H");
+    }
+  }
+}
+
 void Session::Assemble() {
   const SessionOptions& o = options_;
   UNIMOUSE_THROW_UNLESS(o.duration_s > 0 && std::isfinite(o.duration_s),
                         "--duration must be a positive number of seconds");
-  robot_file_ = ResolveDataFile(o.robot, "robots/", ".yaml");
-  robot_ = LoadRobotSpec(robot_file_);
-  ApplyTraceOptions(o.trace, robot_);
-  identity_["robot"] = robot_file_;
-  identity_["robot_name"] = robot_.name;
-  identity_["robot_sha256"] = FileSha256(robot_file_);
-  UNIMOUSE_THROW_UNLESS((o.link_sets.empty() && o.firmware_profile.empty()) || !o.link.empty(),
-                        "--link-set and --firmware-profile go with --link");
-  if (!o.link.empty()) {
-    robot_.components.push_back(
-        LinkComponent(link::ResolveBundledFirmware(o.link, FirmwareDirectory()), o.firmware_profile,
-                      o.link_sets));
-  }
+  LoadRobots();
+  std::vector<std::string> controllers;
+  for (const Robot& r : robots_) controllers.push_back(r.options.controller);
+  const bool any_controller = std::any_of(controllers.begin(), controllers.end(),
+                                          [](const std::string& c) { return !c.empty(); });
 
   // a scenario builds its own world
   ScenarioWorld world;
@@ -203,6 +308,11 @@ void Session::Assemble() {
       WriteErrorResult(options_, why, kExitRuntimeFault, "");
     };
     scenario_ = Scenario::Load(scenario_file_, overrides, o.seed, on_hang);
+    UNIMOUSE_THROW_UNLESS(static_cast<int>(robots_.size()) >= scenario_->min_robots(),
+                          "scenario '" + scenario_->name() + "' needs at least " +
+                              std::to_string(scenario_->min_robots()) +
+                              " robots, and the run has " + std::to_string(robots_.size()) +
+                              ": give --robot FILE once for each (docs/scenarios.md)");
     if (o.maze_given) {
       // a scenario's maze is its parameter `maze`: --maze sets it, as --set maze= would
       UNIMOUSE_THROW_UNLESS(scenario_->params().contains("maze"),
@@ -215,6 +325,9 @@ void Session::Assemble() {
       scenario_ = Scenario::Load(scenario_file_, overrides, o.seed, on_hang);
     }
     scenario_sha256_ = FileSha256(scenario_file_);
+    std::vector<std::string> names;
+    for (const Robot& r : robots_) names.push_back(r.name);
+    scenario_->SetRobotNames(names);
     world = scenario_->BuildWorld();
     maze_ = std::move(world.maze);
     maze_file_ = world.maze_file;
@@ -223,7 +336,7 @@ void Session::Assemble() {
       duration_s_ = scenario_->time_limit_s() + 1;
     }
   } else {
-    UNIMOUSE_THROW_UNLESS(o.sets.empty() && o.controller.empty(),
+    UNIMOUSE_THROW_UNLESS(o.sets.empty() && !any_controller,
                           "--set and --controller go with --scenario");
     if (o.maze != "none") {
       maze_file_ = ResolveDataFile(o.maze, "mazes/", ".txt");
@@ -234,6 +347,7 @@ void Session::Assemble() {
     }
   }
   SetMazeIdentity(identity_, maze_file_, maze_.get());
+  PlaceRobots(world);
   UNIMOUSE_THROW_UNLESS(o.snapshot_on.empty() || scenario_,
                         "--snapshot-on watches a scenario's events: give --scenario");
   const PluginRegistry* registry = o.registry;
@@ -252,7 +366,7 @@ void Session::Assemble() {
   kernel_options.seed = o.seed;
   kernel_options.output_dir = o.out_dir;
   kernel_options.boxes = std::move(world.boxes);
-  kernel_options.spawn = world.spawn;
+  kernel_options.spawn = robots_.front().start;
   kernel_options.log_sink = [this](double time_s, int level, const std::string& component,
                                    const std::string& message) {
     const char* kind = level == UNIMOUSE_LOG_ERROR     ? "error: "
@@ -266,16 +380,27 @@ void Session::Assemble() {
     if (level == UNIMOUSE_LOG_WARNING) warnings_.push_back(component + ": " + message);
     std::fflush(log_.get());
   };
-  kernel_ = Kernel::Create(robot_, maze_.get(), *registry, kernel_options);
-  kernel_->AddReportListener([this](const std::string& component, const unimouse_report& report) {
-    if (report.kind == UNIMOUSE_REPORT_MEASURE && report.name != nullptr) {
-      measurements_[component][report.name] = report.value;
-    } else {
-      beliefs_.Apply(report);
-    }
-  });
-  if (scenario_) scenario_->Attach(*kernel_, o.controller);
-  identity_["driver"] = DriverJson(o, robot_, *registry);
+  if (robots_.size() == 1) {
+    kernel_ = Kernel::Create(robots_.front().spec, maze_.get(), *registry, kernel_options);
+  } else {
+    std::vector<KernelRobot> placed;
+    for (const Robot& r : robots_) placed.push_back({r.spec, r.name, r.start});
+    kernel_ = Kernel::Create(placed, maze_.get(), *registry, kernel_options);
+  }
+  // the maze picture shows what the first robot's firmware believes
+  kernel_->AddReportListener(
+      [this](const std::string& component, int robot, const unimouse_report& report) {
+        if (report.kind == UNIMOUSE_REPORT_MEASURE && report.name != nullptr) {
+          measurements_[component][report.name] = report.value;
+        } else if (robot == 0) {
+          beliefs_.Apply(report);
+        }
+      });
+  if (scenario_) scenario_->Attach(*kernel_, controllers);
+  for (size_t i = 0; i < robots_.size(); ++i) {
+    drivers_.push_back(DriverJson(controllers[i], robots_[i].spec, *registry));
+  }
+  identity_["driver"] = drivers_.front();
   // what drives the robot is what its components declared, wherever they came from (--link or
   // the robot file); said at once, so that a run meant to test something does not pass quietly
   // doing nothing
@@ -285,7 +410,7 @@ void Session::Assemble() {
                  "nothing drives the robot (no --scenario, --controller or --link): it stands "
                  "still; `unimouse run` with no options runs the contest with the bundled "
                  "firmware");
-  } else if (!o.controller.empty() && firmware) {
+  } else if (any_controller && firmware) {
     kernel_->Log(UNIMOUSE_LOG_WARNING, "run",
                  "both --controller and a firmware link drive the robot: the firmware's "
                  "commands overwrite the controller's whenever they arrive");
@@ -327,6 +452,7 @@ void Session::Step() {
   if (Over()) return;
   try {
     kernel_->Step();
+    CountContacts();
     pictures_->AfterStep();
   } catch (const RuntimeFault& e) {
     fault_ = e.what();
@@ -336,6 +462,22 @@ void Session::Step() {
   // firmware in lock-step sets the pace itself, unless the wall clock was asked for to watch it
   if (pace_ && (options_.realtime || !kernel_->firmware_paced())) {
     pacer_->Wait(kernel_->state().step());
+  }
+}
+
+// each contact counted once, when it begins: a robot resting against a wall is one contact
+void Session::CountContacts() {
+  const World& world = kernel_->world();
+  const mjData& d = kernel_->state().data();
+  for (size_t i = 0; i < robots_.size(); ++i) {
+    Robot& r = robots_[i];
+    const bool wall = world.RobotTouchesScenery(d, static_cast<int>(i));
+    r.wall_contacts += wall && !r.touching_wall;
+    r.touching_wall = wall;
+    if (robots_.size() < 2) continue;
+    const int other = world.RobotTouchesRobot(d, static_cast<int>(i));
+    r.robot_contacts += other >= 0 && r.touching_robot < 0;
+    r.touching_robot = other;
   }
 }
 
@@ -440,6 +582,19 @@ SessionResult Session::Finish(const nlohmann::json& extra) {
   r["firmware_paced"] = kernel_->firmware_paced();
   r["robot_pose"] = {{"x_m", pose.x_m}, {"y_m", pose.y_m}, {"yaw_rad", pose.yaw_rad}};
   r["collision_proxy_overflows"] = kernel_->world().proxy_overflows();
+  nlohmann::json robots = nlohmann::json::array();
+  for (size_t i = 0; i < robots_.size(); ++i) {
+    const Robot& robot = robots_[i];
+    const Pose2D at = kernel_->world().RobotPose(d, static_cast<int>(i));
+    robots.push_back({{"name", robot.name},
+                      {"file", robot.file},
+                      {"sha256", FileSha256(robot.file)},
+                      {"driver", drivers_[i]},
+                      {"pose", {{"x_m", at.x_m}, {"y_m", at.y_m}, {"yaw_rad", at.yaw_rad}}},
+                      {"wall_contacts", robot.wall_contacts},
+                      {"robot_contacts", robot.robot_contacts}});
+  }
+  r["robots"] = robots;
   SessionResult result;
   const bool ended = fault_.empty() && interrupted_.empty();
   result.exit_code = ended ? kExitPassed : kExitRuntimeFault;

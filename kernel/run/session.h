@@ -42,6 +42,21 @@ int InterruptSignal();
 /// "interrupted by SIGINT" (or SIGTERM) once a signal asked runs to stop, else "".
 std::string InterruptedBySignal();
 
+/// One robot of a run with several, and what drives it: `unimouse run --robot A [--link ...]
+/// --robot B ...`, each option about the robot before it.
+struct SessionRobot {
+  std::string robot = "unimouse";  ///< robot file or bundled robot name
+  std::string name;                ///< "" the robot file's name, made distinct ("unimouse-2")
+  std::string link;                ///< transport spec; "" none
+  std::vector<std::string> link_sets;
+  std::string firmware_profile;
+  std::string controller;  ///< Lua controller file; "" none
+  std::string start;  ///< "X,Y,H": a cell and a heading (N, E, S or W); "" as the scenario says
+};
+
+/// Most robots in one run.
+inline constexpr int kMaxRobots = 8;
+
 /// Everything a run is made of; what `unimouse run` takes, parsed.
 struct SessionOptions {
   std::string robot = "unimouse";  ///< robot file or bundled robot name
@@ -71,6 +86,10 @@ struct SessionOptions {
   bool only_asked_pictures = false;
   bool console = true;            ///< every log line also to stderr, with its sim time
   bool driven_by_caller = false;  ///< the caller writes the robot's inputs between steps
+  std::string start;              ///< the robot's start, as SessionRobot::start
+  /// Two or more: every robot of the run, in place of robot, link, link_sets,
+  /// firmware_profile, controller and start above.
+  std::vector<SessionRobot> robots;
 };
 
 /// Returns the firmware link's component as a robot file would declare it, from the command
@@ -111,7 +130,8 @@ class Session {
   SessionResult Finish(const nlohmann::json& extra = {});
 
   Kernel& kernel() { return *kernel_; }
-  const RobotSpec& robot() const { return robot_; }
+  /// The first robot's file.
+  const RobotSpec& robot() const { return robots_.front().spec; }
   /// What the firmware reported of the maze so far.
   const FirmwareBeliefs& beliefs() const { return beliefs_; }
   /// The HUD lines: the scenario's, or what a driver showed (ShowDisplay); else none.
@@ -135,12 +155,28 @@ class Session {
  private:
   explicit Session(const SessionOptions& options) : options_(options) {}
   void Assemble();
+  void LoadRobots();
+  void PlaceRobots(ScenarioWorld& world);
+  void CountContacts();
   void DrawFirmwareMaze();
+
+  // a robot of the run, as loaded, and what happened to it
+  struct Robot {
+    SessionRobot options;
+    std::string file;
+    RobotSpec spec;
+    std::string name;  // as sim.robots() and the result give it
+    std::optional<Pose2D> start;
+    bool touching_wall = false;
+    int touching_robot = -1;
+    int64_t wall_contacts = 0;
+    int64_t robot_contacts = 0;
+  };
+  std::vector<Robot> robots_;
+  std::vector<nlohmann::json> drivers_;  // per robot, DriverJson
 
   SessionOptions options_;
   std::optional<PluginRegistry> own_registry_;
-  std::string robot_file_;
-  RobotSpec robot_;
   std::unique_ptr<Scenario> scenario_;
   std::string scenario_file_;
   std::string scenario_sha256_;

@@ -317,7 +317,10 @@ local function inspect(scenario, file)
     error(file .. ": a scenario file returns sim.scenario { name = ..., run = ... }", 0)
   end
   local stages = { name = scenario.name, params = scenario.params, world = scenario.world,
-                   run = scenario.run, finish = scenario.finish }
+                   run = scenario.run, finish = scenario.finish, robots = scenario.robots }
+  if stages.robots ~= nil and (math.type(stages.robots) ~= "integer" or stages.robots < 1) then
+    error(file .. ": the scenario's robots (how many it needs at least) is a whole number, 1 or more", 0)
+  end
   if type(stages.name) ~= "string" then
     error(file .. ": the scenario's name is missing or not a string", 0)
   end

@@ -177,6 +177,7 @@ int Scenario::KeepStages(LuaCall& call) {
   s.world_ref_ = RefField(L, 1, "world");
   s.run_ref_ = RefField(L, 1, "run");
   s.finish_ref_ = RefField(L, 1, "finish");
+  s.min_robots_ = static_cast<int>(call.IntegerField(1, "robots", 1));
   // each parameter as {name, type, value as text}
   const auto count = static_cast<lua_Integer>(lua_rawlen(L, 2));
   for (lua_Integer i = 1; i <= count; ++i) {
@@ -413,11 +414,19 @@ ScenarioWorld Scenario::BuildWorld() {
 }
 
 void Scenario::Attach(Kernel& kernel, const std::string& controller) {
+  std::vector<std::string> controllers(static_cast<size_t>(kernel.robot_count()));
+  controllers[0] = controller;
+  Attach(kernel, controllers);
+}
+
+void Scenario::Attach(Kernel& kernel, const std::vector<std::string>& controllers) {
   kernel_ = &kernel;
   coroutine_ = lua_newthread(L_);
   coroutine_ref_ = luaL_ref(L_, LUA_REGISTRYINDEX);
-  if (!controller.empty()) {
-    // the controller file runs in the scenario's sandbox, with the same sim API
+  for (size_t robot = 0; robot < controllers.size(); ++robot) {
+    const std::string& controller = controllers[robot];
+    if (controller.empty()) continue;
+    // the controller file runs in the scenario's sandbox, with the same sim API, for its robot
     chunk_ = {ReadTextFile(controller), "@" + controller};
     CallStep<LoadChunk>(0, 1, "");
     chunk_ = {};
@@ -426,7 +435,7 @@ void Scenario::Attach(Kernel& kernel, const std::string& controller) {
       lua_settop(L_, 0);
       throw RuntimeFault(controller + ": a controller file returns function(time_s) ... end");
     }
-    controller_ref_ = luaL_ref(L_, LUA_REGISTRYINDEX);
+    controllers_.push_back({static_cast<int>(robot), luaL_ref(L_, LUA_REGISTRYINDEX)});
   }
   kernel.AddMessageListener(
       [this](double time_s, int level, const std::string&, const std::string& message) {
@@ -466,11 +475,14 @@ void Scenario::Tick() {
       }
     }
   }
-  if (controller_ref_ != kNoRef) {
-    lua_rawgeti(L_, LUA_REGISTRYINDEX, controller_ref_);
+  for (const auto& [robot, ref] : controllers_) {
+    // a controller's sim.* calls are about its own robot
+    current_robot_ = robot;
+    lua_rawgeti(L_, LUA_REGISTRYINDEX, ref);
     lua_pushnumber(L_, kernel_->state().data().time);
     Call(1, 0, "the controller");
   }
+  current_robot_ = 0;
 }
 
 void Scenario::Finish() {

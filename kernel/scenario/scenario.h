@@ -59,7 +59,7 @@ inline constexpr double kScenarioInstructionsPerSecond = 100e6;
 inline constexpr double kScenarioCallWallTimeS = 10;
 
 /// The scenario API's level: new functions carry the level they came with.
-inline constexpr int kScenarioApiLevel = 3;
+inline constexpr int kScenarioApiLevel = 4;
 
 /// The most records (sim.record_add) a scenario reports in a run, all lists together.
 inline constexpr size_t kMaxScenarioRecords = 10'000;
@@ -90,7 +90,8 @@ struct ScenarioWorld {
   std::unique_ptr<Maze> maze;
   std::string maze_file;  ///< the file the maze was read from
   std::vector<StaticBox> boxes;
-  std::optional<Pose2D> spawn;
+  std::optional<Pose2D> spawn;         ///< of the first robot
+  std::map<int, Pose2D> robot_spawns;  ///< of others, by robot index (sim.robot_place)
 };
 
 /// A value as a scenario gave it, with its Lua type: a boolean, an integer, a float (a number
@@ -134,6 +135,14 @@ class Scenario {
   /// `controller`, if given, is a Lua file returning function(sim_time_s) called every tick
   /// after the scenario, with the same API, to drive the robot (tests, teaching).
   void Attach(Kernel& kernel, const std::string& controller = "");
+  /// Same with a controller per robot of the kernel ("" for none): each controller's sim.*
+  /// calls without a robot's name are about its own robot, and its signal names are its robot's.
+  void Attach(Kernel& kernel, const std::vector<std::string>& controllers);
+  /// The least number of robots the scenario runs with (its `robots` field; 1 by default).
+  int min_robots() const { return min_robots_; }
+  /// The names sim.robots() gives and sim.robot_* take, in the kernel's order; set before the
+  /// world phase.
+  void SetRobotNames(std::vector<std::string> names) { robot_names_ = std::move(names); }
   bool finished() const { return outcome_.status != "running"; }
   const ScenarioOutcome& outcome() const { return outcome_; }
   /// Parameters after overrides, as text.
@@ -233,8 +242,11 @@ class Scenario {
   int world_ref_ = kNoRef;     // the stages, nil when absent
   int run_ref_ = kNoRef;
   int finish_ref_ = kNoRef;
-  int coroutine_ref_ = kNoRef;   // the run coroutine
-  int controller_ref_ = kNoRef;  // the controller function
+  int coroutine_ref_ = kNoRef;                    // the run coroutine
+  std::vector<std::pair<int, int>> controllers_;  // robot index, controller function
+  int current_robot_ = 0;  // the robot sim.* calls are about while a controller runs
+  int min_robots_ = 1;
+  std::vector<std::string> robot_names_;
   lua_State* coroutine_ = nullptr;
   bool started_ = false;
   bool finish_called_ = false;

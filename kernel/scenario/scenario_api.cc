@@ -63,9 +63,45 @@ struct ScenarioApi {
     return 1;
   }
 
+  // the robot named by argument `arg` (sim.robots() gives the names), or without one the robot
+  // of the controller that calls, else the first
+  static int RobotIndex(const LuaCall& call, int arg) {
+    const Scenario& s = Self(call);
+    if (lua_isnoneornil(call.state(), arg)) return s.current_robot_;
+    const std::string name = call.CheckString(arg);
+    for (size_t i = 0; i < s.robot_names_.size(); ++i) {
+      if (s.robot_names_[i] == name) return static_cast<int>(i);
+    }
+    std::string names;
+    for (const std::string& n : s.robot_names_) names += (names.empty() ? "" : ", ") + n;
+    call.Fail("no robot named '" + name + "' (the run has: " + names + ")");
+  }
+
+  static int Robots(LuaCall& call) {
+    const Scenario& s = Self(call);
+    lua_State* L = call.state();
+    lua_createtable(L, static_cast<int>(s.robot_names_.size()), 0);
+    for (size_t i = 0; i < s.robot_names_.size(); ++i) {
+      lua_pushstring(L, s.robot_names_[i].c_str());
+      lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
+    }
+    return 1;
+  }
+
+  static int RobotTouchingRobot(LuaCall& call) {
+    const Kernel& k = RunningKernel(call);
+    const int other = k.world().RobotTouchesRobot(k.state().data(), RobotIndex(call, 1));
+    if (other < 0) {
+      lua_pushnil(call.state());
+    } else {
+      lua_pushstring(call.state(), Self(call).robot_names_[static_cast<size_t>(other)].c_str());
+    }
+    return 1;
+  }
+
   static int RobotGetPose(LuaCall& call) {
     const Kernel& k = RunningKernel(call);
-    const Pose2D p = k.world().RobotPose(k.state().data());
+    const Pose2D p = k.world().RobotPose(k.state().data(), RobotIndex(call, 1));
     lua_State* L = call.state();
     lua_createtable(L, 0, 3);
     lua_pushnumber(L, p.x_m);
@@ -80,8 +116,9 @@ struct ScenarioApi {
   static int RobotGetVelocity(LuaCall& call) {
     const Kernel& k = RunningKernel(call);
     const mjData& d = k.state().data();
-    const Pose2D p = k.world().RobotPose(d);
-    const int dof = k.mj_model().body_dofadr[k.world().robot_body()];
+    const int robot = RobotIndex(call, 1);
+    const Pose2D p = k.world().RobotPose(d, robot);
+    const int dof = k.mj_model().body_dofadr[k.world().robot_body(robot)];
     // free joint: linear velocity in world axes, angular in the body's; the body is level
     lua_State* L = call.state();
     lua_createtable(L, 0, 2);
@@ -94,7 +131,7 @@ struct ScenarioApi {
 
   static int RobotGetCell(LuaCall& call) {
     const Kernel& k = RunningKernel(call);
-    const Pose2D p = k.world().RobotPose(k.state().data());
+    const Pose2D p = k.world().RobotPose(k.state().data(), RobotIndex(call, 1));
     const MazeDimensions dims = k.world().maze_dimensions();
     lua_State* L = call.state();
     lua_createtable(L, 0, 2);
@@ -107,7 +144,8 @@ struct ScenarioApi {
 
   static int RobotIsTouchingWall(LuaCall& call) {
     const Kernel& k = RunningKernel(call);
-    lua_pushboolean(call.state(), k.world().RobotTouchesScenery(k.state().data()));
+    lua_pushboolean(call.state(),
+                    k.world().RobotTouchesScenery(k.state().data(), RobotIndex(call, 1)));
     return 1;
   }
 
@@ -160,11 +198,18 @@ struct ScenarioApi {
     call.CheckTable(1);
     const Pose2D pose{call.NumberField(1, "x_m"), call.NumberField(1, "y_m"),
                       call.NumberField(1, "yaw_deg", 90) * std::numbers::pi / 180};
+    lua_getfield(call.state(), 1, "robot");
+    const int robot = RobotIndex(call, lua_gettop(call.state()));
+    lua_pop(call.state(), 1);
     Scenario& s = Self(call);
     if (s.kernel_ == nullptr) {
-      s.world_.spawn = pose;
+      if (robot == 0) {
+        s.world_.spawn = pose;
+      } else {
+        s.world_.robot_spawns[robot] = pose;
+      }
     } else {
-      s.kernel_->world().PlaceRobot(s.kernel_->state().data(), pose);
+      s.kernel_->world().PlaceRobot(s.kernel_->state().data(), pose, robot);
     }
     return 0;
   }
@@ -172,12 +217,21 @@ struct ScenarioApi {
   static int RobotReset(LuaCall& call) {
     Scenario& s = Self(call);
     if (s.kernel_ == nullptr) call.Fail("sim.robot_reset: only in run");
-    s.kernel_->world().PlaceRobot(s.kernel_->state().data(), s.kernel_->world().spawn());
+    const int robot = RobotIndex(call, 1);
+    s.kernel_->world().PlaceRobot(s.kernel_->state().data(), s.kernel_->world().spawn(robot),
+                                  robot);
     return 0;
   }
 
+  // a signal by its name; a controller's names are its robot's first ("left_motor.voltage" is
+  // "b/left_motor.voltage" for robot b's controller), else the name as given
   static int SignalIndex(const LuaCall& call, const Kernel& k) {
     const std::string name = call.CheckString(1);
+    const Scenario& s = Self(call);
+    if (k.robot_count() > 1) {
+      const int own = k.model().FindSignal(k.robot_prefix(s.current_robot_) + name);
+      if (own >= 0) return own;
+    }
     const int id = k.model().FindSignal(name);
     if (id < 0) call.Fail("no signal named '" + name + "'");
     return id;
@@ -654,25 +708,31 @@ namespace {
 // place, load, is, save; nouns: robot, maze, signal, hud, score, record, wall, box, snapshot.
 constexpr ApiEntry kApi[] = {
     {"scenario", ScenarioApi::ScenarioTable, 1,
-     "scenario{name, params?, world?, run, finish?} -> table",
+     "scenario{name, params?, world?, run, finish?, robots?} -> table",
      "declares the scenario a file returns"},
     {"time", ScenarioApi::Time, 1, "time() -> seconds", "sim time"},
     {"next_tick", nullptr, 1, "next_tick()", "waits one physics step"},
     {"wait", nullptr, 1, "wait(seconds)", "waits sim time"},
     {"wait_until", nullptr, 1, "wait_until(condition, {timeout_s?}) -> boolean",
      "waits until condition() is true; false on timeout"},
-    {"robot_get_pose", ScenarioApi::RobotGetPose, 1, "robot_get_pose() -> {x_m, y_m, yaw_rad}",
+    {"robots", ScenarioApi::Robots, 4, "robots() -> {name, ...}",
+     "the run's robots, in the order of the command line; the one-robot functions take a name "
+     "as their last argument (robot_place{robot = name})"},
+    {"robot_touching_robot", ScenarioApi::RobotTouchingRobot, 4,
+     "robot_touching_robot(name?) -> name or nil", "the other robot this one touches now"},
+    {"robot_get_pose", ScenarioApi::RobotGetPose, 1, "robot_get_pose(name?) -> {x_m, y_m, yaw_rad}",
      "where the robot is"},
     {"robot_get_velocity", ScenarioApi::RobotGetVelocity, 1,
-     "robot_get_velocity() -> {v_m_per_s, omega_rad_per_s}",
+     "robot_get_velocity(name?) -> {v_m_per_s, omega_rad_per_s}",
      "forward speed and yaw rate, counter-clockwise positive"},
-    {"robot_get_cell", ScenarioApi::RobotGetCell, 1, "robot_get_cell() -> {x, y}",
+    {"robot_get_cell", ScenarioApi::RobotGetCell, 1, "robot_get_cell(name?) -> {x, y}",
      "the maze cell under the robot's centre"},
     {"robot_is_touching_wall", ScenarioApi::RobotIsTouchingWall, 1,
-     "robot_is_touching_wall() -> boolean", "whether the robot touches a wall, post or obstacle"},
-    {"robot_place", ScenarioApi::RobotPlace, 1, "robot_place{x_m, y_m, yaw_deg?}",
+     "robot_is_touching_wall(name?) -> boolean",
+     "whether the robot touches a wall, post or obstacle"},
+    {"robot_place", ScenarioApi::RobotPlace, 1, "robot_place{x_m, y_m, yaw_deg?, robot?}",
      "puts the robot there at rest; in world, its start"},
-    {"robot_reset", ScenarioApi::RobotReset, 1, "robot_reset()",
+    {"robot_reset", ScenarioApi::RobotReset, 1, "robot_reset(name?)",
      "puts the robot back at its start, at rest (run)"},
     {"maze_load", ScenarioApi::MazeLoad, 1, "maze_load(name_or_file, {class?})",
      "builds a maze (world) at its contest's dimensions; class auto, classic or half"},

@@ -14,7 +14,9 @@
 #include <unistd.h>
 
 #include <boost/context/detail/fcontext.hpp>
+#include <cerrno>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <set>
@@ -130,6 +132,22 @@ std::string SignalText(int sig, void* address) {
   return text;
 }
 
+// a copy of a module under a name of its own, to load a second time with globals of its own
+// (dlopen gives the module already loaded for the same file); the caller removes it once loaded
+std::string PrivateCopy(const std::string& path) {
+  std::string name = (std::filesystem::temp_directory_path() / "unimouse-firmware-XXXXXX.so");
+  const int fd = ::mkstemps(name.data(), 3);
+  UNIMOUSE_THROW_UNLESS(
+      fd >= 0, path + ": cannot copy the module for a second robot (" + std::strerror(errno) + ")");
+  ::close(fd);
+  std::error_code ec;
+  std::filesystem::copy_file(path, name, std::filesystem::copy_options::overwrite_existing, ec);
+  if (ec) ::unlink(name.c_str());
+  UNIMOUSE_THROW_UNLESS(
+      !ec, path + ": cannot copy the module for a second robot (" + ec.message() + ")");
+  return name;
+}
+
 class InprocTransport final : public Transport {
  public:
   explicit InprocTransport(const std::string& path) {
@@ -141,12 +159,12 @@ class InprocTransport final : public Transport {
     UNIMOUSE_THROW_UNLESS(open_modules == 0 || owner_thread == thread,
                           "firmware modules run on one thread: " + path +
                               " cannot be opened while another thread runs one");
-    UNIMOUSE_THROW_UNLESS(
-        !loaded.contains(path_),
-        path +
-            ": this firmware module is already loaded in this process (by another link, or "
-            "left there by a firmware that failed); its globals cannot be had twice");
-    handle_ = ::dlopen(path_.c_str(), RTLD_NOW | RTLD_LOCAL);
+    // a module already loaded (another robot's, or one a failed firmware left behind) is loaded
+    // again from a copy: each robot's firmware has globals of its own
+    copy_ = loaded.contains(path_);
+    const std::string opened = copy_ ? PrivateCopy(path_) : path_;
+    handle_ = ::dlopen(opened.c_str(), RTLD_NOW | RTLD_LOCAL);
+    if (copy_) ::unlink(opened.c_str());
     UNIMOUSE_THROW_UNLESS(handle_ != nullptr, path + ": not a firmware module: " + ::dlerror());
     entry_ = reinterpret_cast<unimouse_inproc_main>(::dlsym(handle_, UNIMOUSE_INPROC_ENTRY));
     if (entry_ == nullptr) ::dlclose(handle_);
@@ -161,7 +179,7 @@ class InprocTransport final : public Transport {
     fw_ = fctx::make_fcontext(stack_ + kStack_bytes, kStack_bytes - kGuard_bytes, &Enter);
     host_ = {sizeof(host_), UNIMOUSE_INPROC_VERSION, this, &HostRead, &HostWrite, &HostSuspend,
              &HostExit};
-    loaded.insert(path_);
+    if (!copy_) loaded.insert(path_);
     if (open_modules++ == 0) {
       owner_thread = thread;
       InstallGuards();
@@ -170,7 +188,9 @@ class InprocTransport final : public Transport {
 
   ~InprocTransport() override {
     // a firmware that failed may have left anything behind: its module stays loaded, unrun
-    if (failure_.empty()) {
+    if (failure_.empty() && copy_) {
+      ::dlclose(handle_);
+    } else if (failure_.empty()) {
       ::dlclose(handle_);
       void* still = ::dlopen(path_.c_str(), RTLD_NOW | RTLD_NOLOAD);
       if (still != nullptr) {
@@ -290,6 +310,7 @@ class InprocTransport final : public Transport {
   }
 
   std::string path_;
+  bool copy_ = false;  // loaded from a private copy: path_ was loaded already
   void* handle_ = nullptr;
   unimouse_inproc_main entry_ = nullptr;
   unimouse_inproc_host host_{};

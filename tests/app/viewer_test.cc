@@ -38,6 +38,18 @@ TEST(ViewerControlsTest, KeysPauseStepAndChangeSpeed) {
   EXPECT_EQ(c.speed, ViewerControls::kMinSpeed);
 }
 
+TEST(ViewerControlsTest, TabFollowsTheNextRobot) {
+  ViewerControls c;
+  EXPECT_FALSE(c.follow);
+  c.Key(GLFW_KEY_TAB);
+  EXPECT_TRUE(c.follow);
+  EXPECT_EQ(c.followed, 1);
+  c.Key(GLFW_KEY_TAB);
+  EXPECT_EQ(c.followed, 2);  // the viewer counts it on through the run's robots
+  c.Key(GLFW_KEY_F);
+  EXPECT_FALSE(c.follow);
+}
+
 TEST(ViewerControlsTest, KeysToggleWhatIsShown) {
   ViewerControls c;
   c.Key(GLFW_KEY_R);

@@ -226,6 +226,38 @@ TEST_F(WorldTest, RobotCannotDriveThroughAWall) {
   EXPECT_GT(pose.x_m, 0.006 + 0.06 - 2e-3);
 }
 
+TEST(SeveralRobotsWorldTest, RobotsSeeAndTouchEachOtherButNotThemselves) {
+  // robot a in the start cell facing north, robot b in the cell east of it facing west: the
+  // front of b's plate, 0.06 m ahead of its axle, is at x = 0.27 - 0.06 = 0.21
+  const RobotSpec robot = testing::BareRobot();
+  const Maze maze = ParseMazeText(kSmallMaze, "small.txt");
+  PluginRegistry registry;
+  const std::vector<KernelRobot> robots = {{robot, "a", std::nullopt},
+                                           {robot, "b", Pose2D{0.27, 0.09, std::numbers::pi}}};
+  auto kernel = Kernel::Create(robots, &maze, registry, KernelOptions{});
+  const World& world = kernel->world();
+  ASSERT_EQ(world.robot_count(), 2);
+  // every name of a robot in the physics is its own: b's chassis is "b/chassis"
+  EXPECT_EQ(world.robot_body(1), mj_name2id(&kernel->mj_model(), mjOBJ_BODY, "b/chassis"));
+  const mjData& d = kernel->state().data();
+  const double from_a[3] = {0.09, 0.09, 0.016};
+  const double east[3] = {1, 0, 0};
+  EXPECT_NEAR(world.CastRay(d, from_a, east, 2, 0), 0.21 - 0.09, 1e-9);
+  // b's own sensor does not see b: the wall at x = 0.36 - 0.006
+  const double from_b[3] = {0.27, 0.09, 0.016};
+  EXPECT_NEAR(world.CastRay(d, from_b, east, 2, 1), 0.354 - 0.27, 1e-9);
+  EXPECT_EQ(world.RobotTouchesRobot(d, 0), -1);
+
+  // b put down with its plate over a's: they touch, each the other, and neither a wall
+  world.PlaceRobot(kernel->state().data(), {0.16, 0.09, std::numbers::pi}, 1);
+  kernel->Step();
+  EXPECT_EQ(world.RobotTouchesRobot(d, 0), 1);
+  EXPECT_EQ(world.RobotTouchesRobot(d, 1), 0);
+  // pushed apart, as solid bodies are
+  for (int i = 0; i < 200; ++i) kernel->Step();
+  EXPECT_GT(world.RobotPose(d, 1).x_m - world.RobotPose(d, 0).x_m, 0.07);
+}
+
 TEST(OpenWorldTest, FlatWorldHasNoSceneryAndPlacesTheRobotAtTheOrigin) {
   PluginRegistry registry;
   auto kernel = Kernel::Create(testing::BareRobot(), nullptr, registry, 1);

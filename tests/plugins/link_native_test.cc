@@ -143,7 +143,7 @@ TEST_F(NativeLinkTest, WhatTheFirmwareReportsReachesTheHostAsTypedReports) {
   auto kernel = Make("");
   FirmwareBeliefs beliefs;
   std::vector<double> values;
-  kernel->AddReportListener([&](const std::string& source, const unimouse_report& r) {
+  kernel->AddReportListener([&](const std::string& source, int, const unimouse_report& r) {
     EXPECT_EQ(source, "link");
     if (!beliefs.Apply(r)) values.push_back(r.value);
   });

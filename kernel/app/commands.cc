@@ -16,11 +16,14 @@
 #include <string_view>
 #include <utility>
 
+#include "command_line.h"
 #include "geom_extent.h"
 #include "install_paths.h"
 #include "kernel.h"
+#include "plugin_registry.h"
 #include "scenario.h"
 #include "session.h"
+#include "transport_spec.h"
 #include "unimouse/errors.h"
 #include "viewer.h"
 
@@ -64,34 +67,14 @@ PictureOptions PicturesFor(const RunOptions& options) {
   p.frames_fps = options.frames_fps;
   p.video = options.video;
   p.video_fps = options.video_fps;
-  p.required = !options.snapshot_on.empty();
+  p.required = !options.session.snapshot_on.empty();
   return p;
 }
 
 // one run, headless or in the viewer's window
 int RunOnce(const RunOptions& options, Viewer* viewer) {
-  SessionOptions o;
-  o.robot = options.robot;
-  o.maze = options.maze;
-  o.duration_s = options.duration_s;
-  o.duration_given = options.duration_given;
-  o.maze_given = options.maze_given;
-  o.seed = options.seed;
-  o.out_dir = options.out_dir;
-  o.plugin_path = options.plugin_path;
-  o.link = options.link;
-  o.link_sets = options.link_sets;
-  o.firmware_profile = options.firmware_profile;
-  o.trace = {options.trace_period_s, options.trace_signals};
-  o.realtime = options.realtime;
+  SessionOptions o = options.session;
   o.paced_by_caller = viewer != nullptr;
-  o.scenario = options.scenario;
-  o.sets = options.sets;
-  o.controller = options.controller;
-  o.start = options.start;
-  o.robots = options.robots;
-  o.snapshot_on = options.snapshot_on;
-  o.only_asked_pictures = options.no_pictures;
   try {
     if (!options.bad_options.empty()) throw InputError(options.bad_options);
     o.pictures = PicturesFor(options);
@@ -113,13 +96,13 @@ int RunOnce(const RunOptions& options, Viewer* viewer) {
   const SessionResult result = session->Finish(extra);
   const nlohmann::json& r = result.record;
 
-  const std::string out_dir = options.out_dir;
+  const std::string out_dir = options.session.out_dir;
   if (r.contains("firmware_maze")) {
     std::printf("  maze as the firmware saw it: %s\n",
                 (std::filesystem::path(out_dir) / "maze.png").string().c_str());
   }
   std::printf("unimouse run: robot '%s' %s, seed %llu\n", session->robot().name.c_str(),
-              session->where().c_str(), static_cast<unsigned long long>(options.seed));
+              session->where().c_str(), static_cast<unsigned long long>(options.session.seed));
   std::printf("  simulated %.3f s in %lld steps, %.2f s wall time, %.0fx real time\n",
               r["sim_time_s"].get<double>(), r["steps"].get<long long>(),
               r["wall_time_s"].get<double>(), r["real_time_factor"].get<double>());
@@ -158,8 +141,9 @@ int RunOnce(const RunOptions& options, Viewer* viewer) {
 int RunCommand(const RunOptions& options) {
   InstallInterruptHandlers();
   if (!options.view) return RunOnce(options, nullptr);
-  const std::string what = options.scenario.empty() ? "run" : "scenario " + options.scenario;
-  Viewer viewer("unimouse: " + what, options.out_dir, options.view_frames);
+  const std::string& scenario = options.session.scenario;
+  const std::string what = scenario.empty() ? "run" : "scenario " + scenario;
+  Viewer viewer("unimouse: " + what, options.session.out_dir, options.view_frames);
   for (;;) {
     const int code = RunOnce(options, &viewer);
     if (!viewer.restart_requested()) return code;
@@ -440,6 +424,262 @@ int ScenariosCommand(bool markdown) {
     }
   }
   return kExitPassed;
+}
+
+namespace {
+
+// the link plugin's own words for its transports (its `transport` parameter), so that this help
+// lists exactly the transports the installed link has
+std::string LinkHelp() {
+  const std::string fallback = "connect firmware (`unimouse plugins` lists the transports)";
+  try {
+    PluginRegistry registry;
+    registry.AddSearchPath(PluginSearchPath(""));
+    const PluginRegistry::Entry* link = registry.Find("unimouse.link");
+    for (int i = 0; link != nullptr && i < link->type->nparam; ++i) {
+      const unimouse_param& p = link->type->params[i];
+      if (std::string(p.name) == "transport" && p.doc != nullptr) {
+        return std::string("connect firmware: ") + p.doc;
+      }
+    }
+  } catch (const std::exception&) {
+    // a broken plugin is reported when a command loads it, not in the help
+  }
+  return fallback;
+}
+
+// `unimouse run --robot A [--link X] --robot B [--controller c.lua] ...`: with several robots
+// each robot's options are those after its --robot; with one, they may come anywhere, once
+// each. Returns why they cannot be read, or "".
+std::string GroupRobotOptions(const CLI::App& run_cmd, RunOptions& run) {
+  const char* const own[] = {"--link",       "--link-set", "--firmware-profile",
+                             "--controller", "--start",    "--name"};
+  const auto value = [&](const char* option, size_t i) {
+    return run_cmd.get_option(option)->as<std::vector<std::string>>().at(i);
+  };
+  if (run_cmd.get_option("--robot")->count() < 2) {
+    for (const char* option : own) {
+      if (run_cmd.get_option(option)->count() > 1 && std::string(option) != "--link-set") {
+        return std::string(option) + " is given twice for one robot";
+      }
+    }
+    const auto one = [&](const char* option, std::string& into) {
+      if (run_cmd.get_option(option)->count() == 1) into = value(option, 0);
+    };
+    one("--robot", run.session.robot);
+    one("--link", run.session.link);
+    one("--firmware-profile", run.session.firmware_profile);
+    one("--controller", run.session.controller);
+    one("--start", run.session.start);
+    if (run_cmd.get_option("--name")->count() > 0) {
+      return "--name tells robots apart: it goes with two or more --robot";
+    }
+    return "";
+  }
+  std::map<const CLI::Option*, size_t> seen;
+  for (const CLI::Option* option : run_cmd.parse_order()) {
+    const std::string name = option->get_name();
+    const std::string text = value(name.c_str(), seen[option]++);
+    if (name == "--robot") {
+      run.session.robots.push_back({});
+      run.session.robots.back().robot = text;
+      continue;
+    }
+    if (std::find(std::begin(own), std::end(own), name) == std::end(own)) continue;
+    if (run.session.robots.empty()) {
+      return name + " " + text +
+             " comes before the first --robot: with several robots, each robot's options "
+             "follow its --robot";
+    }
+    SessionRobot& robot = run.session.robots.back();
+    std::string* single = name == "--link"               ? &robot.link
+                          : name == "--firmware-profile" ? &robot.firmware_profile
+                          : name == "--controller"       ? &robot.controller
+                          : name == "--start"            ? &robot.start
+                          : name == "--name"             ? &robot.name
+                                                         : nullptr;
+    if (single == nullptr) {
+      robot.link_sets.push_back(text);
+    } else if (!single->empty()) {
+      return name + " is given twice for robot " + robot.robot;
+    } else {
+      *single = text;
+    }
+  }
+  return "";
+}
+
+}  // namespace
+
+void AddRunCommand(CommandLine& cli) {
+  auto run = std::make_shared<RunOptions>();
+  // several robots: each --robot starts a robot, and the options for one robot after it are its
+  // own; GroupRobotOptions reads them in order from the options themselves
+  const auto every = CLI::MultiOptionPolicy::TakeAll;
+  CLI::App* run_cmd =
+      cli.app().add_subcommand("run", "run a simulation headless and write a result");
+  run_cmd
+      ->add_option("--robot",
+                   "robot YAML file, or the name of a bundled robot (default unimouse); give "
+                   "it again for each robot of a run with several, each followed by its own "
+                   "--link, --link-set, --firmware-profile, --controller, --start and --name")
+      ->multi_option_policy(every);
+  run_cmd->add_option("--maze", run->session.maze, "maze file, a bundled maze's name, or none")
+      ->capture_default_str();
+  run_cmd->add_option("--duration", run->session.duration_s, "simulated seconds")
+      ->capture_default_str();
+  run_cmd->add_option("--seed", run->session.seed, "seed of every random stream")
+      ->capture_default_str()
+      // an unsigned parse would take -1 as 18446744073709551615
+      ->check([](const std::string& text) {
+        return text.find_first_not_of("0123456789") == std::string::npos
+                   ? std::string()
+                   : "the seed is a whole number, 0 or more";
+      });
+  run_cmd->add_option("--out", run->session.out_dir, "directory for result.json and other outputs")
+      ->capture_default_str();
+  run_cmd->add_option("--scenario", run->session.scenario,
+                      "challenge to run: a scenario file, the name of a bundled one, or none "
+                      "for the robot alone (without --scenario, --set, --controller and --link "
+                      "the run is the contest driven by the bundled firmware)");
+  run_cmd->add_option("--set", run->session.sets, "scenario parameter, name=value (repeatable)");
+  run_cmd
+      ->add_option("--controller",
+                   "Lua file returning function(time_s) that drives the robot through sim.*")
+      ->multi_option_policy(every);
+  run_cmd
+      ->add_option("--start",
+                   "the robot's start: a cell and a heading, X,Y,H (H one of N, E, S, W), "
+                   "e.g. 15,15,S")
+      ->multi_option_policy(every);
+  run_cmd
+      ->add_option("--name",
+                   "the robot's name among several (default: its file's name, then -2, -3)")
+      ->multi_option_policy(every);
+  run_cmd->add_flag("--realtime", run->session.realtime,
+                    "pace the simulation to the wall clock, even a firmware in lock-step, to "
+                    "watch it (a board or a program on a link, from --link or the robot file, "
+                    "is paced anyway until it turns lock-step on)");
+  const std::string link_help = LinkHelp();
+  run_cmd->add_option("--link", link_help)->multi_option_policy(every);
+  run_cmd->add_option("--link-set", run->session.link_sets,
+                      "a link parameter, name=value, as `unimouse plugins` lists them for "
+                      "unimouse.link (repeatable), e.g. --link-set failsafe_s=0");
+  run_cmd
+      ->add_option("--firmware-profile",
+                   "what the firmware expects: unimouse (this project's library, the "
+                   "default) or unimousesim-0.1 (built against the original UnimouseSim's "
+                   "library: 1.0 m ToF scale, commands held while silent, no extensions)")
+      ->multi_option_policy(every);
+
+  run_cmd->add_option("--trace-period", run->session.trace.period_s,
+                      "seconds between the rows of the trace (trace.csv, the robot file's "
+                      "unimouse.logger, every 10 ms in the bundled robot); 0 for no trace");
+  run_cmd->add_option("--trace-signals", run->session.trace.signals,
+                      "the signals the trace records, comma-separated, instead of the robot "
+                      "file's list");
+
+  // pictures: none of these changes what is run
+  run_cmd->add_option("--camera", run->camera, "camera of the pictures: top, chase or free")
+      ->capture_default_str();
+  run_cmd->add_option("--snapshot-size", run->snapshot_size, "size of the pictures, WIDTHxHEIGHT")
+      ->capture_default_str();
+  run_cmd->add_option("--snapshot-every", run->snapshot_every,
+                      "a picture every so much sim time (1s, 250ms): snapshots/<time>s.png");
+  run_cmd->add_option("--snapshot-at", run->snapshot_at,
+                      "a picture at this sim time, e.g. 12.5 (repeatable)");
+  run_cmd->add_option("--snapshot-on", run->session.snapshot_on,
+                      "a picture at each scenario event: cell_entered, wall_contact, "
+                      "gate_crossed, firmware_log (repeatable): events/<event>_<n>.png");
+  run_cmd->add_flag("--snapshot-end", run->snapshot_end,
+                    "final.png when the run ends, or exit 2 if the machine cannot draw (without "
+                    "this flag final.png is taken whenever the machine can)");
+  run_cmd->add_flag("--no-pictures", run->session.only_asked_pictures, "not even final.png");
+  run_cmd->add_option("--frames-fps", run->frames_fps,
+                      "frames/NNNNNN.png at this many frames per sim second");
+  run_cmd->add_option("--video", run->video, "an MP4 of the run in the output directory (ffmpeg)");
+  run_cmd->add_option("--video-fps", run->video_fps, "frames per sim second of the video")
+      ->capture_default_str();
+  run_cmd->add_flag("--view", run->view,
+                    "watch in a live 3D window: orbit, zoom, pause, step, speed, follow (press H)");
+  run_cmd->add_option("--view-frames", run->view_frames,
+                      "close the window after so many frames, saving the last as view.png");
+
+  cli.Add(run_cmd, [&cli, run_cmd, run] {
+    run->session.plugin_path = cli.plugin_path();
+    run->session.duration_given = run_cmd->get_option("--duration")->count() > 0;
+    run->session.maze_given = run_cmd->get_option("--maze")->count() > 0;
+    run->bad_options = GroupRobotOptions(*run_cmd, *run);
+    // the main job: no challenge and no driver chosen, so the contest with the bundled
+    // micromouse firmware; the robot, the maze, the duration, the seed, the pacing and the
+    // pictures change how it runs, not what runs. An open floor has no contest, and
+    // `--scenario none` asks for the robot alone
+    bool chosen = run->session.maze == "none";
+    for (const char* option : {"--scenario", "--set", "--controller", "--link"}) {
+      chosen = chosen || run_cmd->get_option(option)->count() > 0;
+    }
+    if (run->session.scenario == "none") run->session.scenario.clear();
+    if (!chosen) {
+      run->session.scenario = "micromouse";
+      run->session.sets = {"end_on_log=done"};
+      run->session.link = link::BundledFirmwareSpec(link::FirmwareHost::kInProcess,
+                                                    FirmwareDirectory(), "micromouse");
+      for (SessionRobot& robot : run->session.robots) robot.link = run->session.link;
+    }
+    return RunCommand(*run);
+  });
+}
+
+void AddCheckCommand(CommandLine& cli) {
+  auto check = std::make_shared<CheckOptions>();
+  CLI::App* check_cmd =
+      cli.app().add_subcommand("check", "validate robot files and scenarios without running them");
+  check_cmd
+      ->add_option("files", check->targets,
+                   "robot YAML files, scenario or controller .lua files, bundled robot or "
+                   "scenario names, or directories (every .yaml and .lua inside). A robot's "
+                   "components are created and bound; a scenario is loaded and its world built "
+                   "around the bundled robot; a controller (a file that returns a function) is "
+                   "loaded. Nothing is started or written. Each is reported; the exit code is the "
+                   "worst")
+      ->required();
+  check_cmd->add_option("--set", check->sets,
+                        "scenario parameter, name=value (repeatable), as `run --set` takes it");
+
+  cli.Add(check_cmd, [&cli, check] {
+    check->plugin_path = cli.plugin_path();
+    return CheckCommand(*check);
+  });
+}
+
+void AddInformationCommands(CommandLine& cli) {
+  CLI::App* plugins_cmd =
+      cli.app().add_subcommand("plugins", "list the component types found and their parameters");
+
+  auto schema_markdown = std::make_shared<bool>(false);
+  CLI::App* schema_cmd = cli.app().add_subcommand(
+      "robot-schema", "list every key a robot file may give and every component's parameters");
+  schema_cmd->add_flag("--markdown", *schema_markdown,
+                       "print the reference of docs/robots.md instead");
+
+  CLI::App* api_cmd =
+      cli.app().add_subcommand("scenario-api", "list the sim.* functions scenarios can call");
+
+  auto scenarios_markdown = std::make_shared<bool>(false);
+  CLI::App* scenarios_cmd = cli.app().add_subcommand(
+      "scenarios", "list the bundled scenarios and the parameters --set can change");
+  scenarios_cmd->add_flag("--markdown", *scenarios_markdown,
+                          "print the table of docs/scenarios.md instead");
+
+  cli.Add(plugins_cmd, [&cli] { return PluginsCommand(cli.plugin_path()); });
+  cli.Add(schema_cmd, [&cli, schema_markdown] {
+    return RobotSchemaCommand(*schema_markdown, cli.plugin_path());
+  });
+  cli.Add(scenarios_cmd, [scenarios_markdown] { return ScenariosCommand(*scenarios_markdown); });
+  cli.Add(api_cmd, [] {
+    std::fputs(DescribeScenarioApi().c_str(), stdout);
+    return kExitPassed;
+  });
 }
 
 }  // namespace unimouse

@@ -10,10 +10,12 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <sstream>
 #include <thread>
 #include <vector>
 
+#include "command_line.h"
 #include "install_paths.h"
 #include "text_file.h"
 #include "transport_spec.h"
@@ -152,6 +154,30 @@ int FirmwareBuild(const FirmwareBuildOptions& options) {
         FirmwareSpec(FirmwareHost::kInProcess, module).c_str());
   }
   return kExitPassed;
+}
+
+void AddFirmwareCommands(CommandLine& cli) {
+  auto firmware = std::make_shared<FirmwareBuildOptions>();
+  CLI::App* firmware_cmd =
+      cli.app().add_subcommand("firmware", "build a sketch written against the Arduino library");
+  firmware_cmd->require_subcommand(1);
+  CLI::App* firmware_build_cmd = firmware_cmd->add_subcommand(
+      "build",
+      "build a sketch for the PC (a program and a module, each run in lock-step by --link) or "
+      "for the emulated board (an image for --link), docs/firmware->md");
+  firmware_build_cmd->add_option("sketch", firmware->sketch, "sketch folder or .ino file")
+      ->required();
+  firmware_build_cmd->add_option(
+      "--out", firmware->out_dir,
+      "directory for the built files (default: the sketch's folder; the build tree goes "
+      "in its .unimouse-build)");
+  firmware_build_cmd
+      ->add_option("--board", firmware->board, "pc, or mega2560 for the emulated board")
+      ->capture_default_str();
+  firmware_build_cmd->add_option("--name", firmware->name,
+                                 "name of the built files (default: the sketch's)");
+
+  cli.Add(firmware_build_cmd, [firmware] { return FirmwareBuild(*firmware); });
 }
 
 }  // namespace unimouse

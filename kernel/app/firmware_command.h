@@ -9,6 +9,8 @@
 
 namespace unimouse {
 
+class CommandLine;
+
 struct FirmwareBuildOptions {
   std::string sketch;   ///< a sketch folder (NAME/NAME.ino) or a .ino, .cc or .cpp file
   std::string out_dir;  ///< where the built files go, "" beside the sketch; the build tree under it
@@ -19,6 +21,9 @@ struct FirmwareBuildOptions {
 /// Builds the sketch, printing the build's own output and then how to run the result. Throws
 /// InputError when the sketch or the tools are missing or the sketch does not build.
 int FirmwareBuild(const FirmwareBuildOptions& options);
+
+/// Adds `unimouse firmware build`.
+void AddFirmwareCommands(CommandLine& cli);
 
 }  // namespace unimouse
 

@@ -9,9 +9,11 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "command_line.h"
 #include "install_paths.h"
 #include "maze_explorer.h"
 #include "maze_generator.h"
@@ -415,6 +417,77 @@ int MazeGenerate(const MazeOptions& o) {
                 static_cast<unsigned long long>(g.seed));
   }
   return kExitPassed;
+}
+
+void AddMazeCommands(CommandLine& cli) {
+  auto maze = std::make_shared<MazeOptions>();
+  CLI::App* maze_cmd = cli.app().add_subcommand(
+      "maze", "maze tools: show, check, solve, explore, plot, convert, generate");
+  maze_cmd->require_subcommand(1);
+  auto with_files = [&](CLI::App* cmd) {
+    cmd->add_option("mazes", maze->files,
+                    "maze files, bundled maze names, or directories searched for *.txt")
+        ->required();
+  };
+  auto with_outputs = [&](CLI::App* cmd) {
+    cmd->add_flag("--json", maze->json, "print JSON instead of text");
+    cmd->add_option("--csv", maze->csv, "write a one-line-per-maze summary to this CSV file");
+  };
+  CLI::App* show_cmd = maze_cmd->add_subcommand("show", "print mazes with size, start and goal");
+  with_files(show_cmd);
+  show_cmd->add_flag("--json", maze->json, "print JSON instead of text");
+  CLI::App* check_cmd_maze = maze_cmd->add_subcommand("check", "validate maze files");
+  with_files(check_cmd_maze);
+  check_cmd_maze->add_flag("--strict", maze->strict,
+                           "treat warnings (open perimeter, unreachable goal) as errors");
+  with_outputs(check_cmd_maze);
+  CLI::App* solve_cmd = maze_cmd->add_subcommand(
+      "solve", "shortest paths by the modified and the traditional flood fill");
+  with_files(solve_cmd);
+  with_outputs(solve_cmd);
+  solve_cmd
+      ->add_option("--tie", maze->tie_rule,
+                   "traditional flood fill tie rule: compass:<NESW order>, "
+                   "relative:<FLRB order> or straight:<NESW order>")
+      ->capture_default_str();
+  CLI::App* explore_cmd =
+      maze_cmd->add_subcommand("explore", "Adachi method 0 exploration, trip by trip");
+  with_files(explore_cmd);
+  with_outputs(explore_cmd);
+  explore_cmd->add_option("--cell-time", maze->cell_time_s, "seconds per cell moved")
+      ->capture_default_str();
+  explore_cmd->add_option("--turn-time", maze->turn_time_s, "seconds per 90 degree turn")
+      ->capture_default_str();
+  explore_cmd->add_option("--plots", maze->plot_dir,
+                          "write a PNG and an SVG of every trip into this directory");
+  CLI::App* plot_cmd = maze_cmd->add_subcommand(
+      "plot", "a top-down picture of a maze and its shortest path, PNG or SVG");
+  plot_cmd->add_option("maze", maze->files, "maze file or bundled maze name")->required();
+  plot_cmd->add_option("--out", maze->out, "FILE.png or FILE.svg")->required();
+  plot_cmd->add_option("--path", maze->path, "modified (blue), traditional (orange), both or none")
+      ->capture_default_str();
+  plot_cmd->add_option("--tie", maze->tie_rule, "tie rule of the traditional flood fill")
+      ->capture_default_str();
+  plot_cmd->add_flag("--costs", maze->costs, "write each cell's distance to the goal in it");
+  CLI::App* convert_cmd = maze_cmd->add_subcommand(
+      "convert", "read a maze in any format (text, .num, binary .maz) and write the text format");
+  convert_cmd->add_option("maze", maze->files, "maze file")->required();
+  convert_cmd->add_option("--out", maze->out, "file to write instead of printing");
+  CLI::App* generate_cmd = maze_cmd->add_subcommand(
+      "generate", "a random maze under the classic rules, in the text format");
+  generate_cmd->add_option("--size", maze->size, "WIDTHxHEIGHT")->capture_default_str();
+  generate_cmd->add_option("--seed", maze->seed, "random seed")->capture_default_str();
+  generate_cmd->add_option("--loops", maze->loops, "share of inner walls removed, 0 to 1")
+      ->capture_default_str();
+  generate_cmd->add_option("--out", maze->out, "file to write instead of printing");
+
+  cli.Add(show_cmd, [maze] { return MazeShow(*maze); });
+  cli.Add(check_cmd_maze, [maze] { return MazeCheck(*maze); });
+  cli.Add(solve_cmd, [maze] { return MazeSolve(*maze); });
+  cli.Add(explore_cmd, [maze] { return MazeExplore(*maze); });
+  cli.Add(plot_cmd, [maze] { return MazePlot(*maze); });
+  cli.Add(convert_cmd, [maze] { return MazeConvert(*maze); });
+  cli.Add(generate_cmd, [maze] { return MazeGenerate(*maze); });
 }
 
 }  // namespace unimouse

@@ -9,6 +9,8 @@
 
 namespace unimouse {
 
+class CommandLine;
+
 struct MazeOptions {
   std::vector<std::string> files;  ///< files, bundled maze names or directories
   bool json = false;
@@ -33,6 +35,9 @@ int MazeExplore(const MazeOptions& options);
 int MazePlot(const MazeOptions& options);
 int MazeConvert(const MazeOptions& options);
 int MazeGenerate(const MazeOptions& options);
+
+/// Adds `unimouse maze show|check|solve|explore|plot|convert|generate`.
+void AddMazeCommands(CommandLine& cli);
 
 }  // namespace unimouse
 

@@ -237,7 +237,6 @@ std::string JobDirectory(const std::string& batch_out, const Job& job) {
 }
 
 nlohmann::json JobInputs(const Manifest& manifest, const Job& job) {
-  const Submission& sub = manifest.submissions[static_cast<size_t>(job.submission)];
   nlohmann::json inputs = nlohmann::json::array();
   auto add = [&](const char* role, const std::string& file) {
     // a file that cannot be read is the run's bad input; here it is only named
@@ -257,21 +256,29 @@ nlohmann::json JobInputs(const Manifest& manifest, const Job& job) {
       inputs.push_back({{"role", role}, {"file", name}, {"sha256", ""}});
     }
   };
-  if (!sub.controller.empty()) add("submission", sub.controller);
-  if (!sub.link.empty()) {
-    const std::string firmware = link::ParseTransportSpec(sub.link).firmware;
-    if (!firmware.empty()) add("submission", firmware);
-  }
-  // an mms program: each of its words that names a file (the program, its script)
-  for (const std::string& word : sub.mms) {
-    const fs::path file = fs::path(sub.program_dir) / word;
-    std::error_code error;
-    if (fs::is_regular_file(file, error)) add("submission", file.lexically_normal().string());
+  std::vector<int> submissions = {job.submission};
+  submissions.insert(submissions.end(), job.rivals.begin(), job.rivals.end());
+  for (const int index : submissions) {
+    const Submission& sub = manifest.submissions[static_cast<size_t>(index)];
+    if (!sub.controller.empty()) add("submission", sub.controller);
+    if (!sub.link.empty()) {
+      const std::string firmware = link::ParseTransportSpec(sub.link).firmware;
+      if (!firmware.empty()) add("submission", firmware);
+    }
+    // an mms program: each of its words that names a file (the program, its script)
+    for (const std::string& word : sub.mms) {
+      const fs::path file = fs::path(sub.program_dir) / word;
+      std::error_code error;
+      if (fs::is_regular_file(file, error)) add("submission", file.lexically_normal().string());
+    }
   }
   if (job.scenario >= 0) {
     const ScenarioEntry& scenario = manifest.scenarios[static_cast<size_t>(job.scenario)];
     bundled("scenario", scenario.file, "scenarios/", ".lua");
-    bundled("robot", sub.robot.empty() ? manifest.robot : sub.robot, "robots/", ".yaml");
+    for (const int index : submissions) {
+      const Submission& sub = manifest.submissions[static_cast<size_t>(index)];
+      bundled("robot", sub.robot.empty() ? manifest.robot : sub.robot, "robots/", ".yaml");
+    }
     const std::string maze = !job.maze_file.empty() ? job.maze_file
                              : scenario.has_maze    ? scenario.default_maze
                                                     : std::string();
@@ -390,7 +397,7 @@ int RunJob(const Manifest& manifest, const Job& job, const std::string& batch_ou
   using P = nlohmann::json::json_pointer;
   nlohmann::json record = {
       {"id", job.id},
-      {"submission", sub.name},
+      {"submission", SubmissionsName(manifest, job)},
       {"scenario", ScenarioName(manifest, job)},
       {"maze", job.maze.empty() ? nlohmann::json(nullptr) : nlohmann::json(job.maze)},
       {"seed", job.seed},

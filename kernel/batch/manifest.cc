@@ -209,6 +209,7 @@ ScenarioEntry ReadScenario(const YamlNode& node, const fs::path& dir) {
     }
   }
   e.has_maze = scenario->params().contains("maze");
+  e.min_robots = scenario->min_robots();
   if (e.has_maze) e.default_maze = scenario->params().at("maze");
   e.name = name != nullptr ? name->AsString("name") : scenario->name();
   return e;
@@ -318,9 +319,10 @@ Manifest LoadManifest(const std::string& path) {
   // what a job runs in: a maze from the list, or the scenario's own
   // (an mms program's job, scenario -1, always has a maze)
   const auto add = [&](int submission, int scenario, const MazeEntry* maze, uint64_t seed,
-                       const YamlNode& where) {
+                       const YamlNode& where, std::vector<int> rivals = {}) {
     Job job;
     job.submission = submission;
+    job.rivals = std::move(rivals);
     job.scenario = scenario;
     job.seed = seed;
     if (maze != nullptr) {
@@ -329,9 +331,13 @@ Manifest LoadManifest(const std::string& path) {
     } else if (const ScenarioEntry& s = m.scenarios[static_cast<size_t>(scenario)]; s.has_maze) {
       job.maze = SanitizeName(fs::path(s.default_maze).stem().string());
     }
-    job.id = SanitizeName(m.submissions[static_cast<size_t>(submission)].name) + "/" +
-             SanitizeName(ScenarioName(m, job)) + "/" + (job.maze.empty() ? "no-maze" : job.maze) +
-             "/seed-" + std::to_string(seed);
+    // each submission's name made safe, several joined by '+'
+    std::string who = SanitizeName(m.submissions[static_cast<size_t>(submission)].name);
+    for (const int rival : job.rivals) {
+      who += "+" + SanitizeName(m.submissions[static_cast<size_t>(rival)].name);
+    }
+    job.id = who + "/" + SanitizeName(ScenarioName(m, job)) + "/" +
+             (job.maze.empty() ? "no-maze" : job.maze) + "/seed-" + std::to_string(seed);
     if (m.jobs.size() >= kMaxJobs) {
       where.Fail("more than " + std::to_string(kMaxJobs) + " jobs; split the batch");
     }
@@ -342,11 +348,41 @@ Manifest LoadManifest(const std::string& path) {
     r.Forbid("mazes", "goes with the product of everything; with jobs: each job names its maze");
     r.Forbid("seeds", "goes with the product of everything; with jobs: each job names its seed");
     for (const auto& item : ListOf(*jobs, "jobs").items) {
-      const MapReader j(item, "job", {"submission", "scenario", "maze", "seed"});
-      const int submission = IndexByName(m.submissions, j.Required("submission"), "submission");
+      const MapReader j(item, "job", {"submission", "submissions", "scenario", "maze", "seed"});
+      // one submission, or several in one world (a race): each a robot
+      std::vector<int> rivals;
+      int submission = 0;
+      if (const YamlNode* several = j.Optional("submissions")) {
+        j.Forbid("submission", "goes with one submission; submissions: lists several in one world");
+        if (ListOf(*several, "submissions").items.size() < 2) {
+          several->Fail("submissions: lists two or more, each a robot of the same world");
+        }
+        for (const YamlNode& name : several->items) {
+          const int index = IndexByName(m.submissions, name, "submission");
+          if (!m.submissions[static_cast<size_t>(index)].mms.empty()) {
+            name.Fail("an mms program runs alone in its maze, not beside other robots");
+          }
+          for (const int seen : rivals) {
+            if (seen == index) name.Fail("submission '" + name.scalar + "' is listed twice");
+          }
+          rivals.push_back(index);
+        }
+        submission = rivals.front();
+        rivals.erase(rivals.begin());
+      } else {
+        submission = IndexByName(m.submissions, j.Required("submission"), "submission");
+      }
       const bool mms = !m.submissions[static_cast<size_t>(submission)].mms.empty();
       if (mms) j.Forbid("scenario", "does not apply to an mms program: it runs in its maze alone");
       const int scenario = mms ? -1 : IndexByName(m.scenarios, j.Required("scenario"), "scenario");
+      if (!mms) {
+        const ScenarioEntry& entry = m.scenarios[static_cast<size_t>(scenario)];
+        if (static_cast<int>(rivals.size()) + 1 < entry.min_robots) {
+          j.Required("scenario")
+              .Fail("scenario '" + entry.name + "' needs " + std::to_string(entry.min_robots) +
+                    " robots: list as many in submissions: [...]");
+        }
+      }
       std::vector<MazeEntry> maze;
       if (mms) j.Required("maze");
       if (const YamlNode* node = j.Optional("maze")) {
@@ -358,7 +394,7 @@ Manifest LoadManifest(const std::string& path) {
         if (maze.size() != 1) node->Fail("a job runs in one maze, not a directory of them");
       }
       const uint64_t seed = j.Optional("seed") ? ReadSeed(*j.Optional("seed")) : 1;
-      add(submission, scenario, maze.empty() ? nullptr : &maze[0], seed, item);
+      add(submission, scenario, maze.empty() ? nullptr : &maze[0], seed, item, rivals);
     }
   } else {
     std::vector<MazeEntry> mazes;
@@ -384,6 +420,14 @@ Manifest LoadManifest(const std::string& path) {
                        ") sets its maze already: give the maze in one place");
           }
         }
+      }
+    }
+    // every submission alone in every scenario: none that needs several robots
+    for (const auto& s : m.scenarios) {
+      if (s.min_robots > 1) {
+        root.Fail("scenario '" + s.name + "' (" + s.location.ToString() + ") needs " +
+                  std::to_string(s.min_robots) +
+                  " robots: run it as jobs: [{submissions: [a, b], scenario: " + s.name + "}]");
       }
     }
     std::vector<uint64_t> seeds;
@@ -442,6 +486,13 @@ std::string ScenarioName(const Manifest& manifest, const Job& job) {
                           : manifest.scenarios[static_cast<size_t>(job.scenario)].name;
 }
 
+std::string SubmissionsName(const Manifest& manifest, const Job& job) {
+  std::string name = manifest.submissions[static_cast<size_t>(job.submission)].name;
+  for (const int rival : job.rivals)
+    name += "+" + manifest.submissions[static_cast<size_t>(rival)].name;
+  return name;
+}
+
 std::vector<std::string> RunArguments(const Manifest& manifest, const Job& job,
                                       const std::string& out_dir) {
   const Submission& sub = manifest.submissions[static_cast<size_t>(job.submission)];
@@ -471,11 +522,22 @@ std::vector<std::string> RunArguments(const Manifest& manifest, const Job& job,
   }
   for (const auto& set : scenario.sets) args.insert(args.end(), {"--set", set});
   if (!job.maze_file.empty()) args.insert(args.end(), {"--maze", job.maze_file});
-  if (!sub.controller.empty()) args.insert(args.end(), {"--controller", sub.controller});
-  if (!sub.link.empty()) args.insert(args.end(), {"--link", sub.link});
-  for (const auto& set : sub.link_sets) args.insert(args.end(), {"--link-set", set});
-  if (!sub.firmware_profile.empty()) {
-    args.insert(args.end(), {"--firmware-profile", sub.firmware_profile});
+  // each submission's own options follow its robot; with several, each robot is named after
+  // its submission
+  std::vector<int> robots = {job.submission};
+  robots.insert(robots.end(), job.rivals.begin(), job.rivals.end());
+  for (const int index : robots) {
+    const Submission& s = manifest.submissions[static_cast<size_t>(index)];
+    if (index != job.submission) {
+      args.insert(args.end(), {"--robot", s.robot.empty() ? manifest.robot : s.robot});
+    }
+    if (!job.rivals.empty()) args.insert(args.end(), {"--name", SanitizeName(s.name)});
+    if (!s.controller.empty()) args.insert(args.end(), {"--controller", s.controller});
+    if (!s.link.empty()) args.insert(args.end(), {"--link", s.link});
+    for (const auto& set : s.link_sets) args.insert(args.end(), {"--link-set", set});
+    if (!s.firmware_profile.empty()) {
+      args.insert(args.end(), {"--firmware-profile", s.firmware_profile});
+    }
   }
   return args;
 }

@@ -59,6 +59,7 @@ struct ScenarioEntry {
   std::string file;               ///< scenario file (absolute) or bundled name
   std::vector<std::string> sets;  ///< --set name=value, in the manifest's order
   bool has_maze = false;          ///< whether the scenario has a `maze` parameter
+  int min_robots = 1;             ///< the robots it needs (its `robots`): more than one, a race
   std::string default_maze;       ///< that parameter's default
   SourceLocation location;
 };
@@ -72,13 +73,15 @@ struct MazeEntry {
 /// The scenario column of an mms program's jobs.
 inline constexpr const char* kMmsScenario = "mms";
 
-/// One run of the batch: a submission in a scenario, maze and seed.
+/// One run of the batch: a submission (or several, each a robot of one world) in a scenario,
+/// maze and seed.
 struct Job {
-  std::string id;         ///< submission/scenario/maze/seed-N, sanitised
-  int submission = 0;     ///< index into Manifest::submissions
-  int scenario = 0;       ///< index into Manifest::scenarios; -1 for an mms program's job
-  std::string maze;       ///< maze name; "" for a scenario without a maze parameter
-  std::string maze_file;  ///< what --maze gets; "" for the scenario's own
+  std::string id;           ///< submission/scenario/maze/seed-N, sanitised
+  int submission = 0;       ///< index into Manifest::submissions
+  std::vector<int> rivals;  ///< more submissions in the same world (a race), each a robot
+  int scenario = 0;         ///< index into Manifest::scenarios; -1 for an mms program's job
+  std::string maze;         ///< maze name; "" for a scenario without a maze parameter
+  std::string maze_file;    ///< what --maze gets; "" for the scenario's own
   uint64_t seed = 1;
 };
 
@@ -105,6 +108,9 @@ Manifest LoadManifest(const std::string& path);
 /// Returns `text` with every character outside [A-Za-z0-9._-] replaced by '_' (and "." or ".."
 /// made "_"), for a directory name.
 std::string SanitizeName(const std::string& text);
+
+/// Returns the job's submission's name, or the names of all its submissions joined by '+'.
+std::string SubmissionsName(const Manifest& manifest, const Job& job);
 
 /// Returns the name of the job's scenario: its entry's, or "mms".
 std::string ScenarioName(const Manifest& manifest, const Job& job);

@@ -297,6 +297,39 @@ mazes: [japan2018]
   EXPECT_NE(robots["dan"], robot);
 }
 
+TEST(BatchCommandTest, ARaceJobPutsSeveralSubmissionsInOneWorldEachARobotOfItsName) {
+  // the jumping controller reaches the goal at 1.4 s from the opposite corner; a controller
+  // that does nothing never does, and the race ends at its time limit
+  const std::string dir = FreshDirectory("batch_race");
+  WriteFile(dir, "stand.lua", "return function(time_s) end\n");
+  const std::string manifest = WriteFile(dir, "race.yaml", R"(
+submissions:
+  - {name: dan, controller: stand.lua}
+  - {name: erin, controller: )" + kSource + R"(/tests/scenarios/race_jumping_controller.lua}
+scenarios:
+  - scenario: race
+    set: {time_limit_s: 3}
+jobs:
+  - {submissions: [dan, erin], scenario: race}
+)");
+  const std::string out = dir + "/out";
+  const Outcome o = Unimouse("batch run " + manifest + " -j 1 --out " + out);
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  const json results = Results(out);
+  ASSERT_EQ(results["jobs"].size(), 1u);
+  const json& job = results["jobs"][0];
+  EXPECT_EQ(job["id"], "dan+erin/race/japan2018/seed-1");
+  EXPECT_EQ(job["submission"], "dan+erin");
+  EXPECT_EQ(job["status"], "passed") << job;
+  const json result =
+      json::parse(ReadTextFile(out + "/" + job["dir"].get<std::string>() + "/result.json"));
+  ASSERT_EQ(result["robots"].size(), 2u);
+  EXPECT_EQ(result["robots"][0]["name"], "dan");
+  EXPECT_EQ(result["robots"][1]["name"], "erin");
+  EXPECT_EQ(result["scenario"]["reason"].get<std::string>().rfind("erin wins in 1.4", 0), 0u)
+      << result["scenario"]["reason"];
+}
+
 // docs/limits.md's limit per call, named in a reason that names the file as the manifest does
 TEST(BatchCommandTest, AControllerThatNeverReturnsIsAScriptErrorNamingItsFileAndTheLimitPerCall) {
   const std::string dir = FreshDirectory("batch_endless");

@@ -237,6 +237,41 @@ TEST_F(ManifestTest, MistakesAreRefusedWithFileLineAndColumn) {
             std::string::npos);
 }
 
+TEST_F(ManifestTest, ARaceJobRunsSeveralSubmissionsInOneWorldEachNamedAfterItsSubmission) {
+  const Manifest m = LoadManifest(Write("m.yaml", R"(
+submissions: [{name: amy, controller: a.lua}, {name: "Bo Li", link: "tcp:127.0.0.1:5000"}]
+scenarios: [race]
+jobs:
+  - {submissions: [amy, Bo Li], scenario: race, seed: 2}
+)"));
+  ASSERT_EQ(m.jobs.size(), 1u);
+  EXPECT_EQ(m.jobs[0].id, "amy+Bo_Li/race/japan2018/seed-2");
+  const std::vector<std::string> args = RunArguments(m, m.jobs[0], "out");
+  const std::vector<std::string> tail(args.end() - 10, args.end());
+  EXPECT_EQ(tail, (std::vector<std::string>{"--name", "amy", "--controller", dir_ + "/a.lua",
+                                            "--robot", "unimouse", "--name", "Bo_Li", "--link",
+                                            "tcp:127.0.0.1:5000"}));
+}
+
+TEST_F(ManifestTest, AScenarioForSeveralRobotsIsRunOnlyWithAsManySubmissions) {
+  const std::string head =
+      "submissions: [{name: amy, controller: a.lua}, {name: bo, "
+      "controller: b.lua}]\nscenarios: [race]\n";
+  const std::string file = dir_ + "/manifest.yaml";
+  EXPECT_EQ(ErrorOf(head).rfind(file + ":1:1: scenario 'race' (" + file +
+                                    ":2:13) needs 2 robots: run it as jobs: [{submissions: [a, "
+                                    "b], scenario: race}]",
+                                0),
+            0u)
+      << ErrorOf(head);
+  EXPECT_EQ(ErrorOf(head + "jobs: [{submission: amy, scenario: race}]\n"),
+            file + ":3:36: scenario 'race' needs 2 robots: list as many in submissions: [...]");
+  EXPECT_EQ(ErrorOf(head + "jobs: [{submissions: [amy], scenario: race}]\n"),
+            file + ":3:22: submissions: lists two or more, each a robot of the same world");
+  EXPECT_EQ(ErrorOf(head + "jobs: [{submissions: [amy, amy], scenario: race}]\n"),
+            file + ":3:28: submission 'amy' is listed twice");
+}
+
 TEST_F(ManifestTest, ANameTheSystemCannotLookUpIsAMistakeAtItsNodeNotACrash) {
   // 300 characters is longer than a file name may be (NAME_MAX 255): looking it up fails with
   // ENAMETOOLONG, which is the same answer as no such file, for every kind of name a manifest has
@@ -251,9 +286,9 @@ TEST_F(ManifestTest, ANameTheSystemCannotLookUpIsAMistakeAtItsNodeNotACrash) {
                     "}]\nscenarios: [micromouse]\n")
                 .rfind(file + ":1:", 0),
             0u);
-  const Manifest m = LoadManifest(
-      Write("m.yaml", "submissions: [{name: amy, link: \"native:" + long_name +
-                          "\"}]\nscenarios: [micromouse]\n"));
+  const Manifest m =
+      LoadManifest(Write("m.yaml", "submissions: [{name: amy, link: \"native:" + long_name +
+                                       "\"}]\nscenarios: [micromouse]\n"));
   EXPECT_EQ(m.submissions[0].link, "native:" + long_name);
 }
 

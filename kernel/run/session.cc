@@ -270,6 +270,8 @@ void Session::Assemble() {
   kernel_->AddReportListener([this](const std::string& component, const unimouse_report& report) {
     if (report.kind == UNIMOUSE_REPORT_MEASURE && report.name != nullptr) {
       measurements_[component][report.name] = report.value;
+    } else if (report.kind == UNIMOUSE_REPORT_RESTART) {
+      ++restarts_;
     } else {
       beliefs_.Apply(report);
     }
@@ -476,6 +478,7 @@ SessionResult Session::Finish(const nlohmann::json& extra) {
   }
   if (firmware_maze) r["firmware_maze"] = "maze.png";
   if (!measurements_.empty()) r["measurements"] = measurements_;
+  if (kernel_->declared(UNIMOUSE_TRAIT_FIRMWARE)) r["restarts"] = restarts_;
   r["warnings"] = warnings_;
   r["exit_code"] = result.exit_code;
   if (extra.is_object()) r.update(extra);

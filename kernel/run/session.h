@@ -155,6 +155,7 @@ class Session {
   FirmwareBeliefs beliefs_;
   // what components measured over the run (UNIMOUSE_REPORT_MEASURE), by component and name
   nlohmann::json measurements_ = nlohmann::json::object();
+  int64_t restarts_ = 0;  // times the firmware started over inside the run (the link's reports)
   std::vector<std::string> warnings_;  // every warning logged, "component: text", for the record
   std::unique_ptr<RunPictures> pictures_;
   std::unique_ptr<RealTimePacer> pacer_;

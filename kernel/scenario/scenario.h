@@ -260,6 +260,7 @@ class Scenario {
   Cell maze_start_;
   std::string traceback_;
   std::vector<std::pair<double, std::string>> firmware_lines_;  // not yet handed to events
+  std::vector<std::pair<double, int>> firmware_restarts_;       // time, count; the same
   PictureTaker picture_taker_;
 
   friend struct ScenarioApi;

@@ -441,6 +441,23 @@ struct ScenarioApi {
     return 1;
   }
 
+  // the firmware's restarts since the last call, as {time_s, count}; for the event dispatcher
+  static int TakeFirmwareRestarts(LuaCall& call) {
+    std::vector<std::pair<double, int>>& restarts = Self(call).firmware_restarts_;
+    lua_State* L = call.state();
+    lua_createtable(L, static_cast<int>(restarts.size()), 0);
+    for (size_t i = 0; i < restarts.size(); ++i) {
+      lua_createtable(L, 0, 2);
+      lua_pushnumber(L, restarts[i].first);
+      lua_setfield(L, -2, "time_s");
+      lua_pushinteger(L, restarts[i].second);
+      lua_setfield(L, -2, "count");
+      lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
+    }
+    restarts.clear();
+    return 1;
+  }
+
   // math.random, drawing from the run's seed
   static int Random(LuaCall& call) {
     const double u = Self(call).rng_.Uniform();
@@ -708,7 +725,7 @@ constexpr ApiEntry kApi[] = {
      "booleans or strings, each keeping its type from row to row"},
     {"on", nullptr, 1, "on(kind, handler)",
      "calls handler(event) on cell_entered {x, y}, wall_contact, gate_crossed {name, direction}, "
-     "firmware_log {text}"},
+     "firmware_log {text}, firmware_restart {count}"},
     {"gate_add", nullptr, 1, "gate_add{name, x1_m, y1_m, x2_m, y2_m}",
      "a line whose crossings raise gate_crossed, direction +1 from its right to its left"},
     {"pass", ScenarioApi::Pass, 1, "pass(reason?)", "ends the challenge: passed"},
@@ -722,6 +739,9 @@ constexpr ApiEntry kHost[] = {
      "math.random, from the run's seed"},
     {"take_firmware_lines", ScenarioApi::TakeFirmwareLines, 0,
      "take_firmware_lines() -> {{text, time_s}, ...}", "the firmware's log lines since last time"},
+    {"take_firmware_restarts", ScenarioApi::TakeFirmwareRestarts, 0,
+     "take_firmware_restarts() -> {{time_s, count}, ...}",
+     "the firmware's restarts since last time"},
     {"budget_spent", ScenarioApi::BudgetSpent, 0, "budget_spent() -> message?",
      "the instruction budget's error once it is spent"},
     {"charge", ScenarioApi::Charge, 0, "charge(instructions)",

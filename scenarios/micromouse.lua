@@ -60,7 +60,8 @@ return sim.scenario {
         else
           print("the firmware restarted: the mouse goes back to the start")
         end
-        run_from, may_start = nil, true
+        -- back in the start cell, the next departure is a new run
+        run_from, may_start = nil, false
         sim.robot_reset()
       end
       local now, cell = sim.time(), sim.robot_get_cell()

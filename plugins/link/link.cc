@@ -138,7 +138,7 @@ void Link::Reset(const ResetContext& ctx) const {
   read_this_step_ = 0;
   received_bytes_ = 0;
   was_connected_ = false;
-  frames_this_life_ = 0;
+  begun_ = false;
   frames_ever_ = 0;
   startup_codes_in_a_row_ = 0;
   next_frame_restarts_ = false;
@@ -216,7 +216,6 @@ void Link::Restarted(const SenseContext& ctx, const char* sign, Heard& heard) co
 
 void Link::WatchForRestart(const SenseContext& ctx, const FirmwareFrame& f, Heard& heard) const {
   ++frames_ever_;
-  ++frames_this_life_;
   const bool manager = !f.is_data && f.id == UNIMOUSE_ID_MANAGER;
   if (manager && f.value == kStartupCodes[startup_codes_in_a_row_]) {
     ++startup_codes_in_a_row_;
@@ -226,15 +225,16 @@ void Link::WatchForRestart(const SenseContext& ctx, const FirmwareFrame& f, Hear
   if (next_frame_restarts_) {
     // any firmware, this project's or not: the first frame on a link that came back
     next_frame_restarts_ = false;
-    frames_this_life_ = startup_codes_in_a_row_;
+    begun_ = false;
     Restarted(ctx, "its first frame after the link came back", heard);
-  } else if (startup_codes_in_a_row_ == kStartupCodeCount &&
-             frames_this_life_ > kStartupCodeCount) {
-    // this project's library: begin()'s codes again after other frames
-    frames_this_life_ = kStartupCodeCount;
-    Restarted(ctx, "its start-up frames again", heard);
   }
-  if (startup_codes_in_a_row_ == kStartupCodeCount) startup_codes_in_a_row_ = 0;
+  if (startup_codes_in_a_row_ == kStartupCodeCount) {
+    // this project's library: begin()'s codes a second time (a sketch may send frames before
+    // its first begin(), asking for the maze)
+    if (begun_) Restarted(ctx, "its start-up frames again", heard);
+    begun_ = true;
+    startup_codes_in_a_row_ = 0;
+  }
 }
 
 void Link::Apply(const SenseContext& ctx, const FirmwareFrame& f, Heard& heard) const {

@@ -211,10 +211,11 @@ class Link final : public Component {
   mutable size_t read_this_step_ = 0;
   mutable uint64_t received_bytes_ = 0;  // since the last reset
   mutable bool was_connected_ = false;
-  // restarts: frames since the run began, how many of the start-up codes just came in a row,
-  // whether the next frame is a new firmware's (the link came back), and the counts
-  mutable uint64_t frames_this_life_ = 0;
+  // restarts: frames since the run began, whether this firmware sent its start-up codes, how
+  // many of them just came in a row, whether the next frame is a new firmware's (the link came
+  // back), and the counts
   mutable uint64_t frames_ever_ = 0;
+  mutable bool begun_ = false;
   mutable size_t startup_codes_in_a_row_ = 0;
   mutable bool next_frame_restarts_ = false;
   mutable uint64_t restarts_ = 0;

@@ -5,12 +5,16 @@
 // stop until the new firmware commands them, lock-step comes back when it asks again, the
 // scenario hears of it, and a firmware or client that keeps starting over ends the run.
 #include <arpa/inet.h>
+#include <fcntl.h>
 #include <gtest/gtest.h>
 #include <netinet/in.h>
+#include <pty.h>
 #include <sys/socket.h>
+#include <termios.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <chrono>
 #include <filesystem>
 
 #include "inline_assets.h"
@@ -231,6 +235,67 @@ TEST_F(LinkRestartTest, AClientThatKeepsDiallingEndsTheRunAfterMaxRestarts) {
               "component 'link' failed at t=0.012 s: the firmware's link came back 6 times, more "
               "than max_restarts (5)");
   }
+}
+
+// a USB serial adapter as the kernel shows one: a tty whose stable name (udev's
+// /dev/serial/by-id link) points at whatever device it got this time
+struct UsbSerial {
+  int board = -1;  // the board's end: the pty master
+  std::string device;
+  void PlugIn(const std::string& link) {
+    int slave = -1;
+    char name[256];
+    ASSERT_EQ(::openpty(&board, &slave, name, nullptr, nullptr), 0);
+    termios t{};
+    ::tcgetattr(board, &t);
+    ::cfmakeraw(&t);
+    ::tcsetattr(board, TCSANOW, &t);
+    ::fcntl(board, F_SETFL, O_NONBLOCK);
+    ::close(slave);
+    device = name;
+    std::filesystem::remove(link);
+    std::filesystem::create_symlink(device, link);
+  }
+  void Unplug() {
+    ::close(board);  // the device vanishes: the simulator's reads fail
+    board = -1;
+  }
+};
+
+TEST_F(LinkRestartTest, ASerialPortUnpluggedAndPluggedBackCarriesOnTheSameRunAsARestart) {
+  const std::string port = dir_ + "/ttyACM-board";
+  UsbSerial usb;
+  usb.PlugIn(port);
+  Make("serial:" + port + "@1000000", "");
+  Write(usb.board, kStartUp);
+  Write(usb.board, {UNIMOUSE_ID_MOTOR_LEFT, 0xF4, 0x01, UNIMOUSE_ID_MOTOR_RIGHT, 0xF4, 0x01});
+  Step(20);
+  EXPECT_EQ(SignalValue(*kernel_, "left.command"), 500);
+  usb.Unplug();
+  Step(20);
+  EXPECT_EQ(Count("firmware disconnected: motors stopped"), 1);
+  EXPECT_EQ(SignalValue(*kernel_, "left.command"), 0);
+  usb.PlugIn(port);  // back, maybe as another device
+  // the link looks for the port twice a second of wall time: step until it has, a bounded while
+  const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(20);
+  while (SignalValue(*kernel_, "left.command") != 300 &&
+         std::chrono::steady_clock::now() < give_up) {
+    Write(usb.board, {UNIMOUSE_ID_MOTOR_LEFT, 0x2C, 0x01, UNIMOUSE_ID_MOTOR_RIGHT, 0x2C, 0x01});
+    Step(10);
+    ::usleep(10000);
+  }
+  EXPECT_EQ(SignalValue(*kernel_, "left.command"), 300);
+  EXPECT_EQ(Count("firmware connected"), 2);
+  EXPECT_EQ(restarts_, std::vector<int>{1});
+  EXPECT_EQ(std::count_if(lines_.begin(), lines_.end(),
+                          [](const std::string& l) {
+                            return l.find(
+                                       "(its first frame after the link came back): motors "
+                                       "stopped until it commands them; restart 1") !=
+                                   std::string::npos;
+                          }),
+            1);
+  usb.Unplug();
 }
 
 }  // namespace

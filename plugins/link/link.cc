@@ -1,9 +1,11 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "link.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <thread>
 
 #include "unimouse/errors.h"
 
@@ -145,6 +147,7 @@ void Link::Reset(const ResetContext& ctx) const {
   restarts_ = 0;
   board_resets_ = 0;
   reconnections_ = 0;
+  skipped_before_start_up_ = 0;
   beliefs_ = {};
   queue_.clear();
   budget_bytes_ = 0;
@@ -519,6 +522,56 @@ bool Link::AwaitFirmware(const SenseContext& ctx, Heard& heard, bool Heard::*unt
   return true;
 }
 
+bool Link::AwaitStartUp(const SenseContext& ctx, Heard& heard) const {
+  const std::vector<uint8_t> codes = {UNIMOUSE_ID_MANAGER, kStartupCodes[0],    UNIMOUSE_ID_MANAGER,
+                                      kStartupCodes[1],    UNIMOUSE_ID_MANAGER, kStartupCodes[2]};
+  const auto opened = std::chrono::steady_clock::now();
+  const auto deadline = opened + std::chrono::duration<double>(p_.wait_for_firmware_s);
+  std::vector<uint8_t> pending;
+  for (;;) {
+    const size_t before = pending.size();
+    transport_->Read(pending, kReadPerStep_bytes);
+    received_bytes_ += pending.size() - before;
+    const auto at = std::search(pending.begin(), pending.end(), codes.begin(), codes.end());
+    if (at != pending.end()) {
+      skipped_before_start_up_ += static_cast<uint64_t>(at - pending.begin());
+      pending.erase(pending.begin(), at);
+      break;
+    }
+    // all but a start of the codes is skipped
+    const size_t keep = std::min(pending.size(), codes.size() - 1);
+    skipped_before_start_up_ += pending.size() - keep;
+    pending.erase(pending.begin(), pending.end() - static_cast<long>(keep));
+    const auto now = std::chrono::steady_clock::now();
+    if (now >= deadline) {
+      char text[224];
+      std::snprintf(text, sizeof(text),
+                    "no start-up frames from the firmware within %g s (wait_for_firmware_s); %llu "
+                    "bytes came before",
+                    p_.wait_for_firmware_s,
+                    static_cast<unsigned long long>(skipped_before_start_up_ + pending.size()));
+      ctx.Fail(text);
+      return false;
+    }
+    // a port that is not there yet cannot be waited on: look again shortly
+    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - now);
+    if (!transport_->WaitReadable(std::min(left, std::chrono::milliseconds(100)))) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+  }
+  char text[224];
+  std::snprintf(text, sizeof(text),
+                "the firmware's start-up frames came %.3f s after the link opened; %llu bytes "
+                "before them skipped (a bootloader's, or a reset's noise)",
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - opened).count(),
+                static_cast<unsigned long long>(skipped_before_start_up_));
+  ctx.Log(text);
+  std::vector<FirmwareFrame> frames;
+  decoder_.Feed(pending, frames);
+  for (const FirmwareFrame& f : frames) Apply(ctx, f, heard);
+  return true;
+}
+
 void Link::RunBoard(const SenseContext& ctx, Heard& heard, bool lockstep) const {
   ctx.SetFirmwarePaced(true);
   const std::string fault = transport_->RunUntil(ctx.time_s() + period_s_);
@@ -563,6 +616,7 @@ void Link::Sense(const SenseContext& ctx) const {
   std::span<double> s = ctx.state();
   read_this_step_ = 0;
   Heard heard;
+  if (p_.wait_for_firmware_s > 0 && ctx.step() == 0 && !AwaitStartUp(ctx, heard)) return;
   Receive(ctx, heard);
   if (static_cast<double>(received_bytes_) >
       kFloodAllowance_bytes + kFloodRate_bytes_per_s * ctx.time_s()) {

@@ -45,6 +45,7 @@ struct LinkParams {
   std::string spi_imu_cs_pin = "PB0";
   std::string spi_imu_from = "imu";
   int max_restarts = 100;
+  double wait_for_firmware_s = 0;
   std::string board_reset = "restart";
   double reset_at_s = 0;
   std::string reset_cause = "external";
@@ -101,6 +102,12 @@ struct LinkParams {
       "restarts of the firmware, board resets or reconnections a run takes; one more ends it "
       "(a firmware that keeps resetting, a client that keeps dialling)",
       param::Range{1, 1000000});
+    v("wait_for_firmware_s", wait_for_firmware_s,
+      "the run's clock starts when the firmware's start-up frames (this project's begin()) "
+      "come, waiting up to this long on the wall clock; the bytes before them (a bootloader's, "
+      "a reset's noise) are counted and skipped; 0: no wait, every byte is read as frames "
+      "(firmware written for the original sends no start-up frames)",
+      param::Range{0, 600});
     v("board_reset", board_reset,
       "what the emulated board does when it is reset (watchdog, reset_at_s): restart (the "
       "firmware boots again and the run goes on, as on a board) or fail (the run ends with "
@@ -161,6 +168,9 @@ class Link final : public Component {
 
   // reads what the transport has, within this step's budget, and applies its frames
   void Receive(const SenseContext& ctx, Heard& heard) const;
+  // before the run's clock starts: skips what comes before the firmware's start-up codes, then
+  // reads them and the rest; false (after failing the run) when they do not come in time
+  bool AwaitStartUp(const SenseContext& ctx, Heard& heard) const;
   // runs a clocked transport (the emulated board) for this step, then reads what it sent
   void RunBoard(const SenseContext& ctx, Heard& heard, bool lockstep) const;
   void Apply(const SenseContext& ctx, const FirmwareFrame& frame, Heard& heard) const;
@@ -221,6 +231,7 @@ class Link final : public Component {
   mutable uint64_t restarts_ = 0;
   mutable uint64_t board_resets_ = 0;
   mutable uint64_t reconnections_ = 0;
+  mutable uint64_t skipped_before_start_up_ = 0;  // bytes before the start-up codes, waiting
   // what the firmware says it believes, for the run's maze picture
   struct Beliefs {
     std::map<std::pair<int, int>, std::pair<int, int>> walls;  // cell -> walls, known

@@ -298,5 +298,63 @@ TEST_F(LinkRestartTest, ASerialPortUnpluggedAndPluggedBackCarriesOnTheSameRunAsA
   usb.Unplug();
 }
 
+// what a Mega's bootloader and a reset put on the line before the sketch runs: STK500 answers
+// (0x14 0x10) and noise, a motor frame's id among it
+const std::vector<uint8_t> kBootloaderNoise = {0x14, 0x10, 0x00, 0xFF, 0x05, 0xE8, 0x03, 0x14,
+                                               0x10, 0xF0, 0x07, 0x99, 0x42, 0x00, 0x1B, 0x06};
+
+TEST_F(LinkRestartTest, WaitingForTheFirmwareSkipsTheBootloadersBytesWithoutAWarning) {
+  const std::string port = dir_ + "/ttyACM-board";
+  UsbSerial usb;
+  usb.PlugIn(port);
+  Make("serial:" + port + "@1000000", ", wait_for_firmware_s: 10");
+  Write(usb.board, kBootloaderNoise);
+  Write(usb.board, kStartUp);
+  Write(usb.board, {UNIMOUSE_ID_MOTOR_LEFT, 0x2C, 0x01, UNIMOUSE_ID_MOTOR_RIGHT, 0x2C, 0x01});
+  Step(5);
+  EXPECT_EQ(SignalValue(*kernel_, "left.command"), 300);
+  EXPECT_EQ(std::count_if(lines_.begin(), lines_.end(),
+                          [](const std::string& l) {
+                            return l.find(
+                                       "; 16 bytes before them skipped (a bootloader's, or a "
+                                       "reset's noise)") != std::string::npos;
+                          }),
+            1);
+  for (const std::string& line : lines_) {
+    EXPECT_EQ(line.find("unknown"), std::string::npos) << line;
+  }
+  EXPECT_TRUE(restarts_.empty());
+  usb.Unplug();
+}
+
+TEST_F(LinkRestartTest, WithoutTheWaitTheBootloadersBytesAreReadAsFrames) {
+  // the contrast: its 05 E8 03 is a motor command of 1000
+  const std::string port = dir_ + "/ttyACM-board";
+  UsbSerial usb;
+  usb.PlugIn(port);
+  Make("serial:" + port + "@1000000", "");
+  Write(usb.board, kBootloaderNoise);
+  Step(5);
+  EXPECT_EQ(SignalValue(*kernel_, "left.command"), 1000);
+  usb.Unplug();
+}
+
+TEST_F(LinkRestartTest, AFirmwareThatNeverStartsEndsTheWaitWithAReason) {
+  const std::string port = dir_ + "/ttyACM-board";
+  UsbSerial usb;
+  usb.PlugIn(port);
+  Make("serial:" + port + "@1000000", ", wait_for_firmware_s: 0.3");
+  Write(usb.board, kBootloaderNoise);
+  try {
+    Step(1);
+    FAIL() << "the run started without its firmware";
+  } catch (const RuntimeFault& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "component 'link' failed at t=0 s: no start-up frames from the firmware within 0.3 "
+              "s (wait_for_firmware_s); 16 bytes came before");
+  }
+  usb.Unplug();
+}
+
 }  // namespace
 }  // namespace unimouse

@@ -251,9 +251,9 @@ TEST_F(ManifestTest, ANameTheSystemCannotLookUpIsAMistakeAtItsNodeNotACrash) {
                     "}]\nscenarios: [micromouse]\n")
                 .rfind(file + ":1:", 0),
             0u);
-  const Manifest m = LoadManifest(
-      Write("m.yaml", "submissions: [{name: amy, link: \"native:" + long_name +
-                          "\"}]\nscenarios: [micromouse]\n"));
+  const Manifest m =
+      LoadManifest(Write("m.yaml", "submissions: [{name: amy, link: \"native:" + long_name +
+                                       "\"}]\nscenarios: [micromouse]\n"));
   EXPECT_EQ(m.submissions[0].link, "native:" + long_name);
 }
 

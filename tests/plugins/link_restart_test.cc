@@ -356,5 +356,24 @@ TEST_F(LinkRestartTest, AFirmwareThatNeverStartsEndsTheWaitWithAReason) {
   usb.Unplug();
 }
 
+TEST(LinkRestartParamsTest, WrongRestartParametersAreBadInputWithOneLine) {
+  const std::string dir = testing::FreshDirectory("link_restart_params");
+  for (const auto& [set, line] : std::vector<std::pair<std::string, std::string>>{
+           {"reset_cause=lightning",
+            "unimouse: error: --link-set reset_cause=lightning: component 'link' (unimouse.link): "
+            "reset_cause must be one of external|brownout, not 'lightning'\n"},
+           {"max_restarts=0",
+            "unimouse: error: --link-set max_restarts=0: component 'link' (unimouse.link): "
+            "max_restarts must be within [1, 1e+06], not 0\n"},
+           {"board_reset=ignore",
+            "unimouse: error: --link-set board_reset=ignore: component 'link' (unimouse.link): "
+            "board_reset must be one of restart|fail, not 'ignore'\n"}}) {
+    const testing::Outcome o = testing::Unimouse("run --duration 0.01 --no-pictures --out " + dir +
+                                                 " --link pty:" + dir + "/board --link-set " + set);
+    EXPECT_EQ(o.exit_code, 2) << o.output;
+    EXPECT_EQ(o.output, line);
+  }
+}
+
 }  // namespace
 }  // namespace unimouse

@@ -25,6 +25,7 @@ import re
 import struct
 import subprocess
 import sys
+import termios
 import time
 import tty
 
@@ -58,6 +59,16 @@ def open_board():
     return fd
 
 
+def write_all(fd, data):
+    """Writes every byte, waiting while the pty is full (a simulator that stalls for a moment)."""
+    while data:
+        try:
+            data = data[os.write(fd, data):]
+        except BlockingIOError:
+            drain(fd)
+            time.sleep(0.001)
+
+
 def drain(fd):
     try:
         while os.read(fd, 65536):
@@ -77,7 +88,7 @@ while not os.path.exists(link):
 
 frames = bytes_sent = garbage = restarts = step = 0
 board = open_board()
-os.write(board, START_UP)
+write_all(board, START_UP)
 frames += 3
 start = time.monotonic()
 next_restart = args.restart_every
@@ -89,11 +100,13 @@ while True:
         break
     if now >= next_restart:
         # the board goes away and comes back: quiet first, so the simulator has read it all
-        time.sleep(0.05)
+        termios.tcdrain(board)
+        time.sleep(0.2)
+        drain(board)
         os.close(board)
         time.sleep(0.05)
         board = open_board()
-        os.write(board, START_UP)
+        write_all(board, START_UP)
         frames += 3
         restarts += 1
         next_restart += args.restart_every
@@ -112,11 +125,11 @@ while True:
             garbage += 1
     try:
         if rng.random() < 0.01 and len(out) > 3:
-            os.write(board, out[:3])  # a frame split across two writes
+            write_all(board, out[:3])  # a frame split across two writes
             time.sleep(0.0002)
-            os.write(board, out[3:])
-        elif out:
-            os.write(board, out)
+            write_all(board, out[3:])
+        else:
+            write_all(board, out)
         bytes_sent += len(out)
         drain(board)
     except OSError as e:
@@ -129,7 +142,8 @@ while True:
             rss_max = max(rss_max or kb, kb)
         next_rss += 1.0
     time.sleep(0.0005)
-time.sleep(0.05)
+termios.tcdrain(board)
+time.sleep(0.2)
 drain(board)
 os.close(board)
 run.wait()

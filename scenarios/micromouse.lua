@@ -5,7 +5,9 @@
 -- the start cell, the next run may begin; the best run counts. Wall contacts are counted. Every
 -- completed run is a record of the list `runs` in result.json: its number, when it started on
 -- the contest clock, its time, its path cost (left out when the robot skipped a cell) and the
--- wall contacts during it.
+-- wall contacts during it. A firmware that restarts (reset, watchdog, replug) is treated as the
+-- rules treat a mouse its handler touched: the current run ends without a time, the mouse is put
+-- back in the start cell, and the contest clock runs on.
 return sim.scenario {
   name = "micromouse",
   params = {
@@ -43,11 +45,25 @@ return sim.scenario {
     local touching, contacts, run_contacts = false, 0, 0
     local hud_tenth, hud_run  -- what the HUD shows
     local ended_mid_run, firmware_done = false, false
+    local restarts, restarted = 0, false
     sim.on("firmware_log", function(line)
       if p.end_on_log ~= "" and line.text == p.end_on_log then firmware_done = true end
     end)
+    sim.on("firmware_restart", function() restarted = true end)
 
     while true do
+      if restarted then
+        restarted, restarts = false, restarts + 1
+        if run_from then
+          print(string.format("the firmware restarted: run %d ends without a time, the mouse goes " ..
+                              "back to the start", #runs + 1))
+        else
+          print("the firmware restarted: the mouse goes back to the start")
+        end
+        -- back in the start cell, the next departure is a new run
+        run_from, may_start = nil, false
+        sim.robot_reset()
+      end
       local now, cell = sim.time(), sim.robot_get_cell()
       local touch = sim.robot_is_touching_wall()
       if touch and not touching then
@@ -113,6 +129,7 @@ return sim.scenario {
     sim.score_set("runs", #runs)
     sim.score_set("time_used_s", used_s)
     sim.score_set("wall_contacts", contacts)
+    sim.score_set("firmware_restarts", restarts)
     if best_s then sim.score_set("best_run_s", best_s) end
     if best_cost then sim.score_set("best_run_path_cost", best_cost) end
     local tail = ended_mid_run and string.format("; the time ran out during run %d", #runs + 1) or ""

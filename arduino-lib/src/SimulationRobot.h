@@ -110,7 +110,8 @@ class SimulationRobot {
     fdev_set_udata(&stdout_, this);
     stdout = &stdout_;
 #endif
-    // the sizes of the simulator's data frames first, so that a robot's extra sensor, which
+    // UNIMOUSE_STARTUP_CODES, in their order: the simulator knows a restarted firmware by them.
+    // The sizes of the simulator's data frames first, so that a robot's extra sensor, which
     // this sketch may not read, never desynchronises the frames
     manager(UNIMOUSE_MANAGER_FRAME_SIZES);
     manager(UNIMOUSE_MANAGER_SENSORS_ON);

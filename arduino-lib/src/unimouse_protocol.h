@@ -70,6 +70,12 @@ enum {
                                                for each data frame it sends */
 };
 
+/* begin() of this project's library opens with these three manager codes, in this order; the
+ * simulator takes them arriving again mid-run as the firmware starting over (docs/protocol.md,
+ * "Restarts") */
+#define UNIMOUSE_STARTUP_CODES \
+  { UNIMOUSE_MANAGER_FRAME_SIZES, UNIMOUSE_MANAGER_SENSORS_ON, UNIMOUSE_MANAGER_REPEATS_COMMANDS }
+
 /* sides in a debug walls frame: bits of `walls` and `known` */
 enum {
   UNIMOUSE_SIDE_NORTH = 0x01,

@@ -392,6 +392,8 @@ void Session::Assemble() {
       [this](const std::string& component, int robot, const unimouse_report& report) {
         if (report.kind == UNIMOUSE_REPORT_MEASURE && report.name != nullptr) {
           measurements_[component][report.name] = report.value;
+        } else if (report.kind == UNIMOUSE_REPORT_RESTART) {
+          ++robots_[static_cast<size_t>(robot)].restarts;
         } else if (robot == 0) {
           beliefs_.Apply(report);
         }
@@ -592,7 +594,8 @@ SessionResult Session::Finish(const nlohmann::json& extra) {
                       {"driver", drivers_[i]},
                       {"pose", {{"x_m", at.x_m}, {"y_m", at.y_m}, {"yaw_rad", at.yaw_rad}}},
                       {"wall_contacts", robot.wall_contacts},
-                      {"robot_contacts", robot.robot_contacts}});
+                      {"robot_contacts", robot.robot_contacts},
+                      {"restarts", robot.restarts}});
   }
   r["robots"] = robots;
   SessionResult result;
@@ -631,6 +634,11 @@ SessionResult Session::Finish(const nlohmann::json& extra) {
   }
   if (firmware_maze) r["firmware_maze"] = "maze.png";
   if (!measurements_.empty()) r["measurements"] = measurements_;
+  if (kernel_->declared(UNIMOUSE_TRAIT_FIRMWARE)) {
+    int64_t restarts = 0;
+    for (const Robot& robot : robots_) restarts += robot.restarts;
+    r["restarts"] = restarts;
+  }
   r["warnings"] = warnings_;
   r["exit_code"] = result.exit_code;
   if (extra.is_object()) r.update(extra);

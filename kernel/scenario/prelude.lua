@@ -239,7 +239,8 @@ function sim.wall_arc(w)
 end
 
 -- events, checked once a tick at the boundary, before run resumes, in the order added
-local kinds = { cell_entered = true, wall_contact = true, gate_crossed = true, firmware_log = true }
+local kinds = { cell_entered = true, wall_contact = true, gate_crossed = true, firmware_log = true,
+                firmware_restart = true }
 local handlers, gates = {}, {}
 function sim.on(kind, handler)
   if not kinds[kind] then error("sim.on: unknown event '" .. tostring(kind) .. "'", 2) end
@@ -265,6 +266,7 @@ end
 local function dispatch()
   local now = sim.time()
   for _, line in ipairs(host.take_firmware_lines()) do fire("firmware_log", line) end
+  for _, restart in ipairs(host.take_firmware_restarts()) do fire("firmware_restart", restart) end
   if handlers.cell_entered then
     local c = sim.robot_get_cell()
     if not last_cell or c.x ~= last_cell.x or c.y ~= last_cell.y then

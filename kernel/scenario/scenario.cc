@@ -342,8 +342,8 @@ end)
   if (RunScript(L, 2, 0, 0, "--snapshot-on") != LUA_OK) {
     lua_pop(L, 1);
     throw InputError("--snapshot-on " + kind +
-                     ": not an event; the events are cell_entered, wall_contact, gate_crossed and "
-                     "firmware_log");
+                     ": not an event; the events are cell_entered, wall_contact, gate_crossed, "
+                     "firmware_log and firmware_restart");
   }
 }
 
@@ -441,6 +441,12 @@ void Scenario::Attach(Kernel& kernel, const std::vector<std::string>& controller
       [this](double time_s, int level, const std::string&, const std::string& message) {
         if (level == UNIMOUSE_LOG_FIRMWARE) firmware_lines_.emplace_back(time_s, message);
       });
+  kernel.AddReportListener([this](const std::string&, int robot, const unimouse_report& report) {
+    if (report.kind == UNIMOUSE_REPORT_RESTART) {
+      firmware_restarts_.push_back(
+          {kernel_->state().data().time, static_cast<int>(report.value), robot});
+    }
+  });
   kernel.SetBoundaryHook([this] { Tick(); });
 }
 

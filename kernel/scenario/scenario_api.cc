@@ -495,6 +495,27 @@ struct ScenarioApi {
     return 1;
   }
 
+  // the firmware's restarts since the last call, as {time_s, count}; for the event dispatcher
+  static int TakeFirmwareRestarts(LuaCall& call) {
+    Scenario& s = Self(call);
+    std::vector<Scenario::Restart>& restarts = s.firmware_restarts_;
+    lua_State* L = call.state();
+    lua_createtable(L, static_cast<int>(restarts.size()), 0);
+    for (size_t i = 0; i < restarts.size(); ++i) {
+      lua_createtable(L, 0, 3);
+      lua_pushnumber(L, restarts[i].time_s);
+      lua_setfield(L, -2, "time_s");
+      lua_pushinteger(L, restarts[i].count);
+      lua_setfield(L, -2, "count");
+      const auto robot = static_cast<size_t>(restarts[i].robot);
+      lua_pushstring(L, robot < s.robot_names_.size() ? s.robot_names_[robot].c_str() : "");
+      lua_setfield(L, -2, "robot");
+      lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
+    }
+    restarts.clear();
+    return 1;
+  }
+
   // math.random, drawing from the run's seed
   static int Random(LuaCall& call) {
     const double u = Self(call).rng_.Uniform();
@@ -768,7 +789,7 @@ constexpr ApiEntry kApi[] = {
      "booleans or strings, each keeping its type from row to row"},
     {"on", nullptr, 1, "on(kind, handler)",
      "calls handler(event) on cell_entered {x, y}, wall_contact, gate_crossed {name, direction}, "
-     "firmware_log {text}"},
+     "firmware_log {text}, firmware_restart {count}"},
     {"gate_add", nullptr, 1, "gate_add{name, x1_m, y1_m, x2_m, y2_m}",
      "a line whose crossings raise gate_crossed, direction +1 from its right to its left"},
     {"pass", ScenarioApi::Pass, 1, "pass(reason?)", "ends the challenge: passed"},
@@ -782,6 +803,9 @@ constexpr ApiEntry kHost[] = {
      "math.random, from the run's seed"},
     {"take_firmware_lines", ScenarioApi::TakeFirmwareLines, 0,
      "take_firmware_lines() -> {{text, time_s}, ...}", "the firmware's log lines since last time"},
+    {"take_firmware_restarts", ScenarioApi::TakeFirmwareRestarts, 0,
+     "take_firmware_restarts() -> {{time_s, count, robot}, ...}",
+     "the firmware's restarts since last time"},
     {"budget_spent", ScenarioApi::BudgetSpent, 0, "budget_spent() -> message?",
      "the instruction budget's error once it is spent"},
     {"charge", ScenarioApi::Charge, 0, "charge(instructions)",

@@ -28,6 +28,9 @@ namespace {
 // UART0's registers, at the same data addresses on the ATmega328P and ATmega2560
 constexpr uint16_t kUcsr0a = 0xC0, kUcsr0b = 0xC1, kUcsr0c = 0xC2, kUbrr0l = 0xC4, kUbrr0h = 0xC5;
 constexpr uint32_t kDataOffset = 0x800000;  // where avr-ld puts the data space
+// MCUSR, where the firmware reads why it was reset, and its flags (the same on both parts)
+constexpr uint16_t kMcusr = 0x54;
+constexpr uint8_t kExtrf = 0x02, kBorf = 0x04;
 
 // the logger is global in simavr: each board registers its MCU here to get its own messages
 std::vector<std::pair<avr_t*, AvrBoard*>>& Boards() {
@@ -258,6 +261,10 @@ int64_t AvrBoard::DataSymbol(const std::string& name) const {
 
 uint64_t AvrBoard::cycle() const { return avr_->cycle; }
 
+uint32_t AvrBoard::pc() const { return avr_->pc; }
+
+uint8_t AvrBoard::reset_flags() const { return avr_->data[kMcusr]; }
+
 uint32_t AvrBoard::CyclesPerBit() const {
   const uint8_t* d = avr_->data;
   const uint32_t ubrr = d[kUbrr0l] | (d[kUbrr0h] & 0x0F) << 8;
@@ -314,12 +321,19 @@ std::string AvrBoard::RunUntilTime(double time_s) {
 std::string AvrBoard::RunUntil(uint64_t target) {
   if (!fault_.empty() || target <= avr_->cycle) return fault_;
   const double cpu0 = ThreadCpu_s();
+  target_ = target;
   // a sleeping MCU skips to its next timer: one at the boundary keeps it from going past
   avr_cycle_timer_register(avr_, target - avr_->cycle, &StepEnd, this);
   while (avr_->cycle < target && fault_.empty()) {
     if (avr_->run != run_) {
-      Stop("the watchdog reset it");
-      break;
+      // simavr's watchdog has put its reset in place of the next run step
+      if (!options_.resets_restart) {
+        Stop("the watchdog reset it");
+        break;
+      }
+      avr_run(avr_);
+      AfterReset("the watchdog");
+      continue;
     }
     const int before = avr_->state;
     const uint64_t cycle = avr_->cycle;
@@ -344,6 +358,33 @@ std::string AvrBoard::RunUntil(uint64_t target) {
 }
 
 uint64_t AvrBoard::StepEnd(avr_t*, uint64_t, void*) { return 0; }
+
+void AvrBoard::Reset(ResetCause cause) {
+  const char* what = cause == ResetCause::kBrownOut ? "a brown-out" : "its reset pin";
+  if (!fault_.empty()) return;
+  if (!options_.resets_restart) {
+    Stop(std::string("it was reset by ") + what);
+    return;
+  }
+  avr_reset(avr_);
+  avr_->data[kMcusr] |= cause == ResetCause::kBrownOut ? kBorf : kExtrf;
+  AfterReset(what);
+}
+
+void AvrBoard::AfterReset(const std::string& cause) {
+  // avr_reset cleared every cycle timer, the line's and the step's, and the UART's registers
+  resets_.push_back(cause);
+  to_mcu_.clear();
+  ends_write_.clear();
+  line_busy_ = false;
+  receiver_on_ = false;
+  fifo_full_ = false;
+  mark_pending_ = false;
+  walk_ = Walk::kId;
+  if (target_ > avr_->cycle) avr_cycle_timer_register(avr_, target_ - avr_->cycle, &StepEnd, this);
+}
+
+std::vector<std::string> AvrBoard::TakeResets() { return std::exchange(resets_, {}); }
 
 void AvrBoard::Write(std::span<const uint8_t> bytes) {
   if (bytes.empty()) return;

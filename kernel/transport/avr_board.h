@@ -72,7 +72,10 @@ class AvrBoard {
     uint32_t f_cpu_hz = 16000000;               ///< used unless the image names its clock
     size_t queue_bytes = 1024;                  ///< bytes waiting for the line into the MCU at most
     std::vector<uint8_t> command_ids = {5, 6};  ///< frames whose arrival ends a latency sample
+    bool resets_restart = true;  ///< a watchdog reset boots the firmware again; false: a fault
   };
+  /// What resets the MCU from outside, as MCUSR tells the firmware.
+  enum class ResetCause { kExternal, kBrownOut };
 
   /// Loads `elf_path` onto a fresh MCU, held at reset until the first RunUntil. Throws
   /// InputError when the file fails the image check (avr_image.h), names a part simavr does not
@@ -88,6 +91,11 @@ class AvrBoard {
   std::string RunUntil(uint64_t cycle);
   /// Runs until simulated time `time_s`, counted from the board's reset.
   std::string RunUntilTime(double time_s);
+  /// Resets the MCU now, as its reset pin or a brown-out does: the firmware boots again (or,
+  /// without resets_restart, the board stops with that as its fault).
+  void Reset(ResetCause cause);
+  /// Returns what reset the MCU since the last call, oldest first ("the watchdog").
+  std::vector<std::string> TakeResets();
   /// Queues bytes for the MCU's receiver; they go at the line's pace once it is enabled. Bytes
   /// sent before are lost (counted), as are writes that would overfill the queue.
   void Write(std::span<const uint8_t> bytes);
@@ -98,6 +106,11 @@ class AvrBoard {
   /// Why the firmware stopped, or "".
   const std::string& fault() const { return fault_; }
   uint64_t cycle() const;
+  /// Returns the program counter, a byte address.
+  uint32_t pc() const;
+  /// Returns MCUSR, where the firmware reads why the MCU last reset (EXTRF 0x02, BORF 0x04,
+  /// WDRF 0x08).
+  uint8_t reset_flags() const;
   /// Returns the measurements so far.
   AvrBoardStats stats() const;
   /// Returns the function that holds byte address `pc`, or "" when no symbol does.
@@ -123,6 +136,8 @@ class AvrBoard {
   void StartLine();
   void NoteSp();
   void Stop(const std::string& why);
+  // what a reset leaves behind: an idle line in, a receiver off, the step's end timer again
+  void AfterReset(const std::string& cause);
   // follows the MCU's frames to time the motor commands
   void WalkOutgoing(uint8_t byte, uint64_t arrival);
 
@@ -144,6 +159,8 @@ class AvrBoard {
   uint16_t min_sp_ = 0xFFFF;
   // into the MCU: bytes waiting for the line, and which of them end a write
   avr_irq_t* uart_in_ = nullptr;
+  uint64_t target_ = 0;              // the cycle the current RunUntil runs to
+  std::vector<std::string> resets_;  // not yet taken
   std::deque<uint8_t> to_mcu_;
   std::deque<bool> ends_write_;
   bool line_busy_ = false;

@@ -27,7 +27,11 @@ class AvrTransport final : public Transport {
     AvrBoard::Options options;
     options.mcu = settings.mcu;
     options.f_cpu_hz = static_cast<uint32_t>(settings.f_cpu_hz);
+    options.resets_restart = settings.resets_restart;
     board_.emplace(path_, options);
+    reset_at_s_ = settings.reset_at_s;
+    reset_cause_ = settings.reset_cause == "brownout" ? AvrBoard::ResetCause::kBrownOut
+                                                      : AvrBoard::ResetCause::kExternal;
     if (!settings.spi_imu_part.empty()) {
       imu_.emplace(board_->mcu(), settings.spi_imu_part, settings.spi_imu_cs_pin);
     }
@@ -62,9 +66,23 @@ class AvrTransport final : public Transport {
   std::string RunUntil(double time_s) override {
     if (!board_) return "";
     // the board never goes back: when the simulation starts again, its time runs on
-    if (time_s < last_s_) offset_s_ += last_s_;
+    if (time_s < last_s_) {
+      offset_s_ += last_s_;
+      reset_done_ = false;
+    }
     last_s_ = time_s;
+    // the reset button, pressed at its time of the simulation's clock
+    if (reset_at_s_ > 0 && !reset_done_ && reset_at_s_ <= time_s) {
+      reset_done_ = true;
+      if (std::string fault = board_->RunUntilTime(offset_s_ + reset_at_s_); !fault.empty()) {
+        return fault;
+      }
+      board_->Reset(reset_cause_);
+    }
     return board_->RunUntilTime(offset_s_ + time_s);
+  }
+  std::vector<std::string> TakeResets() override {
+    return board_ ? board_->TakeResets() : std::vector<std::string>{};
   }
   std::string Summary() const override {
     if (!board_) return "";
@@ -91,6 +109,9 @@ class AvrTransport final : public Transport {
   std::optional<AvrBoard> board_;
   std::optional<SpiImu> imu_;  // after the board: it is wired to the board's MCU
   double last_s_ = 0, offset_s_ = 0;
+  double reset_at_s_ = 0;  // 0: never
+  AvrBoard::ResetCause reset_cause_ = AvrBoard::ResetCause::kExternal;
+  bool reset_done_ = false;
 };
 
 }  // namespace

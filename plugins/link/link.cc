@@ -1,9 +1,11 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "link.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <thread>
 
 #include "unimouse/errors.h"
 
@@ -20,6 +22,10 @@ constexpr int kRepeats = 5;     // the firmware said it resends its commands
 constexpr int kMazeAsked = 6;   // the firmware asked for the maze: it goes out with the next frames
 constexpr int kSizesAsked = 7;  // the firmware asked for the data frames' sizes: the same
 constexpr int kStateSize = 8;
+
+// the start-up codes of this project's library, in their order (unimouse_protocol.h)
+constexpr uint8_t kStartupCodes[] = UNIMOUSE_STARTUP_CODES;
+constexpr size_t kStartupCodeCount = sizeof(kStartupCodes);
 
 // visited cells kept for the beliefs file: a firmware that reports more repeats itself
 constexpr size_t kMaxVisitedKept = 1 << 20;
@@ -111,7 +117,8 @@ void Link::Bind(BindContext& ctx) {
 
 void Link::Start() {
   transport_ = OpenTransport(p_.transport);
-  transport_->Configure({p_.mcu, p_.f_cpu_hz, p_.spi_imu, p_.spi_imu_cs_pin});
+  transport_->Configure({p_.mcu, p_.f_cpu_hz, p_.spi_imu, p_.spi_imu_cs_pin,
+                         p_.board_reset == "restart", p_.reset_at_s, p_.reset_cause});
   // a serial port's own rate limits it; other transports go as fast as they are read unless told
   const int baud = p_.baud > 0 ? p_.baud : transport_->line_baud();
   bytes_per_step_ = baud > 0 ? baud / 10.0 * period_s_ : 0;
@@ -133,6 +140,14 @@ void Link::Reset(const ResetContext& ctx) const {
   read_this_step_ = 0;
   received_bytes_ = 0;
   was_connected_ = false;
+  begun_ = false;
+  frames_ever_ = 0;
+  startup_codes_in_a_row_ = 0;
+  next_frame_restarts_ = false;
+  restarts_ = 0;
+  board_resets_ = 0;
+  reconnections_ = 0;
+  skipped_before_start_up_ = 0;
   beliefs_ = {};
   queue_.clear();
   budget_bytes_ = 0;
@@ -167,8 +182,67 @@ const Link::Incoming* Link::FindIncoming(uint8_t id) const {
   return nullptr;
 }
 
+bool Link::WithinRestarts(const SenseContext& ctx, uint64_t count, const char* what) const {
+  if (count <= static_cast<uint64_t>(p_.max_restarts)) return true;
+  char text[224];
+  std::snprintf(text, sizeof(text), "%s %llu times, more than max_restarts (%d)", what,
+                static_cast<unsigned long long>(count), p_.max_restarts);
+  ctx.Fail(text);
+  return false;
+}
+
+void Link::Restarted(const SenseContext& ctx, const char* sign, Heard& heard) const {
+  ++restarts_;
+  heard.gone_or_restarted = true;
+  // a new firmware has said nothing yet: what the last one asked for ends with it, and the
+  // original streamed its sensors from the start
+  std::span<double> s = ctx.state();
+  ZeroReceived(ctx);
+  s[kSensorsOn] = 1;
+  s[kLockstep] = 0;
+  s[kFailsafe] = 0;
+  s[kRepeats] = 0;
+  ctx.SetFirmwarePaced(false);
+  char text[192];
+  std::snprintf(text, sizeof(text),
+                "the firmware restarted at t=%.3f s (%s): motors stopped until it commands them; "
+                "restart %llu",
+                ctx.time_s(), sign, static_cast<unsigned long long>(restarts_));
+  ctx.Log(text);
+  unimouse_report r{};
+  r.size = sizeof(r);
+  r.kind = UNIMOUSE_REPORT_RESTART;
+  r.value = static_cast<double>(restarts_);
+  ctx.Report(r);
+  WithinRestarts(ctx, restarts_, "the firmware restarted");
+}
+
+void Link::WatchForRestart(const SenseContext& ctx, const FirmwareFrame& f, Heard& heard) const {
+  ++frames_ever_;
+  const bool manager = !f.is_data && f.id == UNIMOUSE_ID_MANAGER;
+  if (manager && f.value == kStartupCodes[startup_codes_in_a_row_]) {
+    ++startup_codes_in_a_row_;
+  } else {
+    startup_codes_in_a_row_ = manager && f.value == kStartupCodes[0] ? 1 : 0;
+  }
+  if (next_frame_restarts_) {
+    // any firmware, this project's or not: the first frame on a link that came back
+    next_frame_restarts_ = false;
+    begun_ = false;
+    Restarted(ctx, "its first frame after the link came back", heard);
+  }
+  if (startup_codes_in_a_row_ == kStartupCodeCount) {
+    // this project's library: begin()'s codes a second time (a sketch may send frames before
+    // its first begin(), asking for the maze)
+    if (begun_) Restarted(ctx, "its start-up frames again", heard);
+    begun_ = true;
+    startup_codes_in_a_row_ = 0;
+  }
+}
+
 void Link::Apply(const SenseContext& ctx, const FirmwareFrame& f, Heard& heard) const {
   std::span<double> s = ctx.state();
+  WatchForRestart(ctx, f, heard);
   s[kLastFrame_s] = ctx.time_s();
   if (s[kFailsafe] != 0) {
     s[kFailsafe] = 0;
@@ -326,6 +400,10 @@ void Link::Receive(const SenseContext& ctx, Heard& heard) const {
     was_connected_ = transport_->Connected();
     if (was_connected_) {
       ctx.Log("firmware connected");
+      if (frames_ever_ > 0) {
+        ++reconnections_;
+        WithinRestarts(ctx, reconnections_, "the firmware's link came back");
+      }
     } else {
       // a lost link always stops the motors, whatever the firmware said
       bool commanded = false;
@@ -337,8 +415,14 @@ void Link::Receive(const SenseContext& ctx, Heard& heard) const {
         ctx.Fail(failure + " at t=" + Seconds(ctx.time_s()) + " s");
       }
       decoder_.Reset();
-      // what the next firmware says of itself is its own
+      // what the next firmware says of itself is its own, and lock-step waits for a firmware
+      // that is there: it comes back when the next one asks
       ctx.state()[kRepeats] = 0;
+      ctx.state()[kLockstep] = 0;
+      ctx.SetFirmwarePaced(false);
+      heard.gone_or_restarted = true;
+      startup_codes_in_a_row_ = 0;
+      if (frames_ever_ > 0) next_frame_restarts_ = true;
     }
   }
   std::vector<FirmwareFrame> frames;
@@ -406,6 +490,8 @@ bool Link::AwaitFirmware(const SenseContext& ctx, Heard& heard, bool Heard::*unt
       std::chrono::steady_clock::now() + std::chrono::duration<double>(p_.lockstep_timeout_s);
   char text[192];
   while (!(heard.*until)) {
+    // a firmware that went away or started over owes this step nothing
+    if (heard.gone_or_restarted) return true;
     if (read_this_step_ >= kReadPerStep_bytes) {
       std::snprintf(text, sizeof(text),
                     "the firmware sent more than %zu bytes at t=%.3f s and did not %s (lock-step)",
@@ -416,6 +502,9 @@ bool Link::AwaitFirmware(const SenseContext& ctx, Heard& heard, bool Heard::*unt
     const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
         deadline - std::chrono::steady_clock::now());
     if (left.count() <= 0 || !transport_->WaitReadable(left)) {
+      // a peer that closed its side is a lost link, not a hang: a read tells which
+      Receive(ctx, heard);
+      if (heard.gone_or_restarted || heard.*until) continue;
       // the last lines a firmware printed before it hung or crashed are the ones that matter
       TakeText(ctx);
       if (const std::string failure = transport_->Failure(); !failure.empty()) {
@@ -433,12 +522,74 @@ bool Link::AwaitFirmware(const SenseContext& ctx, Heard& heard, bool Heard::*unt
   return true;
 }
 
+bool Link::AwaitStartUp(const SenseContext& ctx, Heard& heard) const {
+  const std::vector<uint8_t> codes = {UNIMOUSE_ID_MANAGER, kStartupCodes[0],    UNIMOUSE_ID_MANAGER,
+                                      kStartupCodes[1],    UNIMOUSE_ID_MANAGER, kStartupCodes[2]};
+  const auto opened = std::chrono::steady_clock::now();
+  const auto deadline = opened + std::chrono::duration<double>(p_.wait_for_firmware_s);
+  std::vector<uint8_t> pending;
+  for (;;) {
+    const size_t before = pending.size();
+    transport_->Read(pending, kReadPerStep_bytes);
+    received_bytes_ += pending.size() - before;
+    const auto at = std::search(pending.begin(), pending.end(), codes.begin(), codes.end());
+    if (at != pending.end()) {
+      skipped_before_start_up_ += static_cast<uint64_t>(at - pending.begin());
+      pending.erase(pending.begin(), at);
+      break;
+    }
+    // all but a start of the codes is skipped
+    const size_t keep = std::min(pending.size(), codes.size() - 1);
+    skipped_before_start_up_ += pending.size() - keep;
+    pending.erase(pending.begin(), pending.end() - static_cast<long>(keep));
+    const auto now = std::chrono::steady_clock::now();
+    if (now >= deadline) {
+      char text[224];
+      std::snprintf(text, sizeof(text),
+                    "no start-up frames from the firmware within %g s (wait_for_firmware_s); %llu "
+                    "bytes came before",
+                    p_.wait_for_firmware_s,
+                    static_cast<unsigned long long>(skipped_before_start_up_ + pending.size()));
+      ctx.Fail(text);
+      return false;
+    }
+    // a port that is not there yet cannot be waited on: look again shortly
+    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - now);
+    if (!transport_->WaitReadable(std::min(left, std::chrono::milliseconds(100)))) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+  }
+  char text[224];
+  std::snprintf(text, sizeof(text),
+                "the firmware's start-up frames came %.3f s after the link opened; %llu bytes "
+                "before them skipped (a bootloader's, or a reset's noise)",
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - opened).count(),
+                static_cast<unsigned long long>(skipped_before_start_up_));
+  ctx.Log(text);
+  std::vector<FirmwareFrame> frames;
+  decoder_.Feed(pending, frames);
+  for (const FirmwareFrame& f : frames) Apply(ctx, f, heard);
+  return true;
+}
+
 void Link::RunBoard(const SenseContext& ctx, Heard& heard, bool lockstep) const {
   ctx.SetFirmwarePaced(true);
   const std::string fault = transport_->RunUntil(ctx.time_s() + period_s_);
   if (!fault.empty()) {
     ctx.Fail(fault);
     return;
+  }
+  for (const std::string& cause : transport_->TakeResets()) {
+    // the board boots again; the firmware's start-up frames say when it is back
+    ++board_resets_;
+    ZeroReceived(ctx);
+    ctx.state()[kLockstep] = 0;
+    lockstep = false;
+    if (frames_ever_ > 0) next_frame_restarts_ = true;
+    startup_codes_in_a_row_ = 0;
+    ctx.Log("the emulated board was reset by " + cause + " before t=" +
+            Seconds(ctx.time_s() + period_s_) + " s: the firmware boots again, motors stopped");
+    if (!WithinRestarts(ctx, board_resets_, "the emulated board was reset")) return;
   }
   Receive(ctx, heard);
   if (!lockstep) return;
@@ -465,6 +616,7 @@ void Link::Sense(const SenseContext& ctx) const {
   std::span<double> s = ctx.state();
   read_this_step_ = 0;
   Heard heard;
+  if (p_.wait_for_firmware_s > 0 && ctx.step() == 0 && !AwaitStartUp(ctx, heard)) return;
   Receive(ctx, heard);
   if (static_cast<double>(received_bytes_) >
       kFloodAllowance_bytes + kFloodRate_bytes_per_s * ctx.time_s()) {

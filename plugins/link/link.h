@@ -44,6 +44,11 @@ struct LinkParams {
   std::string spi_imu;
   std::string spi_imu_cs_pin = "PB0";
   std::string spi_imu_from = "imu";
+  int max_restarts = 100;
+  double wait_for_firmware_s = 0;
+  std::string board_reset = "restart";
+  double reset_at_s = 0;
+  std::string reset_cause = "external";
 
   template <class V>
   void Visit(V& v) {
@@ -93,6 +98,29 @@ struct LinkParams {
       "the SPI IMU's chip-select pin, port and bit (PB0 is "
       "the Mega 2560's SS, Arduino pin 53)");
     v("spi_imu_from", spi_imu_from, "prefix of the IMU signals the SPI IMU serves");
+    v("max_restarts", max_restarts,
+      "restarts of the firmware, board resets or reconnections a run takes; one more ends it "
+      "(a firmware that keeps resetting, a client that keeps dialling)",
+      param::Range{1, 1000000});
+    v("wait_for_firmware_s", wait_for_firmware_s,
+      "the run's clock starts when the firmware's start-up frames (this project's begin()) "
+      "come, waiting up to this long on the wall clock; the bytes before them (a bootloader's, "
+      "a reset's noise) are counted and skipped; 0: no wait, every byte is read as frames "
+      "(firmware written for the original sends no start-up frames)",
+      param::Range{0, 600});
+    v("board_reset", board_reset,
+      "what the emulated board does when it is reset (watchdog, reset_at_s): restart (the "
+      "firmware boots again and the run goes on, as on a board) or fail (the run ends with "
+      "exit code 3, for grading)",
+      param::OneOf{"restart|fail"});
+    v("reset_at_s", reset_at_s,
+      "the emulated board is reset at this simulated time, as by its reset button or a "
+      "brown-out (reset_cause); 0: never",
+      param::NonNegative{});
+    v("reset_cause", reset_cause,
+      "what reset_at_s is, as the firmware reads it in MCUSR: external (the reset button) or "
+      "brownout",
+      param::OneOf{"external|brownout"});
   }
 };
 
@@ -126,6 +154,7 @@ class Link final : public Component {
   struct Heard {
     bool lockstep_on = false;
     bool step_done = false;
+    bool gone_or_restarted = false;  // the firmware that owed this step is not there any more
   };
   struct Outgoing {
     TableEntry entry;
@@ -139,6 +168,9 @@ class Link final : public Component {
 
   // reads what the transport has, within this step's budget, and applies its frames
   void Receive(const SenseContext& ctx, Heard& heard) const;
+  // before the run's clock starts: skips what comes before the firmware's start-up codes, then
+  // reads them and the rest; false (after failing the run) when they do not come in time
+  bool AwaitStartUp(const SenseContext& ctx, Heard& heard) const;
   // runs a clocked transport (the emulated board) for this step, then reads what it sent
   void RunBoard(const SenseContext& ctx, Heard& heard, bool lockstep) const;
   void Apply(const SenseContext& ctx, const FirmwareFrame& frame, Heard& heard) const;
@@ -153,6 +185,14 @@ class Link final : public Component {
   // every signal the firmware writes back to 0, as after a stop or a silence
   void ZeroReceived(const TickContext& ctx) const;
   const Incoming* FindIncoming(uint8_t id) const;
+  // follows the frames for a firmware starting over: its start-up codes again, or the first
+  // frame after the link came back
+  void WatchForRestart(const SenseContext& ctx, const FirmwareFrame& f, Heard& heard) const;
+  // the firmware started over: motors stopped, lock-step off until it asks again
+  void Restarted(const SenseContext& ctx, const char* sign, Heard& heard) const;
+  // counts one more restart, board reset or reconnection; false (after failing the run) past
+  // max_restarts
+  bool WithinRestarts(const SenseContext& ctx, uint64_t count, const char* what) const;
 
   const Params p_;
   std::vector<Outgoing> send_;
@@ -181,6 +221,17 @@ class Link final : public Component {
   mutable size_t read_this_step_ = 0;
   mutable uint64_t received_bytes_ = 0;  // since the last reset
   mutable bool was_connected_ = false;
+  // restarts: frames since the run began, whether this firmware sent its start-up codes, how
+  // many of them just came in a row, whether the next frame is a new firmware's (the link came
+  // back), and the counts
+  mutable uint64_t frames_ever_ = 0;
+  mutable bool begun_ = false;
+  mutable size_t startup_codes_in_a_row_ = 0;
+  mutable bool next_frame_restarts_ = false;
+  mutable uint64_t restarts_ = 0;
+  mutable uint64_t board_resets_ = 0;
+  mutable uint64_t reconnections_ = 0;
+  mutable uint64_t skipped_before_start_up_ = 0;  // bytes before the start-up codes, waiting
   // what the firmware says it believes, for the run's maze picture
   struct Beliefs {
     std::map<std::pair<int, int>, std::pair<int, int>> walls;  // cell -> walls, known

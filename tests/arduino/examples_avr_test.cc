@@ -126,5 +126,46 @@ TEST(ArduinoExamplesOnBoardTest, MicromousePassesTheContestTheSameWayTwice) {
   EXPECT_EQ(a.result, b.result);
 }
 
+// the reset button pressed 5 s into the first run, in a small maze: the board boots again, the
+// contest ends that run as a touched mouse's and puts the mouse back at the start, and the next
+// run reaches the goal; the same inputs give the same run, reset included
+TEST(ArduinoExamplesOnBoardTest, MicromouseResetInItsFirstRunRestartsAndStillFinishesTheContest) {
+  IMAGE_OR_SKIP(image, "micromouse");
+  const std::string dir = testing::FreshDirectory("avr_reset_maze");
+  WriteTextFile(dir + "/small.txt",
+                "o---o---o---o---o\n"
+                "|           | G |\n"
+                "o   o---o   o   o\n"
+                "|   |       |   |\n"
+                "o   o   o---o   o\n"
+                "|   |           |\n"
+                "o   o---o---o   o\n"
+                "| S |           |\n"
+                "o---o---o---o---o\n");
+  const std::string scenario =
+      "micromouse --maze " + dir + "/small.txt --set max_runs=1 --link-set reset_at_s=5";
+  const ExampleRun a = RunOnBoard(image, scenario, "unimouse_avr_example_reset");
+  ASSERT_EQ(a.outcome.exit_code, 0) << a.outcome.output;
+  for (const char* line :
+       {"[    4.999 s] link: the emulated board was reset by its reset pin before t=5.000 s: the "
+        "firmware boots again, motors stopped\n",
+        "[    5.002 s] link: the firmware restarted at t=5.002 s (its first frame after the link "
+        "came back): motors stopped until it commands them; restart 1\n",
+        "[    5.003 s] scenario: the firmware restarted: run 1 ends without a time, the mouse "
+        "goes back to the start\n"}) {
+    EXPECT_NE(a.outcome.output.find(line), std::string::npos) << line << a.outcome.output;
+  }
+  EXPECT_EQ(a.result["restarts"], 1);
+  const nlohmann::json& scores = a.result["scenario"]["scores"];
+  EXPECT_EQ(a.result["scenario"]["status"], "passed") << a.result["scenario"]["reason"];
+  EXPECT_EQ(scores["firmware_restarts"], 1);
+  EXPECT_EQ(scores["runs"], 1);
+  EXPECT_EQ(scores["best_run_path_cost"], 18);
+  // the run that counts started after the reset, from the start cell
+  EXPECT_GT(a.result["sim_time_s"].get<double>() - scores["best_run_s"].get<double>(), 5.0);
+  const ExampleRun b = RunOnBoard(image, scenario, "unimouse_avr_example_reset");
+  EXPECT_EQ(a.result, b.result);
+}
+
 }  // namespace
 }  // namespace unimouse

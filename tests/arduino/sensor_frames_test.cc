@@ -54,7 +54,7 @@ TEST(FirmwareSensorFramesTest, AFrameTheSimulatorDeclaredIsSteppedOverByItsDecla
   std::vector<uint8_t> bytes = {UNIMOUSE_ID_FRAME_SIZE, 17, 2};
   for (int i = 0; i < 3; ++i) {
     bytes.insert(bytes.end(), extra.begin(), extra.end());
-    const std::vector<uint8_t> front = Tof(UNIMOUSE_ID_TOF_FRONT, 1000 + i);
+    const std::vector<uint8_t> front = Tof(UNIMOUSE_ID_TOF_FRONT, static_cast<uint16_t>(1000 + i));
     bytes.insert(bytes.end(), front.begin(), front.end());
   }
   rig.stream.Arrive(bytes);

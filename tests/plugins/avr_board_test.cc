@@ -2,7 +2,8 @@
 // The emulated board on its own, with the small firmwares of tests/avr: its clock is simulated
 // time, its receiver overflows as a real one does, a stack that runs into the data and the
 // ways a firmware can stop for good (a write beyond its SRAM among them) end its run with a
-// reason, and two runs are the same.
+// reason, a reset (watchdog, reset pin, brown-out) boots the image again, and two runs are the
+// same.
 #include "avr_board.h"
 
 #include <gtest/gtest.h>
@@ -132,14 +133,58 @@ TEST(AvrBoardTest, SleepingWithInterruptsOffStopsTheBoard) {
   EXPECT_NE(why.find("main"), std::string::npos) << why;
 }
 
-TEST(AvrBoardTest, AWatchdogResetStopsTheBoard) {
+TEST(AvrBoardTest, AWatchdogResetStopsTheBoardWhenResetsAreFailures) {
   FIRMWARE_OR_SKIP(elf, "watchdog");
-  AvrBoard board(elf, {.mcu = "atmega328p"});
+  AvrBoard board(elf, {.mcu = "atmega328p", .resets_restart = false});
   const std::string why = board.RunUntil(100 * kCyclesPerMs);
   EXPECT_NE(why.find("watchdog"), std::string::npos) << why;
   // 15 ms nominal; simavr times it from its own 128 kHz oscillator
   EXPECT_GT(board.stats().emulated_s(), 0.012);
   EXPECT_LT(board.stats().emulated_s(), 0.03);
+}
+
+// MCUSR's flags
+constexpr uint8_t kExtrf = 0x02, kBorf = 0x04, kWdrf = 0x08;
+
+TEST(AvrBoardTest, AWatchdogResetBootsTheFirmwareAgainAsOnTheBoard) {
+  FIRMWARE_OR_SKIP(elf, "watchdog");
+  AvrBoard board(elf, {.mcu = "atmega328p"});
+  // the image arms the watchdog and hangs: each 15 ms (simavr's 128 kHz oscillator: a little
+  // more) the MCU resets and the image starts again
+  ASSERT_EQ(board.RunUntil(100 * kCyclesPerMs), "");
+  EXPECT_NEAR(board.stats().emulated_s(), 0.1, 1e-6);  // the board's time runs on
+  const std::vector<std::string> resets = board.TakeResets();
+  EXPECT_GE(resets.size(), 4u);
+  EXPECT_LE(resets.size(), 7u);
+  for (const std::string& cause : resets) EXPECT_EQ(cause, "the watchdog");
+  EXPECT_TRUE(board.TakeResets().empty());  // taken once
+}
+
+TEST(AvrBoardTest, AResetPinOrBrownOutRestartsTheMcuAndMcusrSaysWhich) {
+  FIRMWARE_OR_SKIP(elf, "millis_clock");
+  AvrBoard board(elf, {});
+  ASSERT_EQ(board.RunUntil(20 * kCyclesPerMs), "");
+  EXPECT_TRUE(board.receiver_on());
+  board.Reset(AvrBoard::ResetCause::kBrownOut);
+  EXPECT_EQ(board.pc(), 0u);
+  EXPECT_FALSE(board.receiver_on());  // Serial.begin() has not run again yet
+  EXPECT_EQ(board.reset_flags() & (kExtrf | kBorf | kWdrf), kBorf);
+  EXPECT_EQ(board.TakeResets(), std::vector<std::string>{"a brown-out"});
+  ASSERT_EQ(board.RunUntil(40 * kCyclesPerMs), "");
+  EXPECT_TRUE(board.receiver_on());  // booted again
+  board.Reset(AvrBoard::ResetCause::kExternal);
+  EXPECT_EQ(board.TakeResets(), std::vector<std::string>{"its reset pin"});
+}
+
+TEST(AvrBoardTest, AResetIsTheBoardsFaultWhenResetsAreFailures) {
+  FIRMWARE_OR_SKIP(elf, "millis_clock");
+  AvrBoard board(elf, {.resets_restart = false});
+  ASSERT_EQ(board.RunUntil(5 * kCyclesPerMs), "");
+  board.Reset(AvrBoard::ResetCause::kExternal);
+  EXPECT_EQ(board.RunUntil(10 * kCyclesPerMs)
+                .rfind("the emulated atmega2560 stopped: it was reset by its reset pin at pc ", 0),
+            0u)
+      << board.fault();
 }
 
 TEST(AvrBoardTest, TheImageNamesItsOwnMcuAndClock) {

@@ -147,5 +147,50 @@ TEST(AvrRunTest, AFirmwareThatNeverReadsLosesBytesAndTheRunSaysHowMany) {
   EXPECT_GT(std::stoi(m[2]), 1000);
 }
 
+// tests/avr/watchdog.c arms the watchdog for 15 ms and hangs: the board resets every 16 ms or so
+TEST(AvrRunTest, AWatchdogResetBootsTheBoardAgainAndTheRunGoesOn) {
+  const std::string image = Image("watchdog");
+  if (image.empty()) GTEST_SKIP() << "no AVR test firmware: gcc-avr or arduino-core-avr missing";
+  const testing::RunResult r = testing::UnimouseRun(
+      "--maze none --duration 0.1 --no-pictures --link avr:" + image + " --link-set mcu=atmega328p",
+      "unimouse_avr_watchdog");
+  ASSERT_EQ(r.outcome.exit_code, 0) << r.outcome.output;
+  EXPECT_EQ(r.result["status"], "completed");
+  EXPECT_EQ(r.result["restarts"], 0);  // a firmware that never spoke cannot start over
+  EXPECT_NE(r.outcome.output.find("link: the emulated board was reset by the watchdog before "
+                                  "t=0.0"),
+            std::string::npos)
+      << r.outcome.output;
+}
+
+TEST(AvrRunTest, ABoardThatKeepsResettingEndsTheRunAfterMaxRestarts) {
+  const std::string image = Image("watchdog");
+  if (image.empty()) GTEST_SKIP() << "no AVR test firmware: gcc-avr or arduino-core-avr missing";
+  const testing::RunResult r =
+      testing::UnimouseRun("--maze none --duration 10 --no-pictures --link avr:" + image +
+                               " --link-set mcu=atmega328p --link-set max_restarts=10",
+                           "unimouse_avr_reset_storm");
+  EXPECT_EQ(r.outcome.exit_code, 3) << r.outcome.output;
+  EXPECT_EQ(r.result["status"], "fault");
+  const std::string error = r.result["error"];
+  EXPECT_NE(error.find(": the emulated board was reset 11 times, more than max_restarts (10)"),
+            std::string::npos)
+      << error;
+}
+
+TEST(AvrRunTest, AResetEndsTheRunWhenTheGraderSaysSo) {
+  const std::string image = Image("watchdog");
+  if (image.empty()) GTEST_SKIP() << "no AVR test firmware: gcc-avr or arduino-core-avr missing";
+  const testing::RunResult r =
+      testing::UnimouseRun("--maze none --duration 1 --no-pictures --link avr:" + image +
+                               " --link-set mcu=atmega328p --link-set board_reset=fail",
+                           "unimouse_avr_reset_fails");
+  EXPECT_EQ(r.outcome.exit_code, 3) << r.outcome.output;
+  const std::string error = r.result["error"];
+  EXPECT_NE(error.find("the emulated atmega328p stopped: the watchdog reset it at pc "),
+            std::string::npos)
+      << error;
+}
+
 }  // namespace
 }  // namespace unimouse

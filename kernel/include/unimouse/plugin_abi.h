@@ -130,7 +130,10 @@ enum {
   UNIMOUSE_REPORT_VALUE = 4,   /* a named number */
   /* a number the component measured over the run, for the run's record (result.json's
    * "measurements"): name, with its unit in it, and value; sent from finish (appended in 0.3) */
-  UNIMOUSE_REPORT_MEASURE = 5
+  UNIMOUSE_REPORT_MEASURE = 5,
+  /* the firmware started over inside the run (docs/protocol.md, "Restarts"); value: how many
+   * times so far; sent from sense (appended in 0.6) */
+  UNIMOUSE_REPORT_RESTART = 6
 };
 
 typedef struct unimouse_report {

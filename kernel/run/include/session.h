@@ -171,6 +171,7 @@ class Session {
     int touching_robot = -1;
     int64_t wall_contacts = 0;
     int64_t robot_contacts = 0;
+    int64_t restarts = 0;  // times its firmware started over inside the run (the link's reports)
   };
   std::vector<Robot> robots_;
   std::vector<nlohmann::json> drivers_;  // per robot, DriverJson

@@ -272,6 +272,13 @@ class Scenario {
   Cell maze_start_;
   std::string traceback_;
   std::vector<std::pair<double, std::string>> firmware_lines_;  // not yet handed to events
+  // a firmware's restarts not yet handed to events: when, its count, which robot's
+  struct Restart {
+    double time_s;
+    int count;
+    int robot;
+  };
+  std::vector<Restart> firmware_restarts_;
   PictureTaker picture_taker_;
 
   friend struct ScenarioApi;

@@ -58,6 +58,10 @@ class Transport {
   /// Appends the whole lines the firmware printed outside the protocol since the last call (a
   /// program's standard error); never waits.
   virtual void TakeText(std::vector<std::string>& /*lines*/) {}
+  /// Returns what reset the firmware's board since the last call ("the watchdog", "a brown-out
+  /// at reset_at_s"), oldest first: only an emulated board sees its resets; others show them
+  /// by the firmware's start-up frames (docs/protocol.md, "Restarts").
+  virtual std::vector<std::string> TakeResets() { return {}; }
   /// Hands an IMU on the board's bus (TransportSettings::spi_imu_part) what it measures now:
   /// gyro x, y, z in rad/s, then accelerometer x, y, z in m/s^2. Other transports ignore it.
   virtual void SetImuReading(std::span<const double, 6> /*gyro_then_accel*/) {}
@@ -69,6 +73,9 @@ struct TransportSettings {
   double f_cpu_hz = 0;         ///< avr: the clock, unless the image names its own
   std::string spi_imu_part;    ///< avr: an IMU chip on the SPI bus (mpu6500, icm20602), or ""
   std::string spi_imu_cs_pin;  ///< avr: its chip-select pin, "PB0"
+  bool resets_restart = true;  ///< avr: a reset boots the firmware again; false: it ends the run
+  double reset_at_s = 0;       ///< avr: reset the board at this simulated time; 0: never
+  std::string reset_cause;     ///< avr: what that reset is, "external" or "brownout"
 };
 
 /// Returns "" when `part` is an IMU the emulated board's SPI bus can carry (mpu6500, icm20602),

@@ -10,6 +10,7 @@
 #include "batch.h"
 #include "commands.h"
 #include "firmware_command.h"
+#include "fit_commands.h"
 #include "install_paths.h"
 #include "maze_commands.h"
 #include "mms_run.h"
@@ -174,6 +175,22 @@ int main(int argc, char** argv) {
       ->required();
   check_cmd->add_option("--set", check.sets,
                         "scenario parameter, name=value (repeatable), as `run --set` takes it");
+
+  FitOptions fit_options;
+  CLI::App* fit_cmd = app.add_subcommand(
+      "fit", "fit a robot file's motor constants to a robot's sysid logs (docs/calibrate.md)");
+  fit_cmd->add_option("robot", fit_options.robot, "robot YAML file, or the name of a bundled robot")
+      ->required();
+  fit_cmd->add_option("logs", fit_options.logs, "CSV logs of the sysid test pattern")->required();
+  fit_cmd->add_option("--out", fit_options.out_dir, "directory for the fitted robot file")
+      ->capture_default_str();
+  FitOptions compare_options;
+  CLI::App* compare_cmd = app.add_subcommand(
+      "compare", "replay a robot's sysid log on a robot file and say how far apart they are");
+  compare_cmd->add_option("robot", compare_options.robot, "robot YAML file, or a bundled robot")
+      ->required();
+  compare_cmd->add_option("logs", compare_options.logs, "CSV logs of the sysid test pattern")
+      ->required();
 
   CLI::App* plugins_cmd =
       app.add_subcommand("plugins", "list the component types found and their parameters");
@@ -450,6 +467,14 @@ int main(int argc, char** argv) {
     if (check_cmd->parsed()) {
       check.plugin_path = plugin_path;
       return CheckCommand(check);
+    }
+    if (fit_cmd->parsed()) {
+      fit_options.plugin_path = plugin_path;
+      return FitCommand(fit_options);
+    }
+    if (compare_cmd->parsed()) {
+      compare_options.plugin_path = plugin_path;
+      return CompareCommand(compare_options);
     }
     if (plugins_cmd->parsed()) return PluginsCommand(plugin_path);
     if (schema_cmd->parsed()) return RobotSchemaCommand(schema_markdown, plugin_path);

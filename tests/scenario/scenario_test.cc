@@ -340,7 +340,7 @@ TEST(ScenarioApiTest, EveryListedFunctionExistsInTheSandbox) {
               listing.substr(begin, end - begin) + "')\n";
     ++count;
   }
-  EXPECT_EQ(count, 29);
+  EXPECT_EQ(count, 30);
   const std::string path =
       (std::filesystem::temp_directory_path() / "unimouse_api_complete.lua").string();
   WriteTextFile(path, "return sim.scenario { name = 'api_complete', run = function()\n" + checks +

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "fit_commands.h"
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 

@@ -170,15 +170,19 @@ void CheckLogFitsRobot(const SysidLog& log, const RobotSpec& robot, const RobotW
   }
   // the fastest the file's motors could turn the wheels at the log's commands: no load, V / Kt
   // (dissertation eq. 3.1 and 3.6 at steady state)
+  const double kt_left = ParameterValue(robot, {wiring.left.motor, "kt_nm_per_a"});
+  const double kt_right = ParameterValue(robot, {wiring.right.motor, "kt_nm_per_a"});
   double can_reach = 0;
   for (size_t i = 0; i < log.rows(); ++i) {
-    for (const auto* side : {&wiring.left, &wiring.right}) {
-      const double command = side == &wiring.left ? log.left_command[i] : log.right_command[i];
-      const double volts = std::min(std::abs(command), kFullScaleCommand) / kFullScaleCommand *
-                           (wiring.battery_emf_v > 0 ? log.battery_v[i] : 6.0);
-      const double kt = ParameterValue(robot, {side->motor, "kt_nm_per_a"});
-      can_reach = std::max(can_reach, volts / kt * side->counts_per_rad);
-    }
+    // a robot file without a battery: the bridges switch the sketch's 6 V
+    const double supply_v = wiring.battery_emf_v > 0 ? log.battery_v[i] : 6.0;
+    const auto counts_per_s = [&](double command, double kt, double counts_per_rad) {
+      return std::min(std::abs(command), kFullScaleCommand) / kFullScaleCommand * supply_v / kt *
+             counts_per_rad;
+    };
+    can_reach =
+        std::max({can_reach, counts_per_s(log.left_command[i], kt_left, wiring.left.counts_per_rad),
+                  counts_per_s(log.right_command[i], kt_right, wiring.right.counts_per_rad)});
   }
   if (fastest > kOtherRobotFactor * can_reach || fastest < can_reach / (2 * kOtherRobotFactor)) {
     throw InputError(At(log, fastest_row) + ": the wheels turn " +

@@ -2,6 +2,7 @@
 #include "replay.h"
 
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 
 #include "kernel.h"

@@ -81,6 +81,7 @@ std::string PatchRobotText(const std::string& text, const RobotSpec& robot,
   for (const auto& [name, note] : notes) {
     for (const ComponentSpec& c : robot.components) {
       if (c.name != name) continue;
+      // above the component's first line ("- type: ..."), indented as its keys
       const std::string indent(static_cast<size_t>(std::max(c.location.column - 1, 0)), ' ');
       above[c.location.line].insert(above[c.location.line].begin(),
                                     indent + "# " + provenance + ": " + note);
@@ -99,8 +100,6 @@ std::string PatchRobotText(const std::string& text, const RobotSpec& robot,
       for (const Edit& e : es) line.replace(e.column, e.length, e.text);
     }
     if (auto it = above.find(number); it != above.end()) {
-      // a comment goes above the line that starts the component ("- type: ..."): before the
-      // dash, which sits two columns left of the map's first key
       for (const std::string& a : it->second) out += a + "\n";
     }
     out += line;

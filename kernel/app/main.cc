@@ -6,6 +6,7 @@
 #include "command_line.h"
 #include "commands.h"
 #include "firmware_command.h"
+#include "fit_commands.h"
 #include "maze_commands.h"
 #include "mms_command.h"
 
@@ -22,5 +23,6 @@ int main(int argc, char** argv) {
   AddMmsCommand(cli);
   AddFirmwareCommands(cli);
   AddBatchCommands(cli);
+  AddFitCommands(cli);
   return cli.Run(argc, argv);
 }

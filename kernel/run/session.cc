@@ -437,6 +437,7 @@ void Session::Assemble() {
         [this](const std::string& file, const std::string& camera, int width, int height) {
           return pictures_->Save(file, camera, width, height);
         });
+    scenario_->SetOutputDirectory(o.out_dir);
     for (const auto& kind : o.snapshot_on) {
       scenario_->SnapshotOn(kind, o.pictures.camera, o.pictures.width, o.pictures.height);
     }

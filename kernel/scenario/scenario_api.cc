@@ -368,6 +368,52 @@ struct ScenarioApi {
     return 2;
   }
 
+  // text appended to a file of the run's output directory: a log the firmware printed, as CSV
+  static int FileAppend(LuaCall& call) {
+    const std::string file = call.CheckString(1);
+    const std::string text = call.CheckString(2);
+    const auto ends_with = [&](std::string_view end) {
+      return file.size() > end.size() &&
+             file.compare(file.size() - end.size(), end.size(), end) == 0;
+    };
+    if (file.find('/') != std::string::npos || file.find("..") != std::string::npos ||
+        file[0] == '.' || !(ends_with(".csv") || ends_with(".txt"))) {
+      call.Fail("sim.file_append: '" + file +
+                "' is not a plain file name ending in .csv or .txt (files stay in the run's "
+                "output directory)");
+    }
+    Scenario& s = Self(call);
+    lua_State* L = call.state();
+    const auto refuse = [&](const std::string& why) {
+      lua_pushboolean(L, 0);
+      lua_pushstring(L, why.c_str());
+      return 2;
+    };
+    if (s.output_dir_.empty()) return refuse("this run writes no files");
+    if (s.file_bytes_ + text.size() > kMaxScenarioFile_bytes) {
+      return refuse("a scenario writes at most " + std::to_string(kMaxScenarioFile_bytes) +
+                    " bytes of files in a run");
+    }
+    auto it = s.files_.find(file);
+    if (it == s.files_.end()) {
+      if (s.files_.size() >= kMaxScenarioFiles) {
+        return refuse("a scenario writes at most " + std::to_string(kMaxScenarioFiles) +
+                      " files in a run");
+      }
+      // a fresh file for each run: never lines of an earlier one
+      auto out = std::make_unique<std::ofstream>(s.output_dir_ + "/" + file,
+                                                 std::ios::binary | std::ios::trunc);
+      if (!*out) return refuse("cannot write " + file);
+      it = s.files_.emplace(file, std::move(out)).first;
+    }
+    *it->second << text;
+    it->second->flush();
+    s.file_bytes_ += text.size();
+    if (!*it->second) return refuse("cannot write " + file);
+    lua_pushboolean(L, 1);
+    return 1;
+  }
+
   static int Decide(const LuaCall& call, const char* status) {
     Scenario& s = Self(call);
     if (s.finished()) return 0;
@@ -782,6 +828,8 @@ constexpr ApiEntry kApi[] = {
     {"snapshot_save", ScenarioApi::SnapshotSave, 2,
      "snapshot_save(file, {camera?, width?, height?}) -> ok, reason?",
      "a PNG of the scene now, in the run's output directory; cameras top, chase, free"},
+    {"file_append", ScenarioApi::FileAppend, 4, "file_append(file, text) -> ok, reason?",
+     "appends text to a .csv or .txt file in the run's output directory (a plain name)"},
     {"score_set", ScenarioApi::ScoreSet, 1, "score_set(name, value)",
      "a number for the result; an integer stays an integer"},
     {"record_add", ScenarioApi::RecordAdd, 3, "record_add(list, {field = value, ...})",

@@ -41,7 +41,7 @@ TEST(ArduinoLibraryLayoutTest, PropertiesJsonHeaderAndExamplesAgree) {
     EXPECT_TRUE(std::filesystem::exists(dir.path() / (name + ".ino"))) << name;
     ++examples;
   }
-  EXPECT_EQ(examples, 5);
+  EXPECT_EQ(examples, 6);
 }
 
 }  // namespace

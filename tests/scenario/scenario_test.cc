@@ -328,6 +328,24 @@ TEST(ScenarioApiTest, ArcAndPolylineWallsStopTheRobotAndResetReturnsItToItsStart
   EXPECT_EQ(open.result["scenario"]["reason"], "drove 3 s without touching a wall");
 }
 
+TEST(ScenarioApiTest, FileAppendWritesInsideTheOutputDirectoryAndNowhereElse) {
+  const ScenarioRun r = Scenario("--scenario " + kTests + "file_append.lua --duration 1");
+  ASSERT_EQ(r.outcome.exit_code, 0) << r.outcome.output;
+  const std::string out =
+      (std::filesystem::temp_directory_path() /
+       "unimouse_scenario_FileAppendWritesInsideTheOutputDirectoryAndNowhereElse")
+          .string();
+  EXPECT_EQ(ReadTextFile(out + "/lines.csv"), "a,b\n1,2\n");
+  for (const char* name : {"../escape.csv", "sub/dir.csv", "lines.lua", ".hidden.csv"}) {
+    const ScenarioRun bad =
+        Scenario("--scenario " + kTests + "file_append.lua --duration 1 --set name=" + name);
+    EXPECT_EQ(bad.outcome.exit_code, 3) << name << "\n" << bad.outcome.output;
+    EXPECT_NE(bad.outcome.output.find("is not a plain file name ending in .csv or .txt"),
+              std::string::npos)
+        << bad.outcome.output;
+  }
+}
+
 TEST(ScenarioApiTest, EveryListedFunctionExistsInTheSandbox) {
   const std::string listing = ReadTextFile(UNIMOUSE_SOURCE_DIR "/tests/golden/scenario_api.txt");
   std::string checks;
@@ -340,7 +358,7 @@ TEST(ScenarioApiTest, EveryListedFunctionExistsInTheSandbox) {
               listing.substr(begin, end - begin) + "')\n";
     ++count;
   }
-  EXPECT_EQ(count, 31);
+  EXPECT_EQ(count, 32);
   const std::string path =
       (std::filesystem::temp_directory_path() / "unimouse_api_complete.lua").string();
   WriteTextFile(path, "return sim.scenario { name = 'api_complete', run = function()\n" + checks +

@@ -21,6 +21,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <fstream>
 #include <functional>
 #include <map>
 #include <memory>
@@ -69,6 +70,10 @@ inline constexpr size_t kMaxScenarioRecordFields = 32;
 inline constexpr size_t kMaxScenarioRecordText_bytes = 1'000;
 /// The most distinct scores (sim.score_set) a scenario reports in a run.
 inline constexpr size_t kMaxScenarioScores = 1'000;
+/// The most bytes a scenario writes to files (sim.file_append) in a run, all files together.
+inline constexpr size_t kMaxScenarioFile_bytes = 64u << 20;
+/// The most files a scenario writes in a run.
+inline constexpr size_t kMaxScenarioFiles = 16;
 
 /// Returns every `sim.*` function with its signature, meaning and level, a line each.
 std::string DescribeScenarioApi();
@@ -163,6 +168,9 @@ class Scenario {
   using PictureTaker = std::function<std::string(const std::string& file, const std::string& camera,
                                                  int width, int height)>;
   void SetPictureTaker(PictureTaker taker) { picture_taker_ = std::move(taker); }
+  /// The run's output directory, where sim.file_append writes; none (the default): it writes
+  /// nothing and says so.
+  void SetOutputDirectory(std::string dir) { output_dir_ = std::move(dir); }
   /// What to do when one call into the scenario runs longer than `limit_s` of wall time, on
   /// the watchdog's thread, before the process ends with exit code 3 (watchdog.h). By default
   /// the limit is kScenarioCallWallTimeS and the reason goes to stderr.
@@ -280,6 +288,10 @@ class Scenario {
   };
   std::vector<Restart> firmware_restarts_;
   PictureTaker picture_taker_;
+  std::string output_dir_;
+  // the files sim.file_append has opened, by name, and the bytes written to all of them
+  std::map<std::string, std::unique_ptr<std::ofstream>> files_;
+  size_t file_bytes_ = 0;
 
   friend struct ScenarioApi;
 };

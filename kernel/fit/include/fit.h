@@ -1,0 +1,86 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Fitting a robot file to logs (docs/calibrate.md): simulation error, not equation error. Each
+// log's commands are replayed through the robot model (replay.h) and Eigen's Levenberg-Marquardt
+// (unsupported/Eigen/LevenbergMarquardt, forward-difference Jacobian) minimises the difference
+// between the replayed and the logged wheel speeds. The unknowns are each motor's torque
+// constant Kt (= its back-EMF constant, dissertation eq. 3.6) and armature resistance Ra
+// (eq. 3.1), as ratios to the file's values.
+//
+// Identifiability: with the wheel speeds alone, the motor enters the wheel's equation of motion
+// (eq. 3.7-3.10, the current of eq. 3.13 with La/Ra far below a step) only through Kt/Ra and
+// Kt^2/Ra + lambda, so the viscous damping lambda cannot be told from Kt and Ra; it keeps the
+// file's value. A parameter is reported identified when its 95 % confidence interval (from the
+// Jacobian at the optimum) is within kIdentifiedWithin of its value; otherwise the file's value
+// is kept and the report says so.
+#ifndef UNIMOUSE_FIT_FIT_H_
+#define UNIMOUSE_FIT_FIT_H_
+
+#include <string>
+#include <vector>
+
+#include "plugin_registry.h"
+#include "replay.h"
+#include "robot_spec.h"
+#include "sysid_log.h"
+
+namespace unimouse::fit {
+
+/// Largest half-width of a 95 % confidence interval, as a fraction of the value, at which a
+/// parameter counts as identified by the logs.
+inline constexpr double kIdentifiedWithin = 0.05;
+/// Bounds of a fitted value, as a ratio to the file's: beyond them the log is not of this robot.
+inline constexpr double kMinRatio = 0.25, kMaxRatio = 4;
+/// Shortest log that can identify anything, seconds.
+inline constexpr double kMinLogDuration_s = 2;
+/// Smallest largest |command| a log must apply to identify anything.
+inline constexpr double kMinCommandSwing = 50;
+
+struct FittedParameter {
+  ParameterRef ref;
+  double file_value = 0;
+  double value = 0;                ///< fitted; the file's when not identified
+  double ci_low = 0, ci_high = 0;  ///< 95 % confidence interval of the fitted value
+  bool identified = false;
+};
+
+/// How close one channel of one log is, before (the file's values) and after the fit.
+struct ChannelFit {
+  std::string log;
+  std::string channel;
+  double r2_before = 0, rmse_before = 0;
+  double r2_after = 0, rmse_after = 0;
+};
+
+struct FitReport {
+  std::vector<FittedParameter> parameters;
+  std::vector<ChannelFit> channels;
+  int iterations = 0;
+  int replays = 0;  ///< simulations of a whole log
+};
+
+/// Checks that a log can identify something on this robot; throws InputError "file:line:
+/// reason" for one too short, one whose commands or wheels hardly move, or one whose wheels turn
+/// far faster or slower than this robot's encoders and motors can (a log of another robot).
+void CheckLogFitsRobot(const SysidLog& log, const RobotSpec& robot, const RobotWiring& wiring);
+
+/// Fits both motors' Kt and Ra to the logs. Deterministic: same inputs, same report.
+FitReport FitRobot(const RobotSpec& robot, const PluginRegistry& registry,
+                   const std::vector<SysidLog>& logs);
+
+/// r^2 (1 - residual sum of squares / total sum of squares about the mean) and RMSE of a
+/// replayed channel against the measured one.
+double RSquared(const std::vector<double>& measured, const std::vector<double>& replayed);
+double Rmse(const std::vector<double>& measured, const std::vector<double>& replayed);
+
+/// Per channel of a log: RMSE and largest error of the replay against the log.
+struct ChannelComparison {
+  std::string channel;
+  double rmse = 0, max_error = 0, r2 = 0;
+  double max_error_time_s = 0;
+};
+std::vector<ChannelComparison> CompareLog(const RobotSpec& robot, const PluginRegistry& registry,
+                                          const SysidLog& log);
+
+}  // namespace unimouse::fit
+
+#endif  // UNIMOUSE_FIT_FIT_H_

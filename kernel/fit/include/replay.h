@@ -1,0 +1,65 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// A log's commands replayed through the robot file's own model (its world, components and
+// physics; DESIGN.md "Fitting is simulation"), and the channels it measured beside the ones
+// the replay gives.
+#ifndef UNIMOUSE_FIT_REPLAY_H_
+#define UNIMOUSE_FIT_REPLAY_H_
+
+#include <string>
+#include <vector>
+
+#include "plugin_registry.h"
+#include "robot_spec.h"
+#include "sysid_log.h"
+
+namespace unimouse::fit {
+
+/// How a robot file is wired for a log: the inputs the commands go to, the encoder of each
+/// side and the motor that drives that wheel.
+struct RobotWiring {
+  struct Side {
+    std::string command_input;  ///< the robot's input the side's command goes to
+    std::string joint;          ///< the wheel hinge the side's encoder reads
+    double counts_per_rad = 0;  ///< encoder counts per radian of the wheel (gear x cpr / 2 pi)
+    std::string motor;          ///< the unimouse.dc_motor component on that wheel
+  };
+  Side left, right;
+  /// The battery's open-circuit voltage in the file; 0 when it has no unimouse.battery.
+  double battery_emf_v = 0;
+};
+
+/// Finds the wiring of a robot file: inputs left.command and right.command, an encoder writing
+/// left.encoder_counts and right.encoder_counts, a dc_motor on each encoder's wheel. Throws
+/// InputError naming the file for a robot that lacks one.
+RobotWiring WireRobot(const RobotSpec& robot);
+
+/// A component parameter of the robot file: a dc_motor's constant.
+struct ParameterRef {
+  std::string component;
+  std::string key;
+};
+/// Returns a parameter's value in the robot file (the model's default when the file leaves it
+/// out); throws InputError when the component does not exist.
+double ParameterValue(const RobotSpec& robot, const ParameterRef& parameter);
+/// Sets a parameter's value in the robot spec, as if the file gave it.
+void SetParameter(RobotSpec& robot, const ParameterRef& parameter, double value);
+
+/// Measured or replayed channels at a log's rows: each wheel's speed in counts per second over
+/// the interval that ends at a row (so rows 1..n-1).
+struct Channels {
+  std::vector<std::string> names;
+  std::vector<std::vector<double>> values;  ///< one vector per name
+};
+Channels MeasuredChannels(const SysidLog& log);
+
+/// Replays a log on the robot: each row's commands from its time until the next row's, scaled by
+/// the row's battery voltage over the file's, on an open floor, seed 1, without the robot's
+/// loggers, links and range sensors (which write files, wait for firmware, or do not matter).
+/// The encoders are read before their quantisation (the wheel's angle times counts per radian),
+/// so that the replay is smooth in the parameters.
+Channels ReplayChannels(const RobotSpec& robot, const RobotWiring& wiring,
+                        const PluginRegistry& registry, const SysidLog& log);
+
+}  // namespace unimouse::fit
+
+#endif  // UNIMOUSE_FIT_REPLAY_H_

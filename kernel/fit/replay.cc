@@ -1,0 +1,214 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "replay.h"
+
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+
+#include "kernel.h"
+#include "unimouse/errors.h"
+
+namespace unimouse::fit {
+namespace {
+
+// the component types a replay leaves out: they write files, wait for firmware, or measure
+// what a log does not have
+bool LeftOutOfReplay(const std::string& type) {
+  return type == "unimouse.logger" || type == "unimouse.link" || type == "unimouse.tof_sensor";
+}
+
+const YamlNode* Param(const ComponentSpec& c, std::string_view key) {
+  if (!c.params.IsMap()) return nullptr;
+  for (const YamlEntry& e : c.params.entries) {
+    if (e.first.scalar == key) return &e.second;
+  }
+  return nullptr;
+}
+
+std::string StringParam(const ComponentSpec& c, std::string_view key, std::string fallback) {
+  const YamlNode* n = Param(c, key);
+  return n != nullptr ? n->scalar : fallback;
+}
+
+double NumberParam(const ComponentSpec& c, std::string_view key, double fallback) {
+  const YamlNode* n = Param(c, key);
+  return n != nullptr ? n->AsNumber(key) : fallback;
+}
+
+const ComponentSpec* FindComponent(const RobotSpec& robot, const std::string& name) {
+  for (const ComponentSpec& c : robot.components) {
+    if (c.name == name) return &c;
+  }
+  return nullptr;
+}
+
+// the robot's actuator names and the joints they drive
+std::string JointOfActuator(const RobotSpec& robot, const std::string& actuator) {
+  for (const ActuatorSpec& a : robot.actuators) {
+    if (a.name == actuator) return a.joint;
+  }
+  return "";
+}
+
+RobotWiring::Side WireSide(const RobotSpec& robot, const std::string& side) {
+  RobotWiring::Side s;
+  s.command_input = side + ".command";
+  bool has_input = false;
+  for (const std::string& input : robot.inputs) has_input = has_input || input == s.command_input;
+  if (!has_input) {
+    throw InputError(robot.file + ": the robot has no input '" + s.command_input +
+                     "' for the log's " + side + "_command");
+  }
+  for (const ComponentSpec& c : robot.components) {
+    if (c.type != "unimouse.encoder") continue;
+    if (StringParam(c, "counts_out", "") != side + ".encoder_counts") continue;
+    s.joint = StringParam(c, "joint", "");
+    // encoder defaults: plugins/encoder (table 4.5)
+    const double gear = NumberParam(c, "gear_ratio", 29.86);
+    const double cpr = NumberParam(c, "cpr", 12);
+    const YamlNode* x4 = Param(c, "quadrature_x4");
+    const double edges = x4 != nullptr && x4->AsBool("quadrature_x4") ? 4 : 1;
+    s.counts_per_rad = gear * cpr * edges / (2 * std::numbers::pi);
+  }
+  if (s.joint.empty()) {
+    throw InputError(robot.file + ": no unimouse.encoder writes '" + side +
+                     ".encoder_counts' for the log's " + side + "_counts");
+  }
+  for (const ComponentSpec& c : robot.components) {
+    if (c.type == "unimouse.dc_motor" &&
+        JointOfActuator(robot, StringParam(c, "actuator", "")) == s.joint) {
+      s.motor = c.name;
+    }
+  }
+  if (s.motor.empty()) {
+    throw InputError(robot.file + ": no unimouse.dc_motor drives the " + side + " wheel ('" +
+                     s.joint + "')");
+  }
+  return s;
+}
+
+}  // namespace
+
+RobotWiring WireRobot(const RobotSpec& robot) {
+  RobotWiring w;
+  w.left = WireSide(robot, "left");
+  w.right = WireSide(robot, "right");
+  for (const ComponentSpec& c : robot.components) {
+    if (c.type == "unimouse.battery") w.battery_emf_v = NumberParam(c, "emf_v", 6);
+  }
+  return w;
+}
+
+double ParameterValue(const RobotSpec& robot, const ParameterRef& parameter) {
+  const ComponentSpec* c = FindComponent(robot, parameter.component);
+  if (c == nullptr) {
+    throw InputError(robot.file + ": no component '" + parameter.component + "'");
+  }
+  if (const YamlNode* n = Param(*c, parameter.key)) return n->AsNumber(parameter.key);
+  // a dc_motor's named model supplies what the file leaves out (plugins/dc_motor, table 3.1);
+  // the replay asks the kernel-independent defaults through the same names
+  const std::string model = StringParam(*c, "model", "pololu_30_1_lp");
+  struct Known {
+    const char* model;
+    double kt, r;
+  };
+  static constexpr Known kModels[] = {
+      {"pololu_30_1_lp", 0.079025, 16.66667},     {"pololu_50_1_lp", 0.1110591, 16.66667},
+      {"pololu_100_1_lp", 0.18678114, 16.666666}, {"pololu_150_1_lp", 0.27014366, 16.216217},
+      {"pololu_1000_1_lp", 1.5144416, 18.181818}, {"pololu_30_1_hp", 0.03494813, 3.75},
+  };
+  for (const Known& k : kModels) {
+    if (model != k.model) continue;
+    if (parameter.key == "kt_nm_per_a") return k.kt;
+    if (parameter.key == "resistance_ohm") return k.r;
+  }
+  throw InputError(c->location.ToString() + ": component '" + parameter.component + "' gives no " +
+                   parameter.key);
+}
+
+void SetParameter(RobotSpec& robot, const ParameterRef& parameter, double value) {
+  for (ComponentSpec& c : robot.components) {
+    if (c.name != parameter.component) continue;
+    char text[40];
+    std::snprintf(text, sizeof(text), "%.17g", value);
+    for (YamlEntry& e : c.params.entries) {
+      if (e.first.scalar == parameter.key) {
+        e.second.scalar = text;
+        return;
+      }
+    }
+    YamlNode key, node;
+    key.kind = node.kind = YamlNode::Kind::kScalar;
+    key.scalar = parameter.key;
+    node.scalar = text;
+    key.location = node.location = c.params.location;
+    c.params.entries.emplace_back(std::move(key), std::move(node));
+    return;
+  }
+  throw InputError(robot.file + ": no component '" + parameter.component + "'");
+}
+
+Channels MeasuredChannels(const SysidLog& log) {
+  Channels ch;
+  ch.names = {"left_counts_per_s", "right_counts_per_s"};
+  ch.values.resize(2);
+  for (size_t i = 1; i < log.rows(); ++i) {
+    const double dt = log.time_s[i] - log.time_s[i - 1];
+    ch.values[0].push_back((log.left_counts[i] - log.left_counts[i - 1]) / dt);
+    ch.values[1].push_back((log.right_counts[i] - log.right_counts[i - 1]) / dt);
+  }
+  return ch;
+}
+
+Channels ReplayChannels(const RobotSpec& robot, const RobotWiring& wiring,
+                        const PluginRegistry& registry, const SysidLog& log) {
+  RobotSpec replayed = robot;
+  std::erase_if(replayed.components,
+                [](const ComponentSpec& c) { return LeftOutOfReplay(c.type); });
+  KernelOptions options;
+  options.seed = 1;
+  options.log_sink = [](double, int, const std::string&, const std::string&) {};
+  std::unique_ptr<Kernel> kernel = Kernel::Create(replayed, nullptr, registry, options);
+  const Model& model = kernel->model();
+  const mjModel& m = kernel->mj_model();
+  const int left_in = model.FindSignal(wiring.left.command_input);
+  const int right_in = model.FindSignal(wiring.right.command_input);
+  const int left_q = m.jnt_qposadr[mj_name2id(&m, mjOBJ_JOINT, wiring.left.joint.c_str())];
+  const int right_q = m.jnt_qposadr[mj_name2id(&m, mjOBJ_JOINT, wiring.right.joint.c_str())];
+  const double dt = kernel->timestep_s();
+
+  // a row's counts are the wheels' angles after as many steps as its time; its commands then
+  // hold until the next row's time (the sysid sketch reads, then commands, then logs: replaying
+  // the simulator's own log this way matches it to the encoders' quantisation)
+  const double t0 = log.time_s.front();
+  const mjData& d = kernel->state().data();
+  const double left_zero = d.qpos[left_q], right_zero = d.qpos[right_q];
+  std::vector<double> left_counts, right_counts;
+  int64_t step = 0;
+  for (size_t i = 0; i < log.rows(); ++i) {
+    const int64_t row_step = std::llround((log.time_s[i] - t0) / dt);
+    while (step < row_step) {
+      kernel->Step();
+      ++step;
+    }
+    left_counts.push_back((d.qpos[left_q] - left_zero) * wiring.left.counts_per_rad);
+    right_counts.push_back((d.qpos[right_q] - right_zero) * wiring.right.counts_per_rad);
+    // the row's commands, as the voltage the log's battery gives through the file's bridges
+    const double scale = wiring.battery_emf_v > 0 ? log.battery_v[i] / wiring.battery_emf_v : 1;
+    kernel->state().signals()[left_in] = log.left_command[i] * scale;
+    kernel->state().signals()[right_in] = log.right_command[i] * scale;
+  }
+  kernel->Finish();
+
+  Channels ch;
+  ch.names = {"left_counts_per_s", "right_counts_per_s"};
+  ch.values.resize(2);
+  for (size_t i = 1; i < log.rows(); ++i) {
+    const double span = log.time_s[i] - log.time_s[i - 1];
+    ch.values[0].push_back((left_counts[i] - left_counts[i - 1]) / span);
+    ch.values[1].push_back((right_counts[i] - right_counts[i - 1]) / span);
+  }
+  return ch;
+}
+
+}  // namespace unimouse::fit

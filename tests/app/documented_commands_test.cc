@@ -27,8 +27,8 @@ std::string CloneLikeDirectory(const std::string& stem) {
 }
 
 TEST(DocumentedCommandsTest, TheOtherWheelLayoutsPassTheWallDistanceChallengeAsRobotsMdShows) {
-  const std::vector<std::string> commands =
-      DocumentedCommands("docs/robots.md", "(`BundledScenario.wall_distance.*`):");
+  const std::vector<std::string> commands = DocumentedCommands(
+      "docs/robots.md", "(`BundledScenario.IsPassedOrFailedByItsController/wall_distance_*`):");
   ASSERT_EQ(commands.size(), 2u);
   EXPECT_EQ(commands[0].rfind("unimouse run --robot unimouse-skid ", 0), 0u) << commands[0];
   EXPECT_EQ(commands[1].rfind("unimouse run --robot unimouse-six ", 0), 0u) << commands[1];

@@ -511,7 +511,8 @@ TEST(ScenarioKeysTest, TheKeysAreTheNamesTheSignatureShows) {
     return TableArgument{-1, {}};
   };
   EXPECT_EQ(entry("robot_place").position, 1);
-  EXPECT_EQ(entry("robot_place").keys, (std::vector<std::string>{"x_m", "y_m", "yaw_deg"}));
+  EXPECT_EQ(entry("robot_place").keys,
+            (std::vector<std::string>{"x_m", "y_m", "yaw_deg", "robot"}));
   EXPECT_EQ(entry("snapshot_save").position, 2);
   EXPECT_EQ(entry("snapshot_save").keys, (std::vector<std::string>{"camera", "width", "height"}));
   EXPECT_EQ(entry("wall_polyline").keys,

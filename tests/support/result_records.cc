@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <functional>
 #include <set>
@@ -42,7 +43,9 @@ std::string CopyName(const fs::path& relative, int number) {
 // after each test: the runs it made in this process, before the next test can overwrite them
 class CollectAfterEachTest : public ::testing::EmptyTestEventListener {
   void OnTestStart(const ::testing::TestInfo& test) override {
+    // a file name: a parameterised test's name has a '/'
     TestName() = std::string(test.test_suite_name()) + "." + test.name();
+    std::replace(TestName().begin(), TestName().end(), '/', '.');
   }
   void OnTestEnd(const ::testing::TestInfo&) override {
     CollectResultRecords(fs::temp_directory_path().string());

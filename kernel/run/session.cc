@@ -219,6 +219,7 @@ void Session::LoadRobots() {
     Robot robot;
     robot.options = r;
     robot.file = ResolveDataFile(r.robot, "robots/", ".yaml");
+    robot.sha256 = FileSha256(robot.file);
     robot.spec = LoadRobotSpec(robot.file);
     ApplyTraceOptions(o.trace, robot.spec);
     UNIMOUSE_THROW_UNLESS((r.link_sets.empty() && r.firmware_profile.empty()) || !r.link.empty(),
@@ -252,7 +253,7 @@ void Session::LoadRobots() {
   }
   identity_["robot"] = robots_.front().file;
   identity_["robot_name"] = robots_.front().spec.name;
-  identity_["robot_sha256"] = FileSha256(robots_.front().file);
+  identity_["robot_sha256"] = robots_.front().sha256;
 }
 
 // where each robot starts: --start, else the scenario's place for it, else the maze's start;
@@ -591,7 +592,7 @@ SessionResult Session::Finish(const nlohmann::json& extra) {
     const Pose2D at = kernel_->world().RobotPose(d, static_cast<int>(i));
     robots.push_back({{"name", robot.name},
                       {"file", robot.file},
-                      {"sha256", FileSha256(robot.file)},
+                      {"sha256", robot.sha256},
                       {"driver", drivers_[i]},
                       {"pose", {{"x_m", at.x_m}, {"y_m", at.y_m}, {"yaw_rad", at.yaw_rad}}},
                       {"wall_contacts", robot.wall_contacts},

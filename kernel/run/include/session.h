@@ -164,6 +164,7 @@ class Session {
   struct Robot {
     SessionRobot options;
     std::string file;
+    std::string sha256;  // of the file, as the run read it
     RobotSpec spec;
     std::string name;  // as sim.robots() and the result give it
     std::optional<Pose2D> start;

@@ -19,11 +19,10 @@ void RunSessionBenchmark(benchmark::State& bench, SessionOptions options) {
   for (auto _ : bench) {
     std::unique_ptr<Session> session = Session::Open(options);
     while (!session->Over()) session->Step();
-    const SessionResult result = session->Finish();
-    bench.counters["real_time_factor"] = result.record["real_time_factor"].get<double>();
-    bench.counters["sim_time_s"] = result.record["sim_time_s"].get<double>();
-    bench.counters["us_per_step"] =
-        1e6 * result.record["wall_time_s"].get<double>() / result.record["steps"].get<double>();
+    const RunRecord record = session->Finish();
+    bench.counters["real_time_factor"] = record.real_time_factor;
+    bench.counters["sim_time_s"] = record.sim_time_s;
+    bench.counters["us_per_step"] = 1e6 * record.wall_time_s / static_cast<double>(record.steps);
   }
   std::filesystem::remove_all(options.out_dir);
 }

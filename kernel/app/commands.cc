@@ -85,55 +85,50 @@ int RunOnce(const RunOptions& options, Viewer* viewer) {
   }
   std::unique_ptr<Session> session = Session::Open(o);
 
-  nlohmann::json extra;
+  std::optional<int64_t> view_frames;
   if (viewer != nullptr) {
     // the window steps the run at its own speed; closing it ends the run
     viewer->Show(*session);
-    extra["view"] = {{"frames", viewer->frames()}};
+    view_frames = viewer->frames();
   } else {
     while (!session->Over()) session->Step();
   }
-  const SessionResult result = session->Finish(extra);
-  const nlohmann::json& r = result.record;
+  const RunRecord r = session->Finish(view_frames);
 
   const std::string out_dir = options.session.out_dir;
-  if (r.contains("firmware_maze")) {
+  if (r.firmware_maze) {
     std::printf("  maze as the firmware saw it: %s\n",
                 (std::filesystem::path(out_dir) / "maze.png").string().c_str());
   }
   std::printf("unimouse run: robot '%s' %s, seed %llu\n", session->robot().name.c_str(),
               session->where().c_str(), static_cast<unsigned long long>(options.session.seed));
-  std::printf("  simulated %.3f s in %lld steps, %.2f s wall time, %.0fx real time\n",
-              r["sim_time_s"].get<double>(), r["steps"].get<long long>(),
-              r["wall_time_s"].get<double>(), r["real_time_factor"].get<double>());
-  if (r["firmware_paced"].get<bool>()) {
+  std::printf("  simulated %.3f s in %lld steps, %.2f s wall time, %.0fx real time\n", r.sim_time_s,
+              static_cast<long long>(r.steps), r.wall_time_s, r.real_time_factor);
+  if (r.firmware_paced) {
     // in lock-step the firmware's time is part of every step: say where the time went
-    const auto& split = r["wall_time_split_s"];
+    const TickTimes& split = r.wall_time_split;
     std::printf(
         "  wall time: physics %.2f s, components %.2f s, firmware %.2f s, scenario %.2f s\n",
-        split["physics"].get<double>(), split["components"].get<double>(),
-        split["firmware"].get<double>(), split["scenario"].get<double>());
+        split.physics_s, split.components_s, split.firmware_s, split.scenario_s);
   }
-  const auto& pose = r["robot_pose"];
-  std::printf("  robot at (%.3f, %.3f) m heading %.1f deg\n", pose["x_m"].get<double>(),
-              pose["y_m"].get<double>(), pose["yaw_rad"].get<double>() * 180 / std::numbers::pi);
-  if (r.contains("pictures") && r["pictures"].contains("unavailable")) {
-    std::printf("  no pictures: %s\n", r["pictures"]["unavailable"].get<std::string>().c_str());
-  } else if (r.contains("pictures")) {
-    const int written = r["pictures"]["written"];
-    std::printf("  %d picture%s in %s (%s)\n", written, written == 1 ? "" : "s", out_dir.c_str(),
-                r["pictures"]["renderer"].get<std::string>().c_str());
+  const Pose2D& pose = r.robot().pose;
+  std::printf("  robot at (%.3f, %.3f) m heading %.1f deg\n", pose.x_m, pose.y_m,
+              pose.yaw_rad * 180 / std::numbers::pi);
+  if (!r.pictures_unavailable.empty()) {
+    std::printf("  no pictures: %s\n", r.pictures_unavailable.c_str());
+  } else if (r.pictures_written > 0) {
+    std::printf("  %d picture%s in %s (%s)\n", r.pictures_written,
+                r.pictures_written == 1 ? "" : "s", out_dir.c_str(), r.pictures_renderer.c_str());
   }
   std::printf("  result: %s\n", (std::filesystem::path(out_dir) / "result.json").string().c_str());
-  if (r.contains("error")) {
-    std::fprintf(stderr, "unimouse: error: %s\n", r["error"].get<std::string>().c_str());
-  } else if (r.contains("scenario")) {
-    const std::string status = r["scenario"]["status"];
-    const std::string reason = r["scenario"]["reason"];
-    std::printf("  scenario %s: %s%s%s\n", r["scenario"]["name"].get<std::string>().c_str(),
-                status.c_str(), reason.empty() ? "" : ": ", reason.c_str());
+  if (!r.error.empty()) {
+    std::fprintf(stderr, "unimouse: error: %s\n", r.error.c_str());
+  } else if (r.scenario) {
+    const ScenarioOutcome& outcome = r.scenario->outcome;
+    std::printf("  scenario %s: %s%s%s\n", r.scenario->name.c_str(), outcome.status.c_str(),
+                outcome.reason.empty() ? "" : ": ", outcome.reason.c_str());
   }
-  return result.exit_code;
+  return r.exit_code;
 }
 
 }  // namespace

@@ -449,7 +449,7 @@ int RunMms(const MmsRunOptions& options) {
     Maze maze = LoadMaze(maze_file);
     // mms's goal: the maze's centre cells, whatever the file marks
     if (options.centre_goal) maze.set_goals(CentreCells(maze.width(), maze.height()));
-    SetMazeIdentity(record, maze_file, &maze);
+    SetMazeIdentity(record, IdentifyMaze(maze_file, maze));
     fs::create_directories(options.out_dir);
     signal(SIGPIPE, SIG_IGN);
     MmsWorld world(maze, options.timing);
@@ -503,13 +503,15 @@ int RunMms(const MmsRunOptions& options) {
                                              {"wrong", walls.wrong},
                                              {"from_the_maze", walls.unsensed},
                                              {"true_walls", options.true_walls}};
-      // what the run's own record says of the robot and the simulation
-      const nlohmann::json run = session->Finish().record;
+      // what the run's own record says of the robot and the simulation, with the keys and
+      // shapes its result.json gives them
+      const RunRecord run = session->Finish();
+      const nlohmann::json run_json = RunRecordJson(run);
       for (const char* key : {"robot", "robot_sha256", "seed", "sim_time_s", "wall_time_s",
                               "real_time_factor", "robot_pose", "pictures", "warnings"}) {
-        if (run.contains(key)) record["physical"][key] = run[key];
+        if (run_json.contains(key)) record["physical"][key] = run_json[key];
       }
-      if (run.contains("error")) record["physical"]["error"] = run["error"];
+      if (!run.error.empty()) record["physical"]["error"] = run.error;
     }
     if (!options.no_pictures) WriteMmsPictures(maze, world, options.out_dir);
   } catch (const InputError& e) {

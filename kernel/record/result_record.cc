@@ -19,16 +19,21 @@ nlohmann::json NewResultRecord(const std::string& command) {
           {"command", command}};
 }
 
-nlohmann::json FileIdentity(const std::string& path) {
-  return {{"file", path}, {"sha256", FileSha256(path)}};
+FileRecord IdentifyFile(const std::string& path) { return {path, FileSha256(path)}; }
+
+MazeRecord IdentifyMaze(const std::string& file, const Maze& maze) {
+  return {file, FileSha256(file), maze.width(), maze.height()};
 }
 
-void SetMazeIdentity(nlohmann::json& record, const std::string& file, const Maze* maze) {
-  const bool known = !file.empty() && maze != nullptr;
-  record["maze"] = known ? nlohmann::json(file) : nullptr;
-  record["maze_name"] = known ? nlohmann::json(fs::path(file).stem().string()) : nullptr;
-  record["maze_sha256"] = known ? nlohmann::json(FileSha256(file)) : nullptr;
-  record["maze_size"] = known ? nlohmann::json{maze->width(), maze->height()} : nullptr;
+nlohmann::json ToJson(const FileRecord& file) {
+  return {{"file", file.file}, {"sha256", file.sha256}};
+}
+
+void SetMazeIdentity(nlohmann::json& record, const std::optional<MazeRecord>& maze) {
+  record["maze"] = maze ? nlohmann::json(maze->file) : nullptr;
+  record["maze_name"] = maze ? nlohmann::json(fs::path(maze->file).stem().string()) : nullptr;
+  record["maze_sha256"] = maze ? nlohmann::json(maze->sha256) : nullptr;
+  record["maze_size"] = maze ? nlohmann::json{maze->width, maze->height} : nullptr;
 }
 
 void WriteResultRecord(const std::string& out_dir, const nlohmann::json& record) {

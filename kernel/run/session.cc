@@ -40,18 +40,6 @@ std::string Seconds3(double seconds) {
   return text;
 }
 
-// a scenario's value in the result, with its Lua type
-nlohmann::json ValueJson(const ScenarioValue& value) {
-  return std::visit([](const auto& v) { return nlohmann::json(v); }, value);
-}
-
-template <class Map>
-nlohmann::json ValuesJson(const Map& values) {
-  nlohmann::json out = nlohmann::json::object();
-  for (const auto& [name, value] : values) out[name] = ValueJson(value);
-  return out;
-}
-
 // the value a map of YAML scalars gives `key` last (a --link-set wins over --link), or ""
 std::string LastScalar(const YamlNode& map, const std::string& key) {
   std::string value;
@@ -74,22 +62,21 @@ std::string DefaultOf(const PluginRegistry& registry, const std::string& type,
 
 // who drives the robot: a controller file, a firmware over a link (from --link or the robot
 // file), both, or neither; each file the run started with its SHA-256
-nlohmann::json DriverJson(const std::string& controller, const RobotSpec& robot,
-                          const PluginRegistry& registry) {
-  nlohmann::json driver = {{"controller", nullptr}, {"link", nullptr}};
-  if (!controller.empty()) driver["controller"] = FileIdentity(controller);
+DriverRecord IdentifyDriver(const std::string& controller, const RobotSpec& robot,
+                            const PluginRegistry& registry) {
+  DriverRecord driver;
+  if (!controller.empty()) driver.controller = IdentifyFile(controller);
   for (const ComponentSpec& c : robot.components) {
     if (c.type != "unimouse.link") continue;
     const std::string spec = LastScalar(c.params, "transport");
     const std::string profile = LastScalar(c.params, "profile");
-    // a board's firmware is not on this PC
     const link::TransportSpec parsed = link::ParseTransportSpec(spec);
-    driver["link"] = {
-        {"transport", parsed.kind->scheme},
-        {"spec", spec},
-        {"profile", profile.empty() ? DefaultOf(registry, c.type, "profile") : profile},
-        {"firmware",
-         parsed.firmware.empty() ? nlohmann::json(nullptr) : FileIdentity(parsed.firmware)}};
+    LinkRecord& link = driver.link.emplace();
+    link.transport = parsed.kind->scheme;
+    link.spec = spec;
+    link.profile = profile.empty() ? DefaultOf(registry, c.type, "profile") : profile;
+    // a board's firmware is not on this PC
+    if (!parsed.firmware.empty()) link.firmware = IdentifyFile(parsed.firmware);
   }
   return driver;
 }
@@ -251,9 +238,6 @@ void Session::LoadRobots() {
     const std::string base = r.name;
     for (int n = 2; taken(r.name, i); ++n) r.name = base + "-" + std::to_string(n);
   }
-  identity_["robot"] = robots_.front().file;
-  identity_["robot_name"] = robots_.front().spec.name;
-  identity_["robot_sha256"] = robots_.front().sha256;
 }
 
 // where each robot starts: --start, else the scenario's place for it, else the maze's start;
@@ -347,7 +331,7 @@ void Session::Assemble() {
       }
     }
   }
-  SetMazeIdentity(identity_, maze_file_, maze_.get());
+  if (maze_ && !maze_file_.empty()) maze_record_ = IdentifyMaze(maze_file_, *maze_);
   PlaceRobots(world);
   UNIMOUSE_THROW_UNLESS(o.snapshot_on.empty() || scenario_,
                         "--snapshot-on watches a scenario's events: give --scenario");
@@ -401,9 +385,8 @@ void Session::Assemble() {
       });
   if (scenario_) scenario_->Attach(*kernel_, controllers);
   for (size_t i = 0; i < robots_.size(); ++i) {
-    drivers_.push_back(DriverJson(controllers[i], robots_[i].spec, *registry));
+    robots_[i].driver = IdentifyDriver(controllers[i], robots_[i].spec, *registry);
   }
-  identity_["driver"] = drivers_.front();
   // what drives the robot is what its components declared, wherever they came from (--link or
   // the robot file); said at once, so that a run meant to test something does not pass quietly
   // doing nothing
@@ -543,7 +526,7 @@ void Session::DrawFirmwareMaze() {
   WriteMazePicture(picture, base.string() + ".svg");
 }
 
-SessionResult Session::Finish(const nlohmann::json& extra) {
+RunRecord Session::Finish(std::optional<int64_t> view_frames) {
   UNIMOUSE_DEMAND(!finished_);
   finished_ = true;
   // a signal stops the run between two steps: what the result says, and exit code 3
@@ -566,87 +549,65 @@ SessionResult Session::Finish(const nlohmann::json& extra) {
 
   // the run's record is written whatever happened to the run
   const mjData& d = kernel_->state().data();
-  const Pose2D pose = kernel_->world().RobotPose(d);
-  nlohmann::json r = NewResultRecord("run");
-  r.update(identity_);
-  r["seed"] = options_.seed;
-  r["duration_s"] = duration_s_;
-  r["status"] = !fault_.empty() ? "fault" : !interrupted_.empty() ? "interrupted" : "completed";
-  if (!fault_.empty()) r["error"] = fault_;
-  if (!interrupted_.empty()) r["error"] = interrupted_;
-  r["sim_time_s"] = d.time;
-  r["steps"] = kernel_->state().step();
-  r["wall_time_s"] = wall_s;
-  r["real_time_factor"] = wall_s > 0 ? d.time / wall_s : 0.0;
-  const TickTimes& t = kernel_->tick_times();
-  r["wall_time_split_s"] = {{"physics", t.physics_s},
-                            {"components", t.components_s},
-                            {"firmware", t.firmware_s},
-                            {"scenario", t.scenario_s}};
-  r["firmware_paced"] = kernel_->firmware_paced();
-  r["robot_pose"] = {{"x_m", pose.x_m}, {"y_m", pose.y_m}, {"yaw_rad", pose.yaw_rad}};
-  r["collision_proxy_overflows"] = kernel_->world().proxy_overflows();
-  nlohmann::json robots = nlohmann::json::array();
+  RunRecord r;
+  r.status = !fault_.empty() ? "fault" : !interrupted_.empty() ? "interrupted" : "completed";
+  r.error = !fault_.empty() ? fault_ : interrupted_;
+  r.seed = options_.seed;
+  r.duration_s = duration_s_;
+  r.sim_time_s = d.time;
+  r.steps = kernel_->state().step();
+  r.wall_time_s = wall_s;
+  r.real_time_factor = wall_s > 0 ? d.time / wall_s : 0.0;
+  r.wall_time_split = kernel_->tick_times();
+  r.firmware_paced = kernel_->firmware_paced();
+  r.collision_proxy_overflows = kernel_->world().proxy_overflows();
+  r.robot_name = robots_.front().spec.name;
+  r.maze = maze_record_;
   for (size_t i = 0; i < robots_.size(); ++i) {
     const Robot& robot = robots_[i];
-    const Pose2D at = kernel_->world().RobotPose(d, static_cast<int>(i));
-    robots.push_back({{"name", robot.name},
-                      {"file", robot.file},
-                      {"sha256", robot.sha256},
-                      {"driver", drivers_[i]},
-                      {"pose", {{"x_m", at.x_m}, {"y_m", at.y_m}, {"yaw_rad", at.yaw_rad}}},
-                      {"wall_contacts", robot.wall_contacts},
-                      {"robot_contacts", robot.robot_contacts},
-                      {"restarts", robot.restarts}});
+    r.robots.push_back({robot.name,
+                        {robot.file, robot.sha256},
+                        robot.driver,
+                        kernel_->world().RobotPose(d, static_cast<int>(i)),
+                        robot.wall_contacts,
+                        robot.robot_contacts,
+                        robot.restarts});
   }
-  r["robots"] = robots;
-  SessionResult result;
   const bool ended = fault_.empty() && interrupted_.empty();
-  result.exit_code = ended ? kExitPassed : kExitRuntimeFault;
+  r.exit_code = ended ? kExitPassed : kExitRuntimeFault;
   if (scenario_) {
-    ScenarioOutcome outcome = scenario_->outcome();
-    if (outcome.status == "running") {
-      outcome.status = !fault_.empty() ? "error" : !interrupted_.empty() ? "interrupted" : "failed";
-      outcome.reason = !fault_.empty() ? fault_
-                       : !interrupted_.empty()
-                           ? interrupted_
-                           : "not decided when the run ended at " + Seconds3(d.time) + " s";
+    ScenarioRunRecord& s = r.scenario.emplace();
+    s.name = scenario_->name();
+    s.file = {scenario_file_, scenario_sha256_};
+    s.params = scenario_->param_values();
+    s.outcome = scenario_->outcome();
+    if (s.outcome.status == "running") {
+      s.outcome.status = !fault_.empty()         ? "error"
+                         : !interrupted_.empty() ? "interrupted"
+                                                 : "failed";
+      s.outcome.reason = !fault_.empty() ? fault_
+                         : !interrupted_.empty()
+                             ? interrupted_
+                             : "not decided when the run ended at " + Seconds3(d.time) + " s";
     }
-    nlohmann::json records = nlohmann::json::object();
-    for (const auto& [list, rows] : outcome.records) {
-      for (const ScenarioRecord& row : rows) records[list].push_back(ValuesJson(row));
-    }
-    r["scenario"] = {{"name", scenario_->name()},
-                     {"file", scenario_file_},
-                     {"sha256", scenario_sha256_},
-                     {"params", ValuesJson(scenario_->param_values())},
-                     {"status", outcome.status},
-                     {"reason", outcome.reason},
-                     {"scores", ValuesJson(outcome.scores)},
-                     {"records", records},
-                     {"hud", scenario_->hud()}};
-    if (!scenario_->traceback().empty()) r["scenario"]["traceback"] = scenario_->traceback();
-    if (ended) result.exit_code = outcome.status == "passed" ? kExitPassed : kExitFailed;
+    s.hud = scenario_->hud();
+    s.traceback = scenario_->traceback();
+    if (ended) r.exit_code = s.outcome.status == "passed" ? kExitPassed : kExitFailed;
   }
-  if (pace_) r["real_time_pacing"] = pacer_->Report();
-  if (pictures_->written() > 0) {
-    r["pictures"] = {{"written", pictures_->written()}, {"renderer", pictures_->renderer()}};
-  } else if (!no_pictures_.empty()) {
-    r["pictures"] = {{"written", 0}, {"unavailable", no_pictures_}};
-  }
-  if (firmware_maze) r["firmware_maze"] = "maze.png";
-  if (!measurements_.empty()) r["measurements"] = measurements_;
+  if (pace_) r.real_time_pacing = pacer_->Report();
+  r.pictures_written = pictures_->written();
+  if (r.pictures_written > 0) r.pictures_renderer = pictures_->renderer();
+  if (r.pictures_written == 0) r.pictures_unavailable = no_pictures_;
+  r.firmware_maze = firmware_maze;
+  r.measurements = measurements_;
   if (kernel_->declared(UNIMOUSE_TRAIT_FIRMWARE)) {
-    int64_t restarts = 0;
-    for (const Robot& robot : robots_) restarts += robot.restarts;
-    r["restarts"] = restarts;
+    r.restarts = 0;
+    for (const Robot& robot : robots_) *r.restarts += robot.restarts;
   }
-  r["warnings"] = warnings_;
-  r["exit_code"] = result.exit_code;
-  if (extra.is_object()) r.update(extra);
-  WriteResultRecord(options_.out_dir, r);
-  result.record = std::move(r);
-  return result;
+  r.warnings = warnings_;
+  r.view_frames = view_frames;
+  WriteResultRecord(options_.out_dir, RunRecordJson(r));
+  return r;
 }
 
 }  // namespace unimouse

@@ -37,7 +37,7 @@ class SessionTest : public ::testing::Test {
     options_.console = false;
   }
 
-  SessionResult RunToTheEnd() {
+  RunRecord RunToTheEnd() {
     std::unique_ptr<Session> session = Session::Open(options_);
     while (!session->Over()) session->Step();
     return session->Finish();
@@ -65,28 +65,28 @@ std::string Controller(const std::string& name) {
 TEST_F(SessionTest, AScenarioIsDecidedInThisProcess) {
   options_.scenario = "speed_control";
   options_.controller = Controller("speed_controller.lua");
-  const SessionResult passed = RunToTheEnd();
+  const RunRecord passed = RunToTheEnd();
   EXPECT_EQ(passed.exit_code, kExitPassed);
-  EXPECT_EQ(passed.record["scenario"]["status"], "passed");
-  EXPECT_EQ(ResultFile(), passed.record);
+  EXPECT_EQ(passed.scenario->outcome.status, "passed");
+  // the file holds the record as it was returned
+  EXPECT_EQ(ResultFile(), RunRecordJson(passed));
 
   options_.controller = Controller("too_slow_controller.lua");
-  const SessionResult failed = RunToTheEnd();
+  const RunRecord failed = RunToTheEnd();
   EXPECT_EQ(failed.exit_code, kExitFailed);
-  EXPECT_EQ(failed.record["scenario"]["status"], "failed");
-  EXPECT_NE(failed.record["scenario"]["reason"].get<std::string>().find("too slow"),
-            std::string::npos)
-      << failed.record.dump();
+  EXPECT_EQ(failed.scenario->outcome.status, "failed");
+  EXPECT_NE(failed.scenario->outcome.reason.find("too slow"), std::string::npos)
+      << failed.scenario->outcome.reason;
 }
 
 TEST_F(SessionTest, AMujocoErrorInAComponentsCallEndsTheRunWithExitCode3AndSaysWhy) {
   options_.robot = RobotFile(
       "  - { type: test.mujoco_error, name: boom, params: { at_step: 5, where: hook } }\n");
   options_.maze = "none";
-  const SessionResult result = RunToTheEnd();
+  const RunRecord result = RunToTheEnd();
   EXPECT_EQ(result.exit_code, kExitRuntimeFault);
-  EXPECT_EQ(result.record["status"], "fault");
-  EXPECT_EQ(result.record["steps"], 5);
+  EXPECT_EQ(result.status, "fault");
+  EXPECT_EQ(result.steps, 5);
   const std::string error = ResultFile()["error"];
   EXPECT_NE(error.find("MuJoCo error"), std::string::npos) << error;
   EXPECT_NE(error.find("boom"), std::string::npos) << error;
@@ -96,11 +96,11 @@ TEST_F(SessionTest, AMujocoErrorInThePhysicsStepEndsTheRunWithExitCode3AndSaysWh
   options_.robot = RobotFile(
       "  - { type: test.mujoco_error, name: boom, params: { at_step: 3, where: physics } }\n");
   options_.maze = "none";
-  const SessionResult result = RunToTheEnd();
+  const RunRecord result = RunToTheEnd();
   EXPECT_EQ(result.exit_code, kExitRuntimeFault);
   const std::string error = ResultFile()["error"];
   EXPECT_EQ(error.rfind("MuJoCo error", 0), 0u) << error;
-  EXPECT_EQ(result.record["steps"], 3);
+  EXPECT_EQ(result.steps, 3);
 }
 
 TEST_F(SessionTest, AResultFromAnEarlierRunNeverSurvivesAFailedStart) {
@@ -117,20 +117,19 @@ TEST_F(SessionTest, AResultFromAnEarlierRunNeverSurvivesAFailedStart) {
 TEST_F(SessionTest, TheRecordSaysWhereTheWallTimeWentAndWhetherTheFirmwareSetThePace) {
   options_.maze = "none";
   options_.duration_s = 0.2;
-  const SessionResult alone = RunToTheEnd();
-  EXPECT_FALSE(alone.record["firmware_paced"].get<bool>());
-  EXPECT_EQ(alone.record["wall_time_split_s"]["firmware"], 0.0);
-  EXPECT_GT(alone.record["wall_time_split_s"]["physics"].get<double>(), 0);
+  const RunRecord alone = RunToTheEnd();
+  EXPECT_FALSE(alone.firmware_paced);
+  EXPECT_EQ(alone.wall_time_split.firmware_s, 0.0);
+  EXPECT_GT(alone.wall_time_split.physics_s, 0);
 
   options_.link = "native:" + std::string(UNIMOUSE_TEST_FIRMWARE);
-  const SessionResult paced = RunToTheEnd();
-  ASSERT_EQ(paced.exit_code, kExitPassed) << paced.record.dump();
-  EXPECT_TRUE(paced.record["firmware_paced"].get<bool>());
-  const nlohmann::json& split = paced.record["wall_time_split_s"];
-  EXPECT_GT(split["firmware"].get<double>(), 0);
-  double parts_s = 0;
-  for (const auto& [part, seconds] : split.items()) parts_s += seconds.get<double>();
-  EXPECT_LE(parts_s, paced.record["wall_time_s"].get<double>());
+  const RunRecord paced = RunToTheEnd();
+  ASSERT_EQ(paced.exit_code, kExitPassed) << paced.error;
+  EXPECT_TRUE(paced.firmware_paced);
+  const TickTimes& split = paced.wall_time_split;
+  EXPECT_GT(split.firmware_s, 0);
+  EXPECT_LE(split.physics_s + split.components_s + split.firmware_s + split.scenario_s,
+            paced.wall_time_s);
 }
 
 TEST_F(SessionTest, RealTimeIsAskedForEvenWhenTheFirmwareSetsThePace) {
@@ -138,12 +137,12 @@ TEST_F(SessionTest, RealTimeIsAskedForEvenWhenTheFirmwareSetsThePace) {
   options_.duration_s = 0.3;
   options_.link = "native:" + std::string(UNIMOUSE_TEST_FIRMWARE);
   options_.realtime = true;
-  const SessionResult result = RunToTheEnd();
-  ASSERT_EQ(result.exit_code, kExitPassed) << result.record.dump();
-  EXPECT_TRUE(result.record["firmware_paced"].get<bool>());
+  const RunRecord result = RunToTheEnd();
+  ASSERT_EQ(result.exit_code, kExitPassed) << result.error;
+  EXPECT_TRUE(result.firmware_paced);
   // 0.3 s of steps on the wall clock (unpaced, this firmware runs them in about 0.02 s)
-  EXPECT_GT(result.record["wall_time_s"].get<double>(), 0.25);
-  EXPECT_TRUE(result.record.contains("real_time_pacing"));
+  EXPECT_GT(result.wall_time_s, 0.25);
+  EXPECT_TRUE(result.real_time_pacing.has_value());
 }
 
 // a TCP port free on this machine now (the system picks it), so that runs side by side do not
@@ -214,27 +213,26 @@ TEST_F(SessionTest, ABoardLinkFromTheRobotFileIsPacedToTheWallClockLikeOneFromTh
     options_.robot = from_robot_file ? robot : "unimouse";
     options_.link = from_robot_file ? "" : spec;
     std::unique_ptr<Session> session = Session::Open(options_);
-    SessionResult result;
+    RunRecord r;
     {
       const TcpBoard board(port);
       while (!session->Over()) session->Step();
-      result = session->Finish();
+      r = session->Finish();
     }
-    const nlohmann::json& r = result.record;
-    ASSERT_EQ(result.exit_code, kExitPassed) << r.dump();
-    EXPECT_TRUE(r.contains("real_time_pacing")) << r.dump();
+    ASSERT_EQ(r.exit_code, kExitPassed) << r.error;
+    ASSERT_TRUE(r.real_time_pacing.has_value());
     // unpaced, this robot runs 1.5 s in well under 0.1 s of wall time
-    const double wall_s = r["wall_time_s"].get<double>();
-    EXPECT_GE(wall_s, 0.9 * 1.5);
-    EXPECT_EQ(r["real_time_pacing"]["steps"], 1500);
+    EXPECT_GE(r.wall_time_s, 0.9 * 1.5);
+    EXPECT_EQ(r.real_time_pacing->steps, 1500);
     // paced, every step is released on time: the run takes its simulated time within 10 %, and
     // the rest of the wall time is the run's start and end (a host too busy to keep up says so)
-    if (!r["real_time_pacing"]["fell_behind"].get<bool>()) {
-      EXPECT_LE(wall_s, 1.1 * 1.5 + 0.3);
+    if (!r.real_time_pacing->fell_behind) {
+      EXPECT_LE(r.wall_time_s, 1.1 * 1.5 + 0.3);
     }
     // the board drove the robot forward (north)
-    EXPECT_GT(r["robot_pose"]["y_m"].get<double>() - 0.09, 0.05) << r.dump();
-    EXPECT_EQ(r["driver"]["link"]["transport"], "tcp");
+    EXPECT_GT(r.robot().pose.y_m - 0.09, 0.05);
+    ASSERT_TRUE(r.robot().driver.link.has_value());
+    EXPECT_EQ(r.robot().driver.link->transport, "tcp");
   }
 }
 
@@ -287,7 +285,7 @@ TEST_F(SessionTest, AControllerFaultEndsAsAFaultWithItsReasonNeverAsRunning) {
                                 "return function(time_s)\n"
                                 "  if time_s > 0.05 then error('wheel fell off') end\n"
                                 "end\n");
-  const SessionResult result = RunToTheEnd();
+  const RunRecord result = RunToTheEnd();
   EXPECT_EQ(result.exit_code, kExitRuntimeFault);
   const nlohmann::json file = ResultFile();
   EXPECT_EQ(file["status"], "fault");
@@ -308,10 +306,10 @@ TEST_F(SessionTest, SpendingMostOfTheBudgetAtEveryTickMeetsTheRunsAverage) {
                               "  end\n"
                               "end }\n");
   options_.maze = "none";
-  const SessionResult result = RunToTheEnd();
+  const RunRecord result = RunToTheEnd();
   EXPECT_EQ(result.exit_code, kExitRuntimeFault);
-  EXPECT_EQ(result.record["steps"], 1);
-  const std::string error = result.record["error"];
+  EXPECT_EQ(result.steps, 1);
+  const std::string error = result.error;
   EXPECT_NE(error.find("busy.lua:3: instruction budget exhausted: more than 100 million "
                        "instructions per simulated second on average (in run)"),
             std::string::npos)
@@ -325,7 +323,7 @@ TEST_F(SessionTest, TextThatIsNotUtf8IsReplacedInTheResultNotFatal) {
                               "  sim.hud_set(1, 'd\xe9j\xe0')\n"
                               "  sim.fail('trop lent \xe9')\n"
                               "end }\n");
-  const SessionResult result = RunToTheEnd();
+  const RunRecord result = RunToTheEnd();
   EXPECT_EQ(result.exit_code, kExitFailed);
   const nlohmann::json file = ResultFile();
   EXPECT_EQ(file["scenario"]["name"], "caf\xef\xbf\xbd");
@@ -357,7 +355,7 @@ TEST_F(SessionTest, OverAndStepAgreeWithTheDuration) {
   EXPECT_EQ(steps, 10);
   session->Step();  // past the end: nothing happens
   EXPECT_EQ(session->kernel().state().step(), 10);
-  EXPECT_EQ(session->Finish().record["steps"], 10);
+  EXPECT_EQ(session->Finish().steps, 10);
 }
 
 }  // namespace

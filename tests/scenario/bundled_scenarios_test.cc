@@ -53,11 +53,13 @@ TEST_P(BundledScenario, IsPassedOrFailedByItsController) {
   options.console = false;
   std::unique_ptr<Session> session = Session::Open(options);
   while (!session->Over()) session->Step();
-  const SessionResult result = session->Finish();
-  const nlohmann::json& scenario = result.record["scenario"];
-  EXPECT_EQ(result.exit_code, c.passes ? kExitPassed : kExitFailed) << result.record.dump(1);
-  EXPECT_EQ(scenario["status"], c.passes ? "passed" : "failed") << scenario["reason"];
-  EXPECT_EQ(nlohmann::json::parse(ReadTextFile(options.out_dir + "/result.json")), result.record);
+  const RunRecord result = session->Finish();
+  ASSERT_TRUE(result.scenario.has_value());
+  const ScenarioOutcome& outcome = result.scenario->outcome;
+  EXPECT_EQ(result.exit_code, c.passes ? kExitPassed : kExitFailed) << result.error;
+  EXPECT_EQ(outcome.status, c.passes ? "passed" : "failed") << outcome.reason;
+  EXPECT_EQ(nlohmann::json::parse(ReadTextFile(options.out_dir + "/result.json")),
+            RunRecordJson(result));
 }
 
 INSTANTIATE_TEST_SUITE_P(

@@ -7,6 +7,7 @@
 #define UNIMOUSE_RECORD_RESULT_RECORD_H_
 
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 
 #include "maze.h"
@@ -18,18 +19,40 @@ namespace unimouse {
 /// renamed, or one whose type or meaning changes, raises the major.
 inline constexpr const char* kResultSchemaVersion = "1.4";
 
+/// A file a run read, and the SHA-256 of its content as the run read it.
+struct FileRecord {
+  std::string file;
+  std::string sha256;
+  bool operator==(const FileRecord&) const = default;
+};
+
+/// The maze a run took place in: its file, hash and size in cells.
+struct MazeRecord {
+  std::string file;
+  std::string sha256;
+  int width = 0;
+  int height = 0;
+  bool operator==(const MazeRecord&) const = default;
+};
+
+/// Returns the file with its SHA-256. Throws InputError when the file cannot be read.
+FileRecord IdentifyFile(const std::string& path);
+
+/// Returns the maze's file with its SHA-256 and size. Throws InputError when the file cannot be
+/// read.
+MazeRecord IdentifyMaze(const std::string& file, const Maze& maze);
+
+/// {"file": ..., "sha256": ...}
+nlohmann::json ToJson(const FileRecord& file);
+
 /// Returns the start of every record: its schema (name, version, where it is described), the
 /// version of unimouse, and the command that wrote it ("run" or "mms").
 nlohmann::json NewResultRecord(const std::string& command);
 
-/// Returns {"file": path, "sha256": the SHA-256 of its content}. Throws InputError when the
-/// file cannot be read.
-nlohmann::json FileIdentity(const std::string& path);
-
 /// Sets the record's maze keys: "maze" (the file), "maze_name" (the file's name without its
 /// extension), "maze_sha256" and "maze_size" ([width, height] in cells); all null without a
-/// maze (`file` empty).
-void SetMazeIdentity(nlohmann::json& record, const std::string& file, const Maze* maze);
+/// maze.
+void SetMazeIdentity(nlohmann::json& record, const std::optional<MazeRecord>& maze);
 
 /// Writes out_dir/result.json (making the directory) through a temporary file, so that a
 /// reader never sees half of it; text that is not UTF-8 is written with replacement

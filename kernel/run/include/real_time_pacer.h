@@ -7,12 +7,22 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdint>
 #include <cstdio>
-#include <nlohmann/json.hpp>
 #include <thread>
 #include <vector>
 
 namespace unimouse {
+
+/// How closely the wall clock followed simulated time.
+struct PacingReport {
+  int64_t steps = 0;
+  double lateness_p50_us = 0;
+  double lateness_p99_us = 0;
+  double lateness_max_us = 0;
+  int64_t late_steps = 0;  ///< more than one step late
+  bool fell_behind = false;
+};
 
 class RealTimePacer {
  public:
@@ -47,7 +57,7 @@ class RealTimePacer {
   }
 
   /// Returns lateness percentiles (us), late steps (over one step) and whether it fell behind.
-  nlohmann::json Report() const {
+  PacingReport Report() const {
     // the lateness of the step at rank q * (steps - 1), to 0.1 us below 1 ms
     auto at = [&](double q) {
       if (steps_ == 0) return 0.0;
@@ -59,12 +69,8 @@ class RealTimePacer {
       }
       return max_us_;
     };
-    return {{"steps", steps_},
-            {"lateness_p50_us", at(0.5)},
-            {"lateness_p99_us", at(0.99)},
-            {"lateness_max_us", max_us_},
-            {"late_steps", late_steps_},
-            {"fell_behind", warned_}};
+    return {static_cast<int64_t>(steps_),      at(0.5), at(0.99), max_us_,
+            static_cast<int64_t>(late_steps_), warned_};
   }
 
  private:

@@ -5,7 +5,7 @@
 //
 //   auto session = Session::Open(options);   // throws InputError (exit 2), RuntimeFault (3)
 //   while (!session->Over()) session->Step();
-//   const SessionResult result = session->Finish();  // result.json written, however it ended
+//   const RunRecord record = session->Finish();  // result.json written, however it ended
 #ifndef UNIMOUSE_RUN_SESSION_H_
 #define UNIMOUSE_RUN_SESSION_H_
 
@@ -13,8 +13,8 @@
 #include <cstdint>
 #include <cstdio>
 #include <functional>
+#include <map>
 #include <memory>
-#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <vector>
@@ -26,6 +26,7 @@
 #include "real_time_pacer.h"
 #include "robot_spec.h"
 #include "run_pictures.h"
+#include "run_record.h"
 #include "scenario.h"
 #include "trace_options.h"
 
@@ -104,12 +105,6 @@ ComponentSpec LinkComponent(const std::string& transport, const std::string& pro
 void WriteErrorResult(const SessionOptions& options, const std::string& error, int exit_code,
                       const std::string& traceback = "");
 
-/// How a run ended.
-struct SessionResult {
-  int exit_code = 0;      ///< kExitPassed, kExitFailed or kExitRuntimeFault
-  nlohmann::json record;  ///< what result.json holds
-};
-
 class Session {
  public:
   /// Assembles a run and writes nothing but its log until it ends. A previous result.json in
@@ -126,8 +121,9 @@ class Session {
   /// Whether the run is over: out of time, decided by the scenario, faulted, or interrupted.
   bool Over() const;
   /// Ends the run once: the scenario's finish, the last pictures, every component's finish, the
-  /// maze as the firmware saw it; writes result.json (with `extra` merged in) atomically.
-  SessionResult Finish(const nlohmann::json& extra = {});
+  /// maze as the firmware saw it; writes result.json atomically and returns its record.
+  /// `view_frames`: how many frames a viewer drew of the run, for the record.
+  RunRecord Finish(std::optional<int64_t> view_frames = std::nullopt);
 
   Kernel& kernel() { return *kernel_; }
   /// The first robot's file.
@@ -173,26 +169,25 @@ class Session {
     int64_t wall_contacts = 0;
     int64_t robot_contacts = 0;
     int64_t restarts = 0;  // times its firmware started over inside the run (the link's reports)
+    DriverRecord driver;
   };
   std::vector<Robot> robots_;
-  std::vector<nlohmann::json> drivers_;  // per robot, DriverJson
 
   SessionOptions options_;
   std::optional<PluginRegistry> own_registry_;
   std::unique_ptr<Scenario> scenario_;
   std::string scenario_file_;
   std::string scenario_sha256_;
-  // what ran, for the result: robot and maze with their hashes, the driver
-  nlohmann::json identity_ = nlohmann::json::object();
   std::unique_ptr<Maze> maze_;
   std::string maze_file_;
+  std::optional<MazeRecord> maze_record_;  // with its hash, for the record
   double duration_s_ = 0;
   int64_t steps_ = 0;
   std::unique_ptr<std::FILE, int (*)(std::FILE*)> log_{nullptr, &std::fclose};
   std::unique_ptr<Kernel> kernel_;
   FirmwareBeliefs beliefs_;
   // what components measured over the run (UNIMOUSE_REPORT_MEASURE), by component and name
-  nlohmann::json measurements_ = nlohmann::json::object();
+  std::map<std::string, std::map<std::string, double>> measurements_;
   std::vector<std::string> warnings_;  // every warning logged, "component: text", for the record
   std::unique_ptr<RunPictures> pictures_;
   std::unique_ptr<RealTimePacer> pacer_;

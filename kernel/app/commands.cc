@@ -75,6 +75,8 @@ PictureOptions PicturesFor(const RunOptions& options) {
 int RunOnce(const RunOptions& options, Viewer* viewer) {
   SessionOptions o = options.session;
   o.paced_by_caller = viewer != nullptr;
+  // a line that rewrites itself is for a person at a terminal, never for a pipe or a file
+  o.progress = viewer == nullptr && ::isatty(STDERR_FILENO) == 1;
   try {
     if (!options.bad_options.empty()) throw InputError(options.bad_options);
     o.pictures = PicturesFor(options);
@@ -551,6 +553,9 @@ void AddRunCommand(CommandLine& cli) {
       ->add_option("--name",
                    "the robot's name among several (default: its file's name, then -2, -3)")
       ->multi_option_policy(every);
+  run_cmd->add_flag("-v,--verbose", run->session.verbose,
+                    "the console shows detail too: the firmware's reports of walls, cells, "
+                    "paths and values (log.txt always has them)");
   run_cmd->add_flag("--realtime", run->session.realtime,
                     "pace the simulation to the wall clock, even a firmware in lock-step, to "
                     "watch it (a board or a program on a link, from --link or the robot file, "

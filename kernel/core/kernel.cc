@@ -456,7 +456,7 @@ void Kernel::Store(int level, const std::string& component, const std::string& m
   for (const auto& listener : listeners_) listener(state_->data().time, level, component, message);
   if (options_.log_sink) {
     options_.log_sink(state_->data().time, level, component, message);
-  } else if (level > UNIMOUSE_LOG_INFO) {
+  } else if (level != UNIMOUSE_LOG_INFO && level != UNIMOUSE_LOG_DETAIL) {
     std::cerr << component << ": " << message << "\n";
   }
 }

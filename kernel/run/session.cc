@@ -10,6 +10,7 @@
 #include <numbers>
 #include <variant>
 
+#include "console_progress.h"
 #include "install_paths.h"
 #include "maze_explorer.h"
 #include "maze_plot.h"
@@ -191,6 +192,8 @@ std::unique_ptr<Session> Session::Open(const SessionOptions& options) {
   return session;
 }
 
+Session::Session(const SessionOptions& options) : options_(options) {}
+
 Session::~Session() = default;
 
 void Session::LoadRobots() {
@@ -357,7 +360,8 @@ void Session::Assemble() {
     const char* kind = level == UNIMOUSE_LOG_ERROR     ? "error: "
                        : level == UNIMOUSE_LOG_WARNING ? "warning: "
                                                        : "";
-    if (options_.console) {
+    if (options_.console && (level != UNIMOUSE_LOG_DETAIL || options_.verbose)) {
+      if (progress_) progress_->Clear();
       std::fprintf(stderr, "[%9.3f s] %s: %s%s\n", time_s, component.c_str(), kind,
                    message.c_str());
     }
@@ -432,6 +436,7 @@ void Session::Assemble() {
   // sets the pace itself
   pace_ = !o.paced_by_caller && (o.realtime || kernel_->declared(UNIMOUSE_TRAIT_WALL_CLOCK));
   pacer_ = std::make_unique<RealTimePacer>(kernel_->timestep_s());
+  if (o.progress && o.console) progress_ = std::make_unique<ConsoleProgress>(stderr);
   start_ = std::chrono::steady_clock::now();
 }
 
@@ -446,6 +451,7 @@ void Session::Step() {
     return;
   }
   if (watcher_) watcher_(*this);
+  if (progress_) progress_->Update(kernel_->state().data().time, hud());
   // firmware in lock-step sets the pace itself, unless the wall clock was asked for to watch it
   if (pace_ && (options_.realtime || !kernel_->firmware_paced())) {
     pacer_->Wait(kernel_->state().step());
@@ -529,6 +535,7 @@ void Session::DrawFirmwareMaze() {
 RunRecord Session::Finish(std::optional<int64_t> view_frames) {
   UNIMOUSE_DEMAND(!finished_);
   finished_ = true;
+  progress_.reset();
   // a signal stops the run between two steps: what the result says, and exit code 3
   if (const std::string why = interruption(); !why.empty() && fault_.empty()) {
     interrupted_ = why + " at " + Seconds3(kernel_->state().data().time) + " s";

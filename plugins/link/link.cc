@@ -336,7 +336,7 @@ void Link::Apply(const SenseContext& ctx, const FirmwareFrame& f, Heard& heard) 
       ctx.Report(r);
       std::snprintf(text, sizeof(text), "debug walls (%d, %d): %s; known %s", f.data[0], f.data[1],
                     Sides(f.data[2]).c_str(), Sides(f.data[3]).c_str());
-      ctx.Log(text);
+      ctx.Detail(text);
       break;
     }
     case UNIMOUSE_ID_DEBUG_VISITED: {
@@ -349,7 +349,7 @@ void Link::Apply(const SenseContext& ctx, const FirmwareFrame& f, Heard& heard) 
       r.y = f.data[1];
       ctx.Report(r);
       std::snprintf(text, sizeof(text), "debug visited (%d, %d)", f.data[0], f.data[1]);
-      ctx.Log(text);
+      ctx.Detail(text);
       break;
     }
     case UNIMOUSE_ID_DEBUG_PATH: {
@@ -370,7 +370,7 @@ void Link::Apply(const SenseContext& ctx, const FirmwareFrame& f, Heard& heard) 
       for (size_t i = 0; i + 1 < f.data.size(); i += 2) {
         path += " (" + std::to_string(f.data[i]) + ", " + std::to_string(f.data[i + 1]) + ")";
       }
-      ctx.Log(path);
+      ctx.Detail(path);
       break;
     }
     case UNIMOUSE_ID_DEBUG_VALUE: {
@@ -381,7 +381,7 @@ void Link::Apply(const SenseContext& ctx, const FirmwareFrame& f, Heard& heard) 
       r.value = f.number;
       ctx.Report(r);
       std::snprintf(text, sizeof(text), "debug value %s = %.9g", f.text.c_str(), f.number);
-      ctx.Log(text);
+      ctx.Detail(text);
       break;
     }
   }

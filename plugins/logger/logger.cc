@@ -45,6 +45,8 @@ const char* LevelName(int level) {
       return "warning";
     case UNIMOUSE_LOG_FIRMWARE:
       return "firmware";
+    case UNIMOUSE_LOG_DETAIL:
+      return "detail";
   }
   return "info";
 }

@@ -602,4 +602,56 @@ TEST_F(CliTest, ABadPluginIsRefusedInOneSentence) {
   EXPECT_EQ(std::count(o.output.begin(), o.output.end(), '\n'), 1) << o.output;
 }
 
+// lines of `text` that contain `part`
+int LinesWith(const std::string& text, const std::string& part) {
+  int n = 0;
+  for (size_t at = text.find(part); at != std::string::npos; at = text.find(part, at + 1)) ++n;
+  return n;
+}
+
+std::string ReadFile(const fs::path& path) {
+  std::ifstream in(path);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+TEST_F(CliTest, TheMainJobSaysLittleOnAPipeAndTheLogKeepsEveryReport) {
+  const Outcome o = Unimouse("run --out " + dir_.string());
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  EXPECT_LE(std::count(o.output.begin(), o.output.end(), '\n'), 30) << o.output;
+  EXPECT_EQ(LinesWith(o.output, "debug walls"), 0) << o.output;
+  EXPECT_NE(o.output.find("scenario micromouse: passed"), std::string::npos) << o.output;
+  // no progress line on a pipe: nothing rewrites itself
+  EXPECT_EQ(o.output.find('\r'), std::string::npos);
+  // the firmware reported every cell it explored (japan2018 has 256); the log has each report
+  EXPECT_GT(LinesWith(ReadFile(dir_ / "log.txt"), "debug walls"), 200);
+}
+
+TEST_F(CliTest, VerboseShowsTheFirmwaresReportsAsTheLogHasThem) {
+  const Outcome o = Unimouse("run -v --duration 20 --out " + dir_.string());
+  ASSERT_EQ(o.exit_code, 1) << o.output;  // the contest is not over in 20 s
+  const int reports = LinesWith(ReadFile(dir_ / "log.txt"), "debug walls");
+  EXPECT_GT(reports, 10);
+  EXPECT_EQ(LinesWith(o.output, "debug walls"), reports) << o.output;
+}
+
+TEST_F(CliTest, OnATerminalAProgressLineShowsTimeSpeedAndTheHudAndGivesWayToLogLines) {
+  // `script` gives the run a terminal, as a person at a console has
+  const Outcome o =
+      unimouse::testing::Shell("script -qec '" + std::string(UNIMOUSE_BINARY) +
+                               " run --duration 60 --out " + dir_.string() + "' /dev/null");
+  ASSERT_EQ(o.exit_code, 1) << o.output;
+  const std::string erase = "\r\033[K";
+  // a minute of contest takes more than a quarter of a second of wall time: shown at least
+  // once, with the contest's HUD
+  const size_t progress = o.output.find(erase + "[");
+  ASSERT_NE(progress, std::string::npos) << o.output;
+  const std::string line = o.output.substr(progress, o.output.find('\r', progress + 2) - progress);
+  EXPECT_NE(line.find("x real time | time "), std::string::npos) << line;
+  EXPECT_NE(line.find("of 600 s"), std::string::npos) << line;
+  // the link's last line, at the end, starts on a cleared line
+  EXPECT_NE(o.output.find(erase + "[   60.000 s] link: "), std::string::npos) << o.output;
+  // the summary is on lines of its own
+  EXPECT_NE(o.output.find("\n  result: "), std::string::npos) << o.output;
+}
+
 }  // namespace

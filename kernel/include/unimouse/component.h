@@ -154,6 +154,10 @@ class TickContext {
   void Warn(const std::string& message) const {
     t_.log(t_.ctx, UNIMOUSE_LOG_WARNING, message.c_str());
   }
+  /// Logs a line too frequent for the console (one per cell, per report): the run's log keeps it.
+  void Detail(const std::string& message) const {
+    t_.log(t_.ctx, UNIMOUSE_LOG_DETAIL, message.c_str());
+  }
   /// Logs a line of the firmware's own text (what a link receives on its log channel).
   void Firmware(const std::string& message) const {
     t_.log(t_.ctx, UNIMOUSE_LOG_FIRMWARE, message.c_str());

@@ -56,7 +56,9 @@ enum {
   UNIMOUSE_LOG_INFO = 0,
   UNIMOUSE_LOG_WARNING = 1,
   UNIMOUSE_LOG_ERROR = 2,
-  UNIMOUSE_LOG_FIRMWARE = 3 /* a line of the firmware's own log (link frame 8) */
+  UNIMOUSE_LOG_FIRMWARE = 3, /* a line of the firmware's own log (link frame 8) */
+  UNIMOUSE_LOG_DETAIL = 4    /* appended in 0.7: chatter (a report per cell) for the run's log and
+                                recording; the console shows it only when asked (-v) */
 };
 
 /* Services the kernel offers while a component is being created. */

@@ -85,7 +85,9 @@ struct SessionOptions {
   std::vector<std::string> snapshot_on;  ///< scenario events that take a picture
   /// false: final.png whenever the machine can draw, though no picture was asked for
   bool only_asked_pictures = false;
-  bool console = true;            ///< every log line also to stderr, with its sim time
+  bool console = true;    ///< log lines also to stderr, with their sim time (detail with verbose)
+  bool verbose = false;   ///< the console shows detail too (the firmware's reports, cell by cell)
+  bool progress = false;  ///< a progress line on stderr (a terminal), rewritten in place
   bool driven_by_caller = false;  ///< the caller writes the robot's inputs between steps
   std::string start;              ///< the robot's start, as SessionRobot::start
   /// Two or more: every robot of the run, in place of robot, link, link_sets,
@@ -104,6 +106,8 @@ ComponentSpec LinkComponent(const std::string& transport, const std::string& pro
 /// alone: the error itself is the one to report.
 void WriteErrorResult(const SessionOptions& options, const std::string& error, int exit_code,
                       const std::string& traceback = "");
+
+class ConsoleProgress;
 
 class Session {
  public:
@@ -149,7 +153,7 @@ class Session {
   std::string where() const;
 
  private:
-  explicit Session(const SessionOptions& options) : options_(options) {}
+  explicit Session(const SessionOptions& options);
   void Assemble();
   void LoadRobots();
   void PlaceRobots(ScenarioWorld& world);
@@ -191,6 +195,7 @@ class Session {
   std::vector<std::string> warnings_;  // every warning logged, "component: text", for the record
   std::unique_ptr<RunPictures> pictures_;
   std::unique_ptr<RealTimePacer> pacer_;
+  std::unique_ptr<ConsoleProgress> progress_;
   bool pace_ = false;
   std::string fault_;
   std::string interrupted_;  // by which signal, when

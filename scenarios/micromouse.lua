@@ -134,12 +134,12 @@ return sim.scenario {
     if best_cost then sim.score_set("best_run_path_cost", best_cost) end
     local tail = ended_mid_run and string.format("; the time ran out during run %d", #runs + 1) or ""
     if #runs > 0 then
-      sim.pass(string.format("%d run%s, best %.3f s (path cost %s), %.1f s used, %d wall contacts%s",
+      sim.pass(string.format("%d run%s, best %.3f s (path cost %s), %.1f s used, %d wall contact%s%s",
                              #runs, #runs == 1 and "" or "s", best_s, best_cost or "unknown", used_s,
-                             contacts, tail))
+                             contacts, contacts == 1 and "" or "s", tail))
     else
-      sim.fail(string.format("no run reached the goal in %.1f s (%d wall contacts)%s", used_s,
-                             contacts, tail))
+      sim.fail(string.format("no run reached the goal in %.1f s (%d wall contact%s)%s", used_s,
+                             contacts, contacts == 1 and "" or "s", tail))
     end
   end,
 }

@@ -518,6 +518,7 @@ void Kernel::Reset() {
   std::fill(pace_setter_.begin(), pace_setter_.end(), 0);
   paced_count_ = 0;
   tick_times_ = {};
+  contacts_ = ContactWatch(robot_count());
 
   messages_.clear();
   message_views_.clear();
@@ -560,6 +561,7 @@ void Kernel::Step() {
     model_.world->UpdateCollisionProxies(d);
     mj_step1(&m, &d);
   });
+  contacts_.Update(*model_.world, m, d);
   const auto step1_done = Clock::now();
 
   double pace_setter_s = RunPhase(step, &unimouse_component_type::sense);

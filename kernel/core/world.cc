@@ -543,23 +543,27 @@ void World::UpdateProxiesOf(const mjData& d, int robot) {
   }
 }
 
-bool World::RobotTouchesScenery(const mjData& d, int robot) const {
+bool World::RobotTouchesScenery(const mjData& d, int robot, int* contact) const {
   const mjModel& m = *model_;
   const int body = robots_[robot].body;
+  if (contact != nullptr) *contact = -1;
   for (int i = 0; i < d.ncon; ++i) {
     const mjContact& c = d.contact[i];
     const bool proxy1 = c.geom1 >= first_proxy_ && c.geom1 < first_proxy_ + proxy_count_;
     const bool proxy2 = c.geom2 >= first_proxy_ && c.geom2 < first_proxy_ + proxy_count_;
     if (proxy1 == proxy2 || c.dist > 0) continue;
     const int other = proxy1 ? c.geom2 : c.geom1;
-    if (m.body_rootid[m.geom_bodyid[other]] == body) return true;
+    if (m.body_rootid[m.geom_bodyid[other]] != body) continue;
+    if (contact != nullptr) *contact = i;
+    return true;
   }
   return false;
 }
 
-int World::RobotTouchesRobot(const mjData& d, int robot) const {
+int World::RobotTouchesRobot(const mjData& d, int robot, int* contact) const {
   const mjModel& m = *model_;
   int touched = -1;
+  if (contact != nullptr) *contact = -1;
   for (int i = 0; i < d.ncon && robots_.size() > 1; ++i) {
     const mjContact& c = d.contact[i];
     if (c.dist > 0) continue;
@@ -567,7 +571,9 @@ int World::RobotTouchesRobot(const mjData& d, int robot) const {
     const int b = RobotOfBody(m.geom_bodyid[c.geom2]);
     if (a < 0 || b < 0 || a == b || (a != robot && b != robot)) continue;
     const int other = a == robot ? b : a;
-    if (touched < 0 || other < touched) touched = other;
+    if (touched >= 0 && other >= touched) continue;
+    touched = other;
+    if (contact != nullptr) *contact = i;
   }
   return touched;
 }

@@ -87,7 +87,6 @@ void MmsRobot::Reset() {
   est_y_m_ = spawn.y_m;
   est_yaw_rad_ = kPi / 2;
   seen_ = {};
-  touching_ = false;
 }
 
 double MmsRobot::now_s() { return session_.kernel().state().data().time; }
@@ -110,12 +109,11 @@ bool MmsRobot::Tick(double left, double right) {
   est_yaw_rad_ += turn_rad;
 
   // a contact is counted when it begins, as the micromouse scenario counts them
-  const bool touching = kernel.world().RobotTouchesScenery(kernel.state().data());
-  if (touching && !touching_) {
-    ++wall_contacts_;
+  const int64_t contacts = kernel.contacts().wall_contacts(0);
+  if (contacts > wall_contacts_) {
+    wall_contacts_ = contacts;
     move_contact_ = true;
   }
-  touching_ = touching;
   return true;
 }
 

@@ -81,7 +81,6 @@ class MmsRobot final : public MmsBody {
   double est_x_m_ = 0, est_y_m_ = 0, est_yaw_rad_ = 0;
   // the walls its sensors saw of its cell, by heading (east, north, west, south)
   std::array<std::optional<bool>, 4> seen_;
-  bool touching_ = false;
   bool move_contact_ = false;
   long wall_contacts_ = 0;
   double worst_offset_m_ = 0;

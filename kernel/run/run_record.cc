@@ -109,6 +109,25 @@ nlohmann::json RunRecordJson(const RunRecord& record) {
   if (r.firmware_maze) j["firmware_maze"] = "maze.png";
   if (!r.measurements.empty()) j["measurements"] = r.measurements;
   if (r.restarts) j["restarts"] = *r.restarts;
+  nlohmann::json contacts = nlohmann::json::array();
+  for (const Contact& c : r.contacts) {
+    const auto name = [&](int robot) { return r.robots[static_cast<size_t>(robot)].name; };
+    nlohmann::json side = nullptr;
+    if (c.side == 'P') side = "post";
+    if (c.side != 0 && c.side != 'P') side = std::string(1, c.side);
+    contacts.push_back(
+        {{"robot", name(c.robot)},
+         {"t_s", c.time_s},
+         {"with", c.other_robot >= 0 ? "robot" : "scenery"},
+         {"other_robot", c.other_robot >= 0 ? nlohmann::json(name(c.other_robot)) : nullptr},
+         {"x_m", c.x_m},
+         {"y_m", c.y_m},
+         {"cell", c.cell ? nlohmann::json{c.cell->x, c.cell->y} : nlohmann::json(nullptr)},
+         {"side", side},
+         {"part", c.part}});
+  }
+  j["contacts"] = contacts;
+  j["contacts_not_kept"] = r.contacts_not_kept;
   j["warnings"] = r.warnings;
   j["exit_code"] = r.exit_code;
   if (r.view_frames) j["view"] = {{"frames", *r.view_frames}};

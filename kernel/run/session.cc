@@ -383,8 +383,9 @@ void Session::Assemble() {
           measurements_[component][report.name] = report.value;
         } else if (report.kind == UNIMOUSE_REPORT_RESTART) {
           ++robots_[static_cast<size_t>(robot)].restarts;
-        } else if (robot == 0) {
-          beliefs_.Apply(report);
+        } else {
+          if (report.kind == UNIMOUSE_REPORT_VISITED) CheckReportedCell(robot, report.x, report.y);
+          if (robot == 0) beliefs_.Apply(report);
         }
       });
   if (scenario_) scenario_->Attach(*kernel_, controllers);
@@ -444,7 +445,7 @@ void Session::Step() {
   if (Over()) return;
   try {
     kernel_->Step();
-    CountContacts();
+    LogContacts();
     pictures_->AfterStep();
   } catch (const RuntimeFault& e) {
     fault_ = e.what();
@@ -458,19 +459,42 @@ void Session::Step() {
   }
 }
 
-// each contact counted once, when it begins: a robot resting against a wall is one contact
-void Session::CountContacts() {
-  const World& world = kernel_->world();
-  const mjData& d = kernel_->state().data();
-  for (size_t i = 0; i < robots_.size(); ++i) {
-    Robot& r = robots_[i];
-    const bool wall = world.RobotTouchesScenery(d, static_cast<int>(i));
-    r.wall_contacts += wall && !r.touching_wall;
-    r.touching_wall = wall;
-    if (robots_.size() < 2) continue;
-    const int other = world.RobotTouchesRobot(d, static_cast<int>(i));
-    r.robot_contacts += other >= 0 && r.touching_robot < 0;
-    r.touching_robot = other;
+// the moment a mouse gets lost: the first time the cell its firmware says it is in and the cell
+// it is in differ by more than one (a report may come as the robot crosses into the next cell)
+void Session::CheckReportedCell(int robot, int x, int y) {
+  Robot& r = robots_[static_cast<size_t>(robot)];
+  if (!maze_ || r.lost_reported) return;
+  const Pose2D pose = kernel_->world().RobotPose(kernel_->state().data(), robot);
+  const double cell_m = kernel_->world().maze_dimensions().cell_m;
+  const int true_x = static_cast<int>(std::floor(pose.x_m / cell_m));
+  const int true_y = static_cast<int>(std::floor(pose.y_m / cell_m));
+  if (std::max(std::abs(true_x - x), std::abs(true_y - y)) <= 1) return;
+  r.lost_reported = true;
+  kernel_->Log(UNIMOUSE_LOG_WARNING, "run",
+               (robots_.size() > 1 ? r.name + "'s " : std::string()) + "firmware reports cell (" +
+                   std::to_string(x) + ", " + std::to_string(y) + ") but the robot is in cell (" +
+                   std::to_string(true_x) + ", " + std::to_string(true_y) +
+                   "): it has lost its position");
+}
+
+// each contact, as it begins, a line of the log
+void Session::LogContacts() {
+  const std::vector<Contact>& contacts = kernel_->contacts().contacts();
+  for (; logged_contacts_ < contacts.size(); ++logged_contacts_) {
+    const Contact& c = contacts[logged_contacts_];
+    std::string text = "contact: " + robots_[static_cast<size_t>(c.robot)].name + " touched ";
+    if (c.other_robot >= 0) {
+      text += "robot " + robots_[static_cast<size_t>(c.other_robot)].name;
+    } else if (c.side == 'P') {
+      text +=
+          "a post of cell (" + std::to_string(c.cell->x) + ", " + std::to_string(c.cell->y) + ")";
+    } else if (c.side != 0) {
+      text += "the " + std::string(1, c.side) + " wall of cell (" + std::to_string(c.cell->x) +
+              ", " + std::to_string(c.cell->y) + ")";
+    } else {
+      text += "the scenery";
+    }
+    kernel_->Log(UNIMOUSE_LOG_DETAIL, "run", text + " with its " + c.part);
   }
 }
 
@@ -576,8 +600,8 @@ RunRecord Session::Finish(std::optional<int64_t> view_frames) {
                         {robot.file, robot.sha256},
                         robot.driver,
                         kernel_->world().RobotPose(d, static_cast<int>(i)),
-                        robot.wall_contacts,
-                        robot.robot_contacts,
+                        kernel_->contacts().wall_contacts(static_cast<int>(i)),
+                        kernel_->contacts().robot_contacts(static_cast<int>(i)),
                         robot.restarts});
   }
   const bool ended = fault_.empty() && interrupted_.empty();
@@ -611,6 +635,8 @@ RunRecord Session::Finish(std::optional<int64_t> view_frames) {
     r.restarts = 0;
     for (const Robot& robot : robots_) *r.restarts += robot.restarts;
   }
+  r.contacts = kernel_->contacts().contacts();
+  r.contacts_not_kept = kernel_->contacts().contacts_not_kept();
   r.warnings = warnings_;
   r.view_frames = view_frames;
   WriteResultRecord(options_.out_dir, RunRecordJson(r));

@@ -90,7 +90,7 @@ struct ScenarioApi {
 
   static int RobotTouchingRobot(LuaCall& call) {
     const Kernel& k = RunningKernel(call);
-    const int other = k.world().RobotTouchesRobot(k.state().data(), RobotIndex(call, 1));
+    const int other = k.contacts().touching_robot(RobotIndex(call, 1));
     if (other < 0) {
       lua_pushnil(call.state());
     } else {
@@ -144,8 +144,7 @@ struct ScenarioApi {
 
   static int RobotIsTouchingWall(LuaCall& call) {
     const Kernel& k = RunningKernel(call);
-    lua_pushboolean(call.state(),
-                    k.world().RobotTouchesScenery(k.state().data(), RobotIndex(call, 1)));
+    lua_pushboolean(call.state(), k.contacts().touching_wall(RobotIndex(call, 1)));
     return 1;
   }
 

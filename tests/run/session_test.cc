@@ -160,11 +160,11 @@ int FreePort() {
 }
 
 // a board on Wi-Fi, as a lab has one: it dials the simulator's TCP server and commands both
-// motors forward every 20 ms until told to stop
+// motors forward every 20 ms (with `also` after the commands) until told to stop
 class TcpBoard {
  public:
-  explicit TcpBoard(int port)
-      : thread_([this, port] {
+  explicit TcpBoard(int port, std::vector<uint8_t> also = {})
+      : thread_([this, port, also] {
           int s = -1;
           while (!stop_ && s < 0) {
             s = ::socket(AF_INET, SOCK_STREAM, 0);
@@ -178,11 +178,12 @@ class TcpBoard {
               std::this_thread::sleep_for(std::chrono::milliseconds(5));
             }
           }
-          uint8_t f[6] = {UNIMOUSE_ID_MOTOR_LEFT, 0, 0, UNIMOUSE_ID_MOTOR_RIGHT, 0, 0};
+          std::vector<uint8_t> f = {UNIMOUSE_ID_MOTOR_LEFT, 0, 0, UNIMOUSE_ID_MOTOR_RIGHT, 0, 0};
           unimouse_put_u16(&f[1], 600);
           unimouse_put_u16(&f[4], 600);
+          f.insert(f.end(), also.begin(), also.end());
           while (!stop_) {
-            if (::write(s, f, sizeof(f)) != sizeof(f)) break;
+            if (::write(s, f.data(), f.size()) != static_cast<ssize_t>(f.size())) break;
             std::this_thread::sleep_for(std::chrono::milliseconds(20));
           }
           if (s >= 0) ::close(s);
@@ -356,6 +357,75 @@ TEST_F(SessionTest, OverAndStepAgreeWithTheDuration) {
   session->Step();  // past the end: nothing happens
   EXPECT_EQ(session->kernel().state().step(), 10);
   EXPECT_EQ(session->Finish().steps, 10);
+}
+
+TEST_F(SessionTest, ARobotPressedAgainstAWallIsOneContactWithItsPlaceAndPart) {
+  // straight north from japan2018's start, the first wall across column 0 is the north wall of
+  // cell (0, 2) (`unimouse maze show japan2018`); the motors keep pushing into it for 4 s
+  options_.maze = "japan2018";
+  options_.duration_s = 6;
+  options_.driven_by_caller = true;
+  std::unique_ptr<Session> session = Session::Open(options_);
+  Kernel& kernel = session->kernel();
+  const int left = kernel.model().FindSignal("left.command");
+  const int right = kernel.model().FindSignal("right.command");
+  int touches_begun = 0;  // as MuJoCo reports them, step by step
+  bool touching = false;
+  while (!session->Over()) {
+    kernel.state().signals()[left] = 150;
+    kernel.state().signals()[right] = 150;
+    session->Step();
+    const bool now = kernel.world().RobotTouchesScenery(kernel.state().data());
+    touches_begun += now && !touching;
+    touching = now;
+  }
+  const RunRecord r = session->Finish();
+  // the robot ends against that wall: its centre in cell (0, 2), its nose at the wall
+  EXPECT_NEAR(r.robot().pose.y_m, 3 * 0.18 - 0.006, 0.08);
+  // one contact, though the touch MuJoCo reports flickers as the motors push (18 times here)
+  EXPECT_GT(touches_begun, 1);
+  EXPECT_EQ(r.robot().wall_contacts, 1) << touches_begun << " touches began";
+  ASSERT_EQ(r.contacts.size(), 1u);
+  const Contact& c = r.contacts.front();
+  ASSERT_TRUE(c.cell.has_value());
+  EXPECT_EQ(c.cell->x, 0);
+  EXPECT_EQ(c.cell->y, 2);
+  EXPECT_EQ(c.side, 'N');
+  // the wall's south face: three cells up, less half a wall's thickness
+  EXPECT_NEAR(c.y_m, 3 * 0.18 - 0.006, 0.002);
+  EXPECT_EQ(c.part, "plate");
+  EXPECT_NE(ReadTextFile(options_.out_dir + "/log.txt")
+                .find("contact: unimouse touched the N wall of cell (0, 2) with its plate"),
+            std::string::npos);
+  const nlohmann::json contact = ResultFile()["contacts"][0];
+  EXPECT_EQ(contact["side"], "N");
+  EXPECT_EQ(contact["cell"], nlohmann::json({0, 2}));
+}
+
+TEST_F(SessionTest, TheFirstTimeTheFirmwaresCellIsNotTheRobotsTheRunWarnsOnce) {
+  // a board that says it visited a cell: next to the start cell, then far from it
+  options_.maze = "japan2018";
+  options_.duration_s = 0.5;
+  const int port = FreePort();
+  options_.link = "tcp:127.0.0.1:" + std::to_string(port);
+  for (const int y : {1, 5}) {
+    SCOPED_TRACE("the firmware reports cell (0, " + std::to_string(y) + ")");
+    std::unique_ptr<Session> session = Session::Open(options_);
+    RunRecord r;
+    {
+      const TcpBoard board(port, {UNIMOUSE_ID_DEBUG_VISITED, 0, static_cast<uint8_t>(y)});
+      while (!session->Over()) session->Step();
+      r = session->Finish();
+    }
+    ASSERT_EQ(r.exit_code, kExitPassed) << r.error;
+    const std::string lost =
+        "run: firmware reports cell (0, 5) but the robot is in cell (0, 0): it has lost its "
+        "position";
+    // within one cell is a report made as the robot crosses into the next: no warning
+    const std::vector<std::string> expected =
+        y == 5 ? std::vector{lost} : std::vector<std::string>{};
+    EXPECT_EQ(r.warnings, expected);
+  }
 }
 
 }  // namespace

@@ -108,6 +108,13 @@ void sendWalls() {
   robot.debug(UNIMOUSE_ID_DEBUG_WALLS, frame, 4);
 }
 
+// the cell the mouse believes it has reached: the simulator warns when it is not the cell the
+// robot is in (the moment a mouse gets lost)
+void sendVisited() {
+  uint8_t frame[2] = {x, y};
+  robot.debug(UNIMOUSE_ID_DEBUG_VISITED, frame, 2);
+}
+
 void recordWall(Direction side, bool wall) {
   if (wall) {
     maze.placeWall(x, y, side);
@@ -245,6 +252,7 @@ void loop() {
         recordWall(turnRight(heading), minRight < kSideWall);
         recordWall(heading, wallAhead);
         sendWalls();
+        sendVisited();
         settle();
         break;
       }

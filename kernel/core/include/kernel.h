@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "contact_watch.h"
 #include "model.h"
 #include "plugin_registry.h"
 #include "robot_spec.h"
@@ -133,6 +134,9 @@ class Kernel {
   const std::string& robot_prefix(int robot) const { return model_.robot_prefixes[robot]; }
   /// Returns where the wall time of the ticks since the last reset went.
   const TickTimes& tick_times() const { return tick_times_; }
+  /// Each robot's contacts with walls and other robots since the last reset, as a person counts
+  /// them (ContactWatch).
+  const ContactWatch& contacts() const { return contacts_; }
 
   /// Runs at the start of every tick, before physics; scenario scripts live here.
   void SetBoundaryHook(std::function<void()> hook) { boundary_hook_ = std::move(hook); }
@@ -191,6 +195,7 @@ class Kernel {
   int paced_count_ = 0;
   std::vector<std::string> output_dirs_;  // per robot: where its components write
   TickTimes tick_times_;
+  ContactWatch contacts_{0};
   std::string fault_;
   // the run's messages, oldest first; what each component has already been shown of them
   std::deque<StoredMessage> messages_;

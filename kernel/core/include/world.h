@@ -121,10 +121,11 @@ class World {
   /// Returns a robot's pose on the floor.
   Pose2D RobotPose(const mjData& d, int robot = 0) const;
 
-  /// Returns whether any part of a robot touches a wall, post or obstacle.
-  bool RobotTouchesScenery(const mjData& d, int robot = 0) const;
-  /// Returns the lowest-numbered other robot that a robot touches, or -1.
-  int RobotTouchesRobot(const mjData& d, int robot) const;
+  /// Returns whether any part of a robot touches a wall, post or obstacle; `contact`, if given,
+  /// gets the index in d.contact of the first such touch (-1 none).
+  bool RobotTouchesScenery(const mjData& d, int robot = 0, int* contact = nullptr) const;
+  /// Returns the lowest-numbered other robot that a robot touches, or -1; `contact` as above.
+  int RobotTouchesRobot(const mjData& d, int robot, int* contact = nullptr) const;
 
   /// Moves the collision proxies onto the static shapes near each robot. A function of the
   /// robots' positions alone, called before every step, so it keeps runs deterministic.

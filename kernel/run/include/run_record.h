@@ -80,7 +80,9 @@ struct RunRecord {
   bool firmware_maze = false;        ///< maze.png drawn from the firmware's reports
   /// What components measured over the run, by component and name.
   std::map<std::string, std::map<std::string, double>> measurements;
-  std::optional<int64_t> restarts;     ///< all robots' firmware restarts, with a firmware only
+  std::optional<int64_t> restarts;  ///< all robots' firmware restarts, with a firmware only
+  std::vector<Contact> contacts;    ///< every contact as it began, the first ContactWatch::kMaxKept
+  int64_t contacts_not_kept = 0;    ///< contacts beyond those
   std::vector<std::string> warnings;   ///< every warning logged, "component: text"
   std::optional<int64_t> view_frames;  ///< frames a viewer drew of the run
 

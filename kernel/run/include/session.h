@@ -157,7 +157,8 @@ class Session {
   void Assemble();
   void LoadRobots();
   void PlaceRobots(ScenarioWorld& world);
-  void CountContacts();
+  void LogContacts();
+  void CheckReportedCell(int robot, int x, int y);
   void DrawFirmwareMaze();
 
   // a robot of the run, as loaded, and what happened to it
@@ -168,12 +169,9 @@ class Session {
     RobotSpec spec;
     std::string name;  // as sim.robots() and the result give it
     std::optional<Pose2D> start;
-    bool touching_wall = false;
-    int touching_robot = -1;
-    int64_t wall_contacts = 0;
-    int64_t robot_contacts = 0;
     int64_t restarts = 0;  // times its firmware started over inside the run (the link's reports)
     DriverRecord driver;
+    bool lost_reported = false;  // its firmware's cell and its own were seen to differ
   };
   std::vector<Robot> robots_;
 
@@ -196,6 +194,7 @@ class Session {
   std::unique_ptr<RunPictures> pictures_;
   std::unique_ptr<RealTimePacer> pacer_;
   std::unique_ptr<ConsoleProgress> progress_;
+  size_t logged_contacts_ = 0;
   bool pace_ = false;
   std::string fault_;
   std::string interrupted_;  // by which signal, when

@@ -59,13 +59,15 @@ float kSensorSide = 0.048f;  // m, the side sensors off the centre line (yawed 4
 float kWheelBase = 0.096f;   // m
 float kWheelRadius = 0.016f;
 const float kCountsPerTurn = 358.32f;
-float kAccel = 1.6f;         // m/s^2, along the path (traction, above)
-float kLateral = 1.8f;       // m/s^2, v^2 kappa in a curve
-float kTop = 0.9f;           // m/s, on long straights
-const float kYawAccel = 30;  // rad/s^2, entering and leaving a curve
-float kSearch = 0.40f;       // m/s, exploring straights
-float kSideWall = 0.10f;     // m, a 45-degree reading below this is a side wall
-float kFrontWall = 0.22f;    // m, a front reading below this while deciding: a wall ahead
+float kAccel = 1.6f;            // m/s^2, along the path (traction, above), exploring
+float kAccelRun = 2.0f;         // m/s^2, the same in the speed run
+float kLateral = 1.8f;          // m/s^2, v^2 kappa in a curve
+float kTop = 1.0f;              // m/s, on long straights
+const float kYawAccel = 30;     // rad/s^2, entering and leaving a curve, exploring
+const float kYawAccelRun = 30;  // rad/s^2, the same in the speed run
+float kSearch = 0.40f;          // m/s, exploring straights
+float kSideWall = 0.10f;        // m, a 45-degree reading below this is a side wall
+float kFrontWall = 0.22f;       // m, a front reading below this while deciding: a wall ahead
 float kSenseFrom = 0.06f, kDecideAt = 0.015f;  // m before a cell's edge
 float kTurnStraight = 0.03f;                   // m, the straights around an exploring curve
 // the quarter-turn curve with curvature 1: the ramps' length (20 degrees each), the whole
@@ -151,9 +153,9 @@ float curvature(float s, float d) {
 // the speed at which a quarter turn of displacement d keeps to kLateral, and its ramps' yaw
 // acceleration (v^2 / (2 * ramp angle * r^2)) to kYawAccel: 30 rad/s^2 takes 0.1 N of a wheel's
 // 0.25 N of grip, for the robot's 3.3e-4 kg m^2 about the axle's middle (plate, wheels, caster)
-float curveSpeed(float d) {
+float curveSpeed(float d, float yawAccel) {
   const float r = d / kTurnShape;
-  return sqrtf(fminf(kLateral, kYawAccel * 2 * kRampAngle * r) * r);
+  return sqrtf(fminf(kLateral, yawAccel * 2 * kRampAngle * r) * r);
 }
 
 // the exact pose where the segment at the head of the queue ends
@@ -192,9 +194,10 @@ void advanceReference(float dt) {
   if (g.kind == Kind::Straight || g.kind == Kind::Curve) {
     const float length = g.kind == Kind::Straight ? g.length : kTurnLength * g.length / kTurnShape;
     const float left = length - refS;
-    float v = g.kind == Kind::Curve ? refV : fminf(refV + kAccel * dt, g.vMax);
+    const float accel = racing ? kAccelRun : kAccel;
+    float v = g.kind == Kind::Curve ? refV : fminf(refV + accel * dt, g.vMax);
     if (g.kind == Kind::Straight) {
-      v = fminf(v, sqrtf(g.vExit * g.vExit + 2 * kAccel * fmaxf(left, 0)));
+      v = fminf(v, sqrtf(g.vExit * g.vExit + 2 * accel * fmaxf(left, 0)));
       // creep the last millimetres to a stop rather than stall short of the end
       if (v < 0.02f * kScale) v = 0.02f * kScale;
     }
@@ -372,7 +375,7 @@ void planSpeedRun() {
     return;
   }
   const float d90 = kCell / 2;
-  const float vTurn = curveSpeed(d90);
+  const float vTurn = curveSpeed(d90, kYawAccelRun);
   float straight = 0;
   bool first = true;
   for (;;) {
@@ -447,7 +450,7 @@ void decide() {
     const Direction h1 = turned(heading, a);
     const Action b = paths.nextAction(x, y, h1);
     if (b == Action::Forward) {
-      const float vTurn = curveSpeed(kCell / 2 - kTurnStraight);
+      const float vTurn = curveSpeed(kCell / 2 - kTurnStraight, kYawAccel);
       push(Kind::Straight, kTurnStraight, kSearch, vTurn);
       push(Kind::Curve, kCell / 2 - kTurnStraight, vTurn, vTurn, a == Action::TurnLeft ? 1 : -1);
       push(Kind::Straight, kTurnStraight, kSearch, kSearch, 0, true);
@@ -485,9 +488,10 @@ void setupMaze() {
     robot.log("no maze from the simulator: a classic 16 x 16 maze, centre goal");
   }
   robot.reportMazeSize(maze.width(), maze.height());
-  float* lengths[] = {&kCell,        &kWallFace,  &kSensorAhead, &kSensorSide, &kWheelBase,
-                      &kWheelRadius, &kAccel,     &kLateral,     &kTop,        &kSearch,
-                      &kSideWall,    &kFrontWall, &kSenseFrom,   &kDecideAt,   &kTurnStraight};
+  float* lengths[] = {&kCell,      &kWallFace,    &kSensorAhead, &kSensorSide,
+                      &kWheelBase, &kWheelRadius, &kAccel,       &kAccelRun,
+                      &kLateral,   &kTop,         &kSearch,      &kSideWall,
+                      &kFrontWall, &kSenseFrom,   &kDecideAt,    &kTurnStraight};
   for (float* l : lengths) *l *= kScale;
   // a wheel's command per m/s and per m of travel: the same motor on a smaller wheel
   kSpeedFF /= kScale;

@@ -98,6 +98,7 @@ uint8_t head = 0, tail = 0;
 
 // the reference: where the robot should be now, and along which segment
 float refX, refY, refTheta, refV = 0, refW = 0, refS = 0, endX, endY, endTheta;
+float spin = 0;  // rad/s, a pivot's speed
 bool segmentStarted = false;
 // the estimate
 float estX, estY, estTheta;
@@ -188,6 +189,7 @@ void advanceReference(float dt) {
     segmentEnd(g);
     segmentStarted = true;
     refS = 0;
+    spin = 0;
   }
   bool finished = false;
   float carry = 0;
@@ -222,8 +224,9 @@ void advanceReference(float dt) {
     const float total = fabsf(g.turn) * PI / 2;
     const float alpha = 40, wMax = 10;  // rad/s^2 and rad/s: the wheels at 0.48 m/s, 1.9 m/s^2
     const float left = total - refS;
-    float w = fminf(fminf(fabsf(refW) + alpha * dt, wMax), sqrtf(2 * alpha * fmaxf(left, 0)));
+    float w = fminf(fminf(spin + alpha * dt, wMax), sqrtf(2 * alpha * fmaxf(left, 0)));
     if (w < 0.2f) w = 0.2f;
+    spin = w;
     refV = 0;
     refS += w * dt;
     refW = (g.turn > 0 ? 1 : -1) * w;
@@ -283,7 +286,7 @@ void correctEstimate() {
                       kSensorSide * cosf(e);
     if (d < kSideWall && fabsf(off - (across - centre)) < 0.02f * kScale) {
       shiftAcross += 0.15f * (off - (across - centre));
-      shiftTheta += 0.15f * (off - (across - centre)) / (0.1f * kScale);
+      shiftTheta += 0.3f * (off - (across - centre)) / (0.1f * kScale);
     }
   }
   if (robot.rightSensor().hasNewData()) {
@@ -292,7 +295,7 @@ void correctEstimate() {
                       kSensorSide * cosf(e);
     if (d < kSideWall && fabsf(off - (across - centre)) < 0.02f * kScale) {
       shiftAcross += 0.15f * (off - (across - centre));
-      shiftTheta += 0.15f * (off - (across - centre)) / (0.1f * kScale);
+      shiftTheta += 0.3f * (off - (across - centre)) / (0.1f * kScale);
     }
   }
   if (robot.frontSensor().hasNewData()) {

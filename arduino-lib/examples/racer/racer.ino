@@ -98,7 +98,8 @@ uint8_t head = 0, tail = 0;
 
 // the reference: where the robot should be now, and along which segment
 float refX, refY, refTheta, refV = 0, refW = 0, refS = 0, endX, endY, endTheta;
-float spin = 0;  // rad/s, a pivot's speed
+float spin = 0;        // rad/s, a pivot's speed
+float startX, startY;  // where the segment began
 bool segmentStarted = false;
 // the estimate
 float estX, estY, estTheta;
@@ -188,8 +189,23 @@ void advanceReference(float dt) {
   if (!segmentStarted) {
     segmentEnd(g);
     segmentStarted = true;
+    startX = refX;
+    startY = refY;
     refS = 0;
     spin = 0;
+  }
+  if (g.kind == Kind::Straight && g.vExit > 0) {
+    // along a straight the reference waits for the robot, or catches it up: it goes on from
+    // where the estimate is along the line, so that a curve begins where the robot is, not
+    // where the reference has got to (the wheels lag it when braking hard); a straight that
+    // ends at rest leaves the reference ahead, which then pulls the robot to rest where it is
+    const float c = cosf(refTheta), s = sinf(refTheta);
+    const float along = (estX - startX) * c + (estY - startY) * s;
+    if (along > refS - 0.02f * kScale && along < g.length) {
+      refS = along;
+      refX = startX + along * c;
+      refY = startY + along * s;
+    }
   }
   bool finished = false;
   float carry = 0;
@@ -300,10 +316,10 @@ void correctEstimate() {
   }
   if (robot.frontSensor().hasNewData()) {
     const float f = robot.frontDistance();
-    if (f > 0.035f * kScale && f < 0.2f * kScale) {
+    if (f > 0.035f * kScale && f < 0.25f * kScale) {
       const float seen = along + (f + kSensorAhead) * cosf(e);
       const float face = roundf(seen / kCell) * kCell - (kCell / 2 - kWallFace);
-      if (fabsf(seen - face) < 0.02f * kScale) shiftAlong = 0.5f * (face - seen);
+      if (fabsf(seen - face) < 0.04f * kScale) shiftAlong = 0.5f * (face - seen);
     }
   }
   // a heading that is off shows as a drift across: turn the estimate by a little of it

@@ -68,6 +68,7 @@ const float kYawAccelRun = 30;  // rad/s^2, the same in the speed run
 float kSearch = 0.40f;          // m/s, exploring straights
 float kSideWall = 0.10f;        // m, a 45-degree reading below this is a side wall
 float kFrontWall = 0.22f;       // m, a front reading below this while deciding: a wall ahead
+float kRange = 1.19f;           // m, a reading nearer than this saw something
 float kSenseFrom = 0.06f, kDecideAt = 0.015f;  // m before a cell's edge
 float kTurnStraight = 0.03f;                   // m, the straights around an exploring curve
 // the quarter-turn curve with curvature 1: the ramps' length (20 degrees each), the whole
@@ -316,7 +317,7 @@ void correctEstimate() {
   }
   if (robot.frontSensor().hasNewData()) {
     const float f = robot.frontDistance();
-    if (f > 0.035f * kScale && f < 0.25f * kScale) {
+    if (f > 0.035f * kScale && f < fminf(0.25f * kScale, kRange)) {
       const float seen = along + (f + kSensorAhead) * cosf(e);
       const float face = roundf(seen / kCell) * kCell - (kCell / 2 - kWallFace);
       if (fabsf(seen - face) < 0.04f * kScale) shiftAlong = 0.5f * (face - seen);
@@ -512,6 +513,10 @@ void setupMaze() {
                       &kLateral,   &kTop,         &kSearch,      &kSideWall,
                       &kFrontWall, &kSenseFrom,   &kDecideAt,    &kTurnStraight};
   for (float* l : lengths) *l *= kScale;
+  // the half-size robot's short-range sensors read 0.1 m when they see nothing
+  // (robots/unimouse-half.yaml): nearer than that a reading is a wall
+  if (kScale < 1) kRange = 0.095f;
+  kFrontWall = fminf(kFrontWall, kRange);
   // a wheel's command per m/s and per m of travel: the same motor on a smaller wheel
   kSpeedFF /= kScale;
   kWheelP /= kScale;

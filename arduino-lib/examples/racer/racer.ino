@@ -535,10 +535,15 @@ void setup() {
 
 void loop() {
   robot.update();
+  // the loops run once a millisecond: on the PC each loop() is one 1 ms step; a board without
+  // lock-step loops faster, and its encoder frames come once a millisecond
   const uint32_t now = micros();
+  if (mode != Mode::AwaitMaze && now - lastMicros < 1000) return;
   float dt = (now - lastMicros) * 1e-6f;
   lastMicros = now;
-  if (dt <= 0 || dt > 0.02f) dt = 0.001f;
+  // a board that spent a while planning (a flood fill takes some 20 ms on a Mega 2560) catches up
+  if (dt <= 0) dt = 0.001f;
+  if (dt > 0.05f) dt = 0.05f;
   switch (mode) {
     case Mode::AwaitMaze:
       if (!robot.maze().received() && millis() < 1000) return;

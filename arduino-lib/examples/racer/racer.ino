@@ -64,6 +64,7 @@ float kAccelRun = 2.0f;         // m/s^2, the same in the speed run
 float kLateral = 1.8f;          // m/s^2, v^2 kappa in a curve
 float kTop = 1.0f;              // m/s, on long straights
 const float kYawAccel = 30;     // rad/s^2, entering and leaving a curve, exploring
+const float kSlip = 0.03f;      // s^2/m, the tyres' slip per m/s^2 (below)
 const float kYawAccelRun = 30;  // rad/s^2, the same in the speed run
 float kSearch = 0.40f;          // m/s, exploring straights
 float kSideWall = 0.10f;        // m, a 45-degree reading below this is a side wall
@@ -100,6 +101,7 @@ uint8_t head = 0, tail = 0;
 // the reference: where the robot should be now, and along which segment
 float refX, refY, refTheta, refV = 0, refW = 0, refS = 0, endX, endY, endTheta;
 float spin = 0;        // rad/s, a pivot's speed
+float refA = 0;        // m/s^2, along a straight
 float startX, startY;  // where the segment began
 bool segmentStarted = false;
 // the estimate
@@ -179,8 +181,8 @@ void segmentEnd(const Segment& g) {
   }
 }
 
-// advances the reference by dt along the queue; refV and refW are its speeds
-void advanceReference(float dt) {
+// advances the reference by dt along the segments; refV and refW are its speeds
+void advanceSegments(float dt) {
   refW = 0;
   if (queueEmpty()) {
     refV = 0;
@@ -265,6 +267,14 @@ void advanceReference(float dt) {
   }
 }
 
+// the same, and the reference's acceleration along a straight
+void advanceReference(float dt) {
+  const float before = refV;
+  advanceSegments(dt);
+  refA = queueEmpty() || queue[head].kind != Kind::Straight ? 0 : (refV - before) / dt;
+  refA = fmaxf(fminf(refA, 3), -3);  // a step of the profile is no acceleration of the robot
+}
+
 // the encoders (and the gyro) move the estimate
 void updateEstimate(float dt) {
   const int32_t l = robot.leftEncoderTotal(), r = robot.rightEncoderTotal();
@@ -277,7 +287,10 @@ void updateEstimate(float dt) {
   // the wheels' speeds, smoothed over about 8 ms: one count a step is 0.28 m/s
   speedL += 0.12f * (dl / dt - speedL);
   speedR += 0.12f * (dr / dt - speedR);
-  const float ds = (dl + dr) / 2;
+  // the tyres slip in proportion to the force they pass: measured on this robot, the wheels
+  // turn 3 % faster than the ground goes by for each m/s^2 of acceleration (and slower when
+  // braking), so the travel is the wheels' divided by 1 + 0.03 a
+  const float ds = (dl + dr) / 2 / (1 + kSlip * refA);
   const float dtheta = hasGyro ? (robot.gyroZ() - gyroBias) * dt : (dr - dl) / kWheelBase;
   const float mid = estTheta + dtheta / 2;
   estX += ds * cosf(mid);
@@ -405,12 +418,24 @@ void planSpeedRun() {
       straight += first ? kCell / 2 : kCell;
       first = false;
     } else {
-      const Direction t = turned(d, a);
-      if (straight > 0) push(Kind::Straight, straight, kTop, vTurn);
-      push(Kind::Curve, d90, vTurn, vTurn, a == Action::TurnLeft ? 1 : -1);
-      straight = 0;
-      d = t;
+      const int8_t side = a == Action::TurnLeft ? 1 : -1;
+      const bool turnBefore = straight == 0;
+      d = turned(d, a);
       if (solver.bestAction(x, y, d) != Action::Forward) break;  // never on a best path
+      const Action after = solver.bestAction(static_cast<uint8_t>(x + stepX(d)),
+                                             static_cast<uint8_t>(y + stepY(d)), d);
+      if (turnBefore || after == Action::TurnLeft || after == Action::TurnRight) {
+        // a staircase of turns has no straight in which to correct a curve's error, so its
+        // curves are the explorer's, with their short straights, at its speed
+        const float v = curveSpeed(kCell / 2 - kTurnStraight, kYawAccel);
+        push(Kind::Straight, straight + kTurnStraight, kTop, v);
+        push(Kind::Curve, kCell / 2 - kTurnStraight, v, v, side);
+        straight = kTurnStraight;
+      } else {
+        if (straight > 0) push(Kind::Straight, straight, kTop, vTurn);
+        push(Kind::Curve, d90, vTurn, vTurn, side);
+        straight = 0;
+      }
     }
     x = static_cast<uint8_t>(x + stepX(d));
     y = static_cast<uint8_t>(y + stepY(d));
@@ -424,6 +449,20 @@ void planSpeedRun() {
     room += kCell;
   }
   push(Kind::Straight, straight + room, kTop, 0);
+  // backwards: a curve runs at the speed it is entered at, so each one is slowed to what the
+  // straight after it can brake from for the next
+  float next = 0;
+  for (uint8_t i = tail; i != head;) {
+    i = static_cast<uint8_t>((i + kQueue - 1) % kQueue);
+    Segment& g = queue[i];
+    if (g.kind == Kind::Straight) {
+      g.vExit = fminf(g.vExit, next);
+      next = fminf(g.vMax, sqrtf(g.vExit * g.vExit + 2 * kAccelRun * g.length));
+    } else {
+      g.vMax = g.vExit = fminf(g.vMax, next);
+      next = g.vMax;
+    }
+  }
   racing = true;
 }
 

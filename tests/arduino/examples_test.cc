@@ -191,6 +191,34 @@ TEST(ArduinoExamplesTest, RacerWinsClassicContestsWithoutTouchingAWallInItsBestR
   }
 }
 
+// the same racer image on the two other robots: the half-size one in a half-size maze (every
+// length and speed scaled with the cell the simulator tells it), and the gyro one with the gyro's
+// frame in the link's table (its heading then integrates the gyro); neither touches a wall
+TEST(ArduinoExamplesTest, RacerDrivesTheHalfSizeAndTheGyroRobotsWithoutTouchingAWall) {
+  const ExampleRun half = RunExample("racer",
+                                     "micromouse --robot unimouse-half --maze UK-techfest-2022-a "
+                                     "--set maze_class=half --set end_on_log=done",
+                                     "unimouse_example_racer_half");
+  ASSERT_EQ(half.outcome.exit_code, 0) << half.outcome.output;
+  EXPECT_EQ(half.result["scenario"]["status"], "passed") << half.result["scenario"]["reason"];
+  // the optimum of `unimouse maze solve`, as the micromouse example's test checks
+  EXPECT_EQ(half.result["scenario"]["scores"]["best_run_path_cost"], 49);
+  EXPECT_LT(half.result["scenario"]["scores"]["best_run_s"].get<double>(), 14.0);  // 13.602 s
+  EXPECT_EQ(half.result["scenario"]["scores"]["wall_contacts"], 0);
+
+  const ExampleRun gyro = RunExample(
+      "racer",
+      "micromouse --robot unimouse-gyro --set end_on_log=done --link-set \"send=3 "
+      "left.encoder_counts i16; 4 right.encoder_counts i16; 0 tof.left_m tof 0.03; 1 tof.right_m "
+      "tof 0.03; 2 tof.front_m tof 0.03; 34 imu.gyro_z_counts i16\"",
+      "unimouse_example_racer_gyro");
+  ASSERT_EQ(gyro.outcome.exit_code, 0) << gyro.outcome.output;
+  EXPECT_EQ(gyro.result["scenario"]["status"], "passed") << gyro.result["scenario"]["reason"];
+  EXPECT_EQ(gyro.result["scenario"]["scores"]["best_run_path_cost"], 108);
+  EXPECT_LT(gyro.result["scenario"]["scores"]["best_run_s"].get<double>(), 27.5);  // 27.110 s
+  EXPECT_EQ(gyro.result["scenario"]["scores"]["wall_contacts"], 0);
+}
+
 // UK Techfest 2022: a 16 x 16 half-size maze (said so with maze_class), its 2 x 2 goal off the
 // centre; the half-size robot; the firmware told 90 mm cells and the goal by the simulator. The
 // whole contest, as on japan2018: the first run is the first trip of Adachi's method, which the

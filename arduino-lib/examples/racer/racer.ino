@@ -12,12 +12,14 @@
 //    holds, and ramps down (a clothoid-arc-clothoid), from one cell edge to the next, at a
 //    constant speed whose lateral acceleration v^2 kappa stays under kLateral. Exploring, it
 //    has short straights before and after, inside the cell, so that the side sensors look
-//    straight ahead before the next decision; in the speed run it fills the cell.
+//    straight ahead before the next decision; in the speed run it fills the cell, except in a
+//    staircase of turns, where the explorer's curve leaves a little straight for corrections.
 //  - Exploring never stops except to turn round or to finish: it decides what to do in a cell
 //    1.5 cm before entering it, on the walls its sensors saw while approaching.
 //  - The pose (eq. 3.29-3.31 from the encoders, the heading from the gyro when the robot sends
 //    it) is corrected by side walls (the distance from the corridor's centre line) and by a
-//    wall ahead (the distance along it).
+//    wall ahead (the distance along it). The tyres slip in proportion to the force they pass,
+//    which the estimate takes off the wheels' travel (kSlip, measured on this robot).
 //
 // The limits come from robots/unimouse.yaml:
 //  - traction: the wheels' friction is 0.35 and they carry 0.147 of the robot's 0.157 kg (the
@@ -25,7 +27,7 @@
 //    0.35 * 9.81 * 0.147 / 0.157 = 3.2 m/s^2, shared between speeding up and turning; kAccel and
 //    kLateral take about half of it each, leaving room for the controller's corrections;
 //  - speed: the 30:1 motor (kt 0.079 N m/A at the wheel, 16.7 ohm) turns at 6 V / kt = 76 rad/s
-//    without load, 1.21 m/s on the 16 mm wheel; kTop keeps a quarter of the voltage for control;
+//    without load, 1.21 m/s on the 16 mm wheel; kTop keeps about a sixth of it for control;
 //  - feedforward: a wheel's command for a speed is 1023 / 1.21 per m/s (back EMF), and for an
 //    acceleration its share of the mass (0.079 kg) times the wheel radius over the torque per
 //    command (kt / R * 6 V / 1023): 45 per m/s^2.
@@ -134,8 +136,6 @@ float wrap(float a) {
   while (a <= -PI) a += 2 * PI;
   return a;
 }
-
-float cellCentre(uint8_t i) { return (i + 0.5f) * kCell; }
 
 void push(Kind kind, float length, float vMax, float vExit, int8_t turn = 0, bool sense = false) {
   if (static_cast<uint8_t>(tail + 1) % kQueue == head) return;  // full: never with these plans

@@ -106,6 +106,119 @@ TEST(ArduinoExamplesTest, MicromouseExploresJapan2018AndSpeedRunsThePathOfCost10
   EXPECT_EQ(r.result["robot_pose"], again.result["robot_pose"]);
 }
 
+// the racer on the main job's contest: the same optimal path as the micromouse example, driven
+// on velocity profiles and curves; its best run's time is the simulator's, from leaving the start
+// cell to entering the goal, and its wall contacts the simulator's count during that run
+TEST(ArduinoExamplesTest, RacerSpeedRunsJapan2018InUnder28SecondsWithoutTouchingAWall) {
+  const std::string out =
+      (std::filesystem::temp_directory_path() / "unimouse_example_racer").string();
+  const ExampleRun r =
+      RunExample("racer", "micromouse --set end_on_log=done", "unimouse_example_racer");
+  ASSERT_EQ(r.outcome.exit_code, 0) << r.outcome.output;
+  const nlohmann::json& scenario = r.result["scenario"];
+  EXPECT_EQ(scenario["status"], "passed") << scenario["reason"];
+  const double best_s = scenario["scores"]["best_run_s"].get<double>();
+  EXPECT_LT(best_s, 27.5);  // 27.219 s when this was written
+  EXPECT_EQ(scenario["scores"]["best_run_path_cost"], 108);
+  // the best run among the records, and no wall touched during it
+  int best_runs = 0;
+  for (const nlohmann::json& run : scenario["records"]["runs"]) {
+    if (run["time_s"].get<double>() != best_s) continue;
+    ++best_runs;
+    EXPECT_EQ(run["wall_contacts"], 0) << run.dump();
+  }
+  EXPECT_EQ(best_runs, 1) << scenario.dump();
+  // nor in any other run, nor between runs
+  EXPECT_EQ(scenario["scores"]["wall_contacts"], 0);
+  // the micromouse example's contest takes 442 s
+  EXPECT_LT(scenario["scores"]["time_used_s"].get<double>(), 260);
+  const std::string log = ReadTextFile(out + "/log.txt");
+  EXPECT_NE(log.find("speed run 1: path cost 108"), std::string::npos) << log;
+  // lock-step: the same contest again
+  const ExampleRun again =
+      RunExample("racer", "micromouse --set end_on_log=done", "unimouse_example_racer2");
+  EXPECT_EQ(scenario, again.result["scenario"]);
+  EXPECT_EQ(r.result["robot_pose"], again.result["robot_pose"]);
+}
+
+// the racer on classic mazes beyond the one it was designed on: two seeded draws of six from
+// the collection (Python's random.seed(30) and random.seed(31), random.sample of the sorted file
+// names). The first draw chose its speed run's acceleration (at 2.0 m/s^2 map-t1's touched a
+// wall); the second it had never run. Every contest passes, every best run is without a wall
+// contact, and every contest is, except one touch while exploring uknov2010f; the bounds are the
+// best runs when this was written, rounded up
+TEST(ArduinoExamplesTest, RacerWinsClassicContestsWithoutTouchingAWallInItsBestRun) {
+  const std::string shared = testing::SharedMazesDir();
+  if (shared.empty()) {
+    GTEST_SKIP() << "the maze collection (../shared/mazes) is not beside the project";
+  }
+  struct Case {
+    const char* maze;
+    double best_run_bound_s;
+    bool no_contact_at_all;
+  };
+  const Case cases[] = {{"minos19", 23.7, true},
+                        {"alljapan-008-1987-pre", 21.6, true},
+                        {"japan9p", 23.6, true},
+                        {"map-t1", 31.0, true},
+                        {"alljapan-016-1995-exp-fin", 21.2, true},
+                        {"taiwan2023cef", 35.2, true},
+                        {"AAMC22Maze", 17.1, true},
+                        {"uknov2010f", 19.8, false},
+                        {"c00d3f", 12.4, true},
+                        {"taiwan2015p", 14.6, true},
+                        {"empty", 4.6, true},
+                        {"alljapan-014-1993-exp-pre", 16.0, true}};
+  for (const Case& c : cases) {
+    const ExampleRun r = RunExample("racer",
+                                    std::string("micromouse --set end_on_log=done --maze ") +
+                                        shared + "/classic/" + c.maze + ".txt",
+                                    std::string("unimouse_example_racer_") + c.maze);
+    ASSERT_EQ(r.outcome.exit_code, 0) << c.maze << ": " << r.outcome.output;
+    const nlohmann::json& scenario = r.result["scenario"];
+    EXPECT_EQ(scenario["status"], "passed") << c.maze << ": " << scenario["reason"];
+    const double best_s = scenario["scores"]["best_run_s"].get<double>();
+    EXPECT_LT(best_s, c.best_run_bound_s) << c.maze;
+    for (const nlohmann::json& run : scenario["records"]["runs"]) {
+      if (run["time_s"].get<double>() == best_s) {
+        EXPECT_EQ(run["wall_contacts"], 0) << c.maze;
+      }
+    }
+    if (c.no_contact_at_all) {
+      EXPECT_EQ(scenario["scores"]["wall_contacts"], 0) << c.maze;
+    }
+    EXPECT_LT(scenario["scores"]["time_used_s"].get<double>(), 442) << c.maze;
+  }
+}
+
+// the same racer image on the two other robots: the half-size one in a half-size maze (every
+// length and speed scaled with the cell the simulator tells it), and the gyro one with the gyro's
+// frame in the link's table (its heading then integrates the gyro); neither touches a wall
+TEST(ArduinoExamplesTest, RacerDrivesTheHalfSizeAndTheGyroRobotsWithoutTouchingAWall) {
+  const ExampleRun half = RunExample("racer",
+                                     "micromouse --robot unimouse-half --maze UK-techfest-2022-a "
+                                     "--set maze_class=half --set end_on_log=done",
+                                     "unimouse_example_racer_half");
+  ASSERT_EQ(half.outcome.exit_code, 0) << half.outcome.output;
+  EXPECT_EQ(half.result["scenario"]["status"], "passed") << half.result["scenario"]["reason"];
+  // the optimum of `unimouse maze solve`, as the micromouse example's test checks
+  EXPECT_EQ(half.result["scenario"]["scores"]["best_run_path_cost"], 49);
+  EXPECT_LT(half.result["scenario"]["scores"]["best_run_s"].get<double>(), 14.0);  // 13.602 s
+  EXPECT_EQ(half.result["scenario"]["scores"]["wall_contacts"], 0);
+
+  const ExampleRun gyro = RunExample(
+      "racer",
+      "micromouse --robot unimouse-gyro --set end_on_log=done --link-set \"send=3 "
+      "left.encoder_counts i16; 4 right.encoder_counts i16; 0 tof.left_m tof 0.03; 1 tof.right_m "
+      "tof 0.03; 2 tof.front_m tof 0.03; 34 imu.gyro_z_counts i16\"",
+      "unimouse_example_racer_gyro");
+  ASSERT_EQ(gyro.outcome.exit_code, 0) << gyro.outcome.output;
+  EXPECT_EQ(gyro.result["scenario"]["status"], "passed") << gyro.result["scenario"]["reason"];
+  EXPECT_EQ(gyro.result["scenario"]["scores"]["best_run_path_cost"], 108);
+  EXPECT_LT(gyro.result["scenario"]["scores"]["best_run_s"].get<double>(), 27.5);  // 27.110 s
+  EXPECT_EQ(gyro.result["scenario"]["scores"]["wall_contacts"], 0);
+}
+
 // UK Techfest 2022: a 16 x 16 half-size maze (said so with maze_class), its 2 x 2 goal off the
 // centre; the half-size robot; the firmware told 90 mm cells and the goal by the simulator. The
 // whole contest, as on japan2018: the first run is the first trip of Adachi's method, which the

@@ -41,7 +41,7 @@ TEST(ArduinoLibraryLayoutTest, PropertiesJsonHeaderAndExamplesAgree) {
     EXPECT_TRUE(std::filesystem::exists(dir.path() / (name + ".ino"))) << name;
     ++examples;
   }
-  EXPECT_EQ(examples, 6);
+  EXPECT_EQ(examples, 7);
 }
 
 }  // namespace

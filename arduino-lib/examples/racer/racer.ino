@@ -1,0 +1,643 @@
+// SPDX-License-Identifier: MIT
+// A fast micromouse: the contest of the micromouse example (explore by Adachi method 0, then a
+// speed run), driven as competition mice drive. Read micromouse.ino first; this one adds:
+//  - Motion as a queue of segments (straight, curve, pivot, pause) laid out on the maze's exact
+//    geometry. A reference pose runs along them on a velocity profile; a tracking controller
+//    steers the estimated pose onto the reference (lateral and heading errors turn into angular
+//    velocity, the error along the path into speed), and each wheel follows its own reference
+//    travel under feedforward (the motor model) and a PD loop on the encoder.
+//  - Trapezoidal profiles: accelerate at kAccel, cruise, and brake so as to reach each segment's
+//    exit speed exactly at its end (v = sqrt(v_exit^2 + 2 a d) for the distance d left).
+//  - Smooth turns: a quarter turn is a curve whose curvature ramps linearly over 20 degrees,
+//    holds, and ramps down (a clothoid-arc-clothoid), from one cell edge to the next, at a
+//    constant speed whose lateral acceleration v^2 kappa stays under kLateral. Exploring, it
+//    has short straights before and after, inside the cell, so that the side sensors look
+//    straight ahead before the next decision; in the speed run it fills the cell, except in a
+//    staircase of turns, where the explorer's curve leaves a little straight for corrections.
+//  - Exploring never stops except to turn round or to finish: it decides what to do in a cell
+//    1.5 cm before entering it, on the walls its sensors saw while approaching.
+//  - The pose (eq. 3.29-3.31 from the encoders, the heading from the gyro when the robot sends
+//    it) is corrected by side walls (the distance from the corridor's centre line) and by a
+//    wall ahead (the distance along it). The tyres slip in proportion to the force they pass,
+//    which the estimate takes off the wheels' travel (kSlip, measured on this robot).
+//
+// The limits come from robots/unimouse.yaml:
+//  - traction: the wheels' friction is 0.35 and they carry 0.147 of the robot's 0.157 kg (the
+//    plate is centred on the axle; the caster carries its own 10 g), so the tyres give at most
+//    0.35 * 9.81 * 0.147 / 0.157 = 3.2 m/s^2, shared between speeding up and turning; kAccel and
+//    kLateral take about half of it each, leaving room for the controller's corrections;
+//  - speed: the 30:1 motor (kt 0.079 N m/A at the wheel, 16.7 ohm) turns at 6 V / kt = 76 rad/s
+//    without load, 1.21 m/s on the 16 mm wheel; kTop keeps about a sixth of it for control;
+//  - feedforward: a wheel's command for a speed is 1023 / 1.21 per m/s (back EMF), and for an
+//    acceleration its share of the mass (0.079 kg) times the wheel radius over the torque per
+//    command (kt / R * 6 V / 1023): 45 per m/s^2.
+// In a half-size maze every length scales with the cell, and so do the speeds (the half-size
+// robot has the same motors on wheels of half the radius).
+//
+// It logs the speed run's path cost and "done"; `--set end_on_log=done` ends the contest there.
+#include <UnimouseSim.h>
+#include <stdio.h>
+
+#ifndef UNIMOUSE_MAZE_MAX_SIDE
+#ifdef UNIMOUSE_PC_CORE
+#define UNIMOUSE_MAZE_MAX_SIDE 32
+#else
+#define UNIMOUSE_MAZE_MAX_SIDE 16
+#endif
+#endif
+const uint8_t kMaxSide = UNIMOUSE_MAZE_MAX_SIDE;
+
+SimulationRobot robot(Serial);
+Maze<kMaxSide, kMaxSide> maze;
+FFSolver<kMaxSide, kMaxSide> solver(maze);
+PathManager<kMaxSide, kMaxSide> paths(solver, 0, 0, Direction::North, 7, 7, 8, 8);
+
+// the classic maze and robot (scaled by setupMaze() for a half-size maze)
+float kScale = 1;
+float kCell = 0.18f;         // m
+float kWallFace = 0.084f;    // m, from a corridor's centre line to a wall's face
+float kSensorAhead = 0.06f;  // m, the sensors ahead of the axle
+float kSensorSide = 0.048f;  // m, the side sensors off the centre line (yawed 45 degrees)
+float kWheelBase = 0.096f;   // m
+float kWheelRadius = 0.016f;
+const float kCountsPerTurn = 358.32f;
+float kAccel = 1.6f;            // m/s^2, along the path (traction, above), exploring
+float kAccelRun = 1.8f;         // m/s^2, the same in the speed run
+float kLateral = 1.8f;          // m/s^2, v^2 kappa in a curve
+float kTop = 1.0f;              // m/s, on long straights
+const float kYawAccel = 30;     // rad/s^2, entering and leaving a curve, exploring
+const float kSlip = 0.03f;      // s^2/m, the tyres' slip per m/s^2 (below)
+const float kYawAccelRun = 30;  // rad/s^2, the same in the speed run
+float kSearch = 0.40f;          // m/s, exploring straights
+float kSideWall = 0.10f;        // m, a 45-degree reading below this is a side wall
+float kFrontWall = 0.22f;       // m, a front reading below this while deciding: a wall ahead
+float kRange = 1.19f;           // m, a reading nearer than this saw something
+float kSenseFrom = 0.06f, kDecideAt = 0.015f;  // m before a cell's edge
+float kTurnStraight = 0.03f;                   // m, the straights around an exploring curve
+// the quarter-turn curve with curvature 1: the ramps' length (20 degrees each), the whole
+// length, and the displacement along and across (equal); a curve of displacement D has a peak
+// curvature kTurnShape / D
+const float kRampAngle = 0.349066f;
+const float kTurnShape = 1.367867f;
+const float kTurnLength = 2.268928f;
+// the controllers: wheel travel (command per m and per m/s) and tracking (1/s, 1/m^2)
+float kWheelP = 30000, kWheelD = 800, kSpeedFF = 845, kAccelFF = 45;
+const float kTrackAlong = 6, kTrackSide = 250, kTrackHeading = 14, kTrackHeadingRest = 6;
+
+enum class Kind : uint8_t { Straight, Curve, Pivot, Pause };
+struct Segment {
+  Kind kind;
+  int8_t turn;   // curve and pivot: +1 left, -1 right (pivot: quarter turns, signed)
+  bool sense;    // a straight that ends at the edge of the cell decided on at its end
+  float length;  // m; a curve: its displacement; a pause: s
+  float vMax, vExit;
+};
+#ifdef UNIMOUSE_PC_CORE
+const uint8_t kQueue = 128;
+#else
+const uint8_t kQueue = 64;  // a 16 x 16 speed run needs two a turn
+#endif
+Segment queue[kQueue];
+uint8_t head = 0, tail = 0;
+
+// the reference: where the robot should be now, and along which segment
+float refX, refY, refTheta, refV = 0, refW = 0, refS = 0, endX, endY, endTheta;
+float spin = 0;        // rad/s, a pivot's speed
+float refA = 0;        // m/s^2, along a straight
+float startX, startY;  // where the segment began
+bool segmentStarted = false;
+// the estimate
+float estX, estY, estTheta;
+int32_t lastLeft = 0, lastRight = 0;
+float wheelRefL = 0, wheelRefR = 0, wheelL = 0, wheelR = 0, speedL = 0, speedR = 0;
+float lastVl = 0, lastVr = 0;
+bool hasGyro = false;
+float gyroBias = 0;
+uint16_t gyroSamples = 0;
+uint32_t lastMicros = 0;
+
+enum class Mode : uint8_t { AwaitMaze, Calibrate, Run, Done };
+Mode mode = Mode::AwaitMaze;
+uint8_t nextX = 0, nextY = 1;  // the cell the current sensing straight ends at
+Direction heading = Direction::North;
+float minLeft = 9, minRight = 9, minFront = 9;
+bool decided = true;
+// what follows when the queue runs out: nothing yet, the speed run, or the end
+enum class Then : uint8_t { Explore, Race, Finish };
+Then then = Then::Explore;
+bool racing = false;
+uint16_t speedRunCost = 0;
+const bool kTraceDecisions = false;
+
+float headingAngle(Direction d) { return (1 - static_cast<int>(d)) * PI / 2; }  // north: pi/2
+
+float wrap(float a) {
+  while (a > PI) a -= 2 * PI;
+  while (a <= -PI) a += 2 * PI;
+  return a;
+}
+
+void push(Kind kind, float length, float vMax, float vExit, int8_t turn = 0, bool sense = false) {
+  if (static_cast<uint8_t>(tail + 1) % kQueue == head) return;  // full: never with these plans
+  queue[tail] = Segment{kind, turn, sense, length, vMax, vExit};
+  tail = static_cast<uint8_t>((tail + 1) % kQueue);
+}
+
+bool queueEmpty() { return head == tail; }
+
+// a curve's curvature at s along it, for displacement d (positive: the magnitude)
+float curvature(float s, float d) {
+  const float peak = kTurnShape / d;
+  const float ramp = 2 * kRampAngle / peak;
+  const float length = kTurnLength / peak;
+  if (s < ramp) return peak * s / ramp;
+  if (s > length - ramp) return peak * (length - s) / ramp;
+  return peak;
+}
+
+// the speed at which a quarter turn of displacement d keeps to kLateral, and its ramps' yaw
+// acceleration (v^2 / (2 * ramp angle * r^2)) to kYawAccel: 30 rad/s^2 takes 0.1 N of a wheel's
+// 0.25 N of grip, for the robot's 3.3e-4 kg m^2 about the axle's middle (plate, wheels, caster)
+float curveSpeed(float d, float yawAccel) {
+  const float r = d / kTurnShape;
+  return sqrtf(fminf(kLateral, yawAccel * 2 * kRampAngle * r) * r);
+}
+
+// the exact pose where the segment at the head of the queue ends
+void segmentEnd(const Segment& g) {
+  endX = refX;
+  endY = refY;
+  endTheta = refTheta;
+  if (g.kind == Kind::Straight) {
+    endX += g.length * cosf(refTheta);
+    endY += g.length * sinf(refTheta);
+  } else if (g.kind == Kind::Curve) {
+    const float c = cosf(refTheta), s = sinf(refTheta);
+    endX += g.length * c - g.turn * g.length * s;
+    endY += g.length * s + g.turn * g.length * c;
+    endTheta = wrap(refTheta + g.turn * PI / 2);
+  } else if (g.kind == Kind::Pivot) {
+    endTheta = wrap(refTheta + g.turn * PI / 2);
+  }
+}
+
+// advances the reference by dt along the segments; refV and refW are its speeds
+void advanceSegments(float dt) {
+  refW = 0;
+  if (queueEmpty()) {
+    refV = 0;
+    return;
+  }
+  Segment& g = queue[head];
+  if (!segmentStarted) {
+    segmentEnd(g);
+    segmentStarted = true;
+    startX = refX;
+    startY = refY;
+    refS = 0;
+    spin = 0;
+  }
+  if (g.kind == Kind::Straight && g.vExit > 0) {
+    // along a straight the reference waits for the robot, or catches it up: it goes on from
+    // where the estimate is along the line, so that a curve begins where the robot is, not
+    // where the reference has got to (the wheels lag it when braking hard); a straight that
+    // ends at rest leaves the reference ahead, which then pulls the robot to rest where it is
+    const float c = cosf(refTheta), s = sinf(refTheta);
+    const float along = (estX - startX) * c + (estY - startY) * s;
+    if (along > refS - 0.02f * kScale && along < g.length) {
+      refS = along;
+      refX = startX + along * c;
+      refY = startY + along * s;
+    }
+  }
+  bool finished = false;
+  float carry = 0;
+  if (g.kind == Kind::Straight || g.kind == Kind::Curve) {
+    const float length = g.kind == Kind::Straight ? g.length : kTurnLength * g.length / kTurnShape;
+    const float left = length - refS;
+    const float accel = racing ? kAccelRun : kAccel;
+    float v = g.kind == Kind::Curve ? refV : fminf(refV + accel * dt, g.vMax);
+    if (g.kind == Kind::Straight) {
+      v = fminf(v, sqrtf(g.vExit * g.vExit + 2 * accel * fmaxf(left, 0)));
+      // creep the last millimetres to a stop rather than stall short of the end
+      if (v < 0.02f * kScale) v = 0.02f * kScale;
+    }
+    refV = v;
+    const float ds = v * dt;
+    const float k = g.kind == Kind::Curve ? g.turn * curvature(refS + ds / 2, g.length) : 0;
+    refW = v * k;
+    const float mid = refTheta + k * ds / 2;
+    refX += ds * cosf(mid);
+    refY += ds * sinf(mid);
+    refTheta = wrap(refTheta + k * ds);
+    refS += ds;
+    if (refS >= length) {
+      finished = true;
+      carry = refS - length;
+      if (g.vExit == 0 && g.kind == Kind::Straight) {
+        refV = 0;
+        carry = 0;
+      }
+    }
+  } else if (g.kind == Kind::Pivot) {
+    const float total = fabsf(g.turn) * PI / 2;
+    const float alpha = 40, wMax = 10;  // rad/s^2 and rad/s: the wheels at 0.48 m/s, 1.9 m/s^2
+    const float left = total - refS;
+    float w = fminf(fminf(spin + alpha * dt, wMax), sqrtf(2 * alpha * fmaxf(left, 0)));
+    if (w < 0.2f) w = 0.2f;
+    spin = w;
+    refV = 0;
+    refS += w * dt;
+    refW = (g.turn > 0 ? 1 : -1) * w;
+    refTheta = wrap(refTheta + refW * dt);
+    if (refS >= total) finished = true;
+  } else {
+    refV = 0;
+    refS += dt;
+    if (refS >= g.length) finished = true;
+  }
+  if (finished) {
+    refX = endX;
+    refY = endY;
+    refTheta = endTheta;
+    refX += carry * cosf(refTheta);
+    refY += carry * sinf(refTheta);
+    head = static_cast<uint8_t>((head + 1) % kQueue);
+    segmentStarted = false;
+  }
+}
+
+// the same, and the reference's acceleration along a straight
+void advanceReference(float dt) {
+  const float before = refV;
+  advanceSegments(dt);
+  refA = queueEmpty() || queue[head].kind != Kind::Straight ? 0 : (refV - before) / dt;
+  refA = fmaxf(fminf(refA, 3), -3);  // a step of the profile is no acceleration of the robot
+}
+
+// the encoders (and the gyro) move the estimate
+void updateEstimate(float dt) {
+  const int32_t l = robot.leftEncoderTotal(), r = robot.rightEncoderTotal();
+  const float perCount = 2 * PI * kWheelRadius / kCountsPerTurn;
+  const float dl = (l - lastLeft) * perCount, dr = (r - lastRight) * perCount;
+  lastLeft = l;
+  lastRight = r;
+  wheelL += dl;
+  wheelR += dr;
+  // the wheels' speeds, smoothed over about 8 ms: one count a step is 0.28 m/s
+  speedL += 0.12f * (dl / dt - speedL);
+  speedR += 0.12f * (dr / dt - speedR);
+  // the tyres slip in proportion to the force they pass: measured on this robot, the wheels
+  // turn 3 % faster than the ground goes by for each m/s^2 of acceleration (and slower when
+  // braking), so the travel is the wheels' divided by 1 + 0.03 a
+  const float ds = (dl + dr) / 2 / (1 + kSlip * refA);
+  const float dtheta = hasGyro ? (robot.gyroZ() - gyroBias) * dt : (dr - dl) / kWheelBase;
+  const float mid = estTheta + dtheta / 2;
+  estX += ds * cosf(mid);
+  estY += ds * sinf(mid);
+  estTheta = wrap(estTheta + dtheta);
+}
+
+// the side walls say how far the robot is from the corridor's centre line, a wall ahead how far
+// it is from the cell's edge; only on straights, along the maze's lines
+void correctEstimate() {
+  if (queueEmpty()) return;
+  const Segment& g = queue[head];
+  if (g.kind == Kind::Curve || g.kind == Kind::Pivot) return;
+  const float c = cosf(refTheta), s = sinf(refTheta);
+  const float along = estX * c + estY * s, across = -estX * s + estY * c;  // across: left
+  const float centre = (floorf(across / kCell) + 0.5f) * kCell;
+  const float e = wrap(estTheta - refTheta);
+  float shiftAcross = 0, shiftAlong = 0, shiftTheta = 0;
+  const float root = 0.70710678f;
+  if (robot.leftSensor().hasNewData()) {
+    const float d = robot.leftDistance();
+    const float off = kWallFace - d * (root * cosf(e) + root * sinf(e)) - kSensorAhead * sinf(e) -
+                      kSensorSide * cosf(e);
+    if (d < kSideWall && fabsf(off - (across - centre)) < 0.02f * kScale) {
+      shiftAcross += 0.15f * (off - (across - centre));
+      shiftTheta += 0.3f * (off - (across - centre)) / (0.1f * kScale);
+    }
+  }
+  if (robot.rightSensor().hasNewData()) {
+    const float d = robot.rightDistance();
+    const float off = d * (root * cosf(e) - root * sinf(e)) - kWallFace - kSensorAhead * sinf(e) +
+                      kSensorSide * cosf(e);
+    if (d < kSideWall && fabsf(off - (across - centre)) < 0.02f * kScale) {
+      shiftAcross += 0.15f * (off - (across - centre));
+      shiftTheta += 0.3f * (off - (across - centre)) / (0.1f * kScale);
+    }
+  }
+  if (robot.frontSensor().hasNewData()) {
+    const float f = robot.frontDistance();
+    if (f > 0.035f * kScale && f < fminf(0.25f * kScale, kRange)) {
+      const float seen = along + (f + kSensorAhead) * cosf(e);
+      const float face = roundf(seen / kCell) * kCell - (kCell / 2 - kWallFace);
+      if (fabsf(seen - face) < 0.04f * kScale) shiftAlong = 0.5f * (face - seen);
+    }
+  }
+  // a heading that is off shows as a drift across: turn the estimate by a little of it
+  if (g.kind == Kind::Straight) estTheta = wrap(estTheta + shiftTheta);
+  estX += shiftAlong * c - shiftAcross * s;
+  estY += shiftAlong * s + shiftAcross * c;
+}
+
+// the tracking controller and the wheels' loops
+void control(float dt) {
+  const float c = cosf(refTheta), s = sinf(refTheta);
+  const float ex = c * (refX - estX) + s * (refY - estY);
+  const float ey = -s * (refX - estX) + c * (refY - estY);
+  const float eth = wrap(refTheta - estTheta);
+  const float v = refV * cosf(eth) + kTrackAlong * ex;
+  const float w = refW + refV * (kTrackSide / kScale * ey + kTrackHeading * sinf(eth)) +
+                  kTrackHeadingRest * sinf(eth);
+  const float vl = v - w * kWheelBase / 2, vr = v + w * kWheelBase / 2;
+  const float al = (vl - lastVl) / dt, ar = (vr - lastVr) / dt;
+  lastVl = vl;
+  lastVr = vr;
+  wheelRefL += vl * dt;
+  wheelRefR += vr * dt;
+  // a wheel that slipped or stalled does not wind its loop up
+  const float limit = 0.005f * kScale;
+  wheelRefL = fmaxf(fminf(wheelRefL, wheelL + limit), wheelL - limit);
+  wheelRefR = fmaxf(fminf(wheelRefR, wheelR + limit), wheelR - limit);
+  const float ul = kSpeedFF * vl + kAccelFF * fmaxf(fminf(al, 5), -5) +
+                   kWheelP * (wheelRefL - wheelL) + kWheelD * (vl - speedL);
+  const float ur = kSpeedFF * vr + kAccelFF * fmaxf(fminf(ar, 5), -5) +
+                   kWheelP * (wheelRefR - wheelR) + kWheelD * (vr - speedR);
+  robot.motorLeft(static_cast<int32_t>(ul));
+  robot.motorRight(static_cast<int32_t>(ur));
+}
+
+void sendWalls(uint8_t x, uint8_t y) {
+  uint8_t frame[4] = {x, y, static_cast<uint8_t>(maze.cell(x, y) & 0x0F),
+                      static_cast<uint8_t>(maze.cell(x, y) >> 4)};
+  robot.debug(UNIMOUSE_ID_DEBUG_WALLS, frame, 4);
+}
+
+void recordWall(uint8_t x, uint8_t y, Direction side, bool wall) {
+  if (wall) {
+    maze.placeWall(x, y, side);
+  } else {
+    maze.removeWall(x, y, side);
+  }
+}
+
+Direction turned(Direction d, Action a) {
+  return a == Action::TurnLeft ? turnLeft(d) : turnRight(d);
+}
+
+void finish(const char* why) {
+  if (why) robot.log(why);
+  robot.log("done");
+  mode = Mode::Done;
+}
+
+// the speed run from the start cell's centre, facing north, along the best path over the walls
+// seen: straights merged, quarter turns as curves that fill their cell
+void planSpeedRun() {
+  solver.calculateCosts(robot.maze().received() ? robot.maze().goalX0() : 7,
+                        robot.maze().received() ? robot.maze().goalY0() : 7,
+                        robot.maze().received() ? robot.maze().goalX1() : 8,
+                        robot.maze().received() ? robot.maze().goalY1() : 8, true);
+  uint8_t x = 0, y = 0;
+  Direction d = Direction::North;
+  speedRunCost = solver.cost(x, y, d);
+  if (speedRunCost == FFSolver<kMaxSide, kMaxSide>::UNREACHABLE) {
+    finish("no way to the goal");
+    return;
+  }
+  const float d90 = kCell / 2;
+  const float vTurn = curveSpeed(d90, kYawAccelRun);
+  float straight = 0;
+  bool first = true;
+  for (;;) {
+    const Action a = solver.bestAction(x, y, d);
+    if (a == Action::None) break;
+    if (a == Action::Forward) {
+      straight += first ? kCell / 2 : kCell;
+      first = false;
+    } else {
+      const int8_t side = a == Action::TurnLeft ? 1 : -1;
+      const bool turnBefore = straight == 0;
+      d = turned(d, a);
+      if (solver.bestAction(x, y, d) != Action::Forward) break;  // never on a best path
+      const Action after = solver.bestAction(static_cast<uint8_t>(x + stepX(d)),
+                                             static_cast<uint8_t>(y + stepY(d)), d);
+      if (turnBefore || after == Action::TurnLeft || after == Action::TurnRight) {
+        // a staircase of turns has no straight in which to correct a curve's error, so its
+        // curves are the explorer's, with their short straights, at its speed
+        const float v = curveSpeed(kCell / 2 - kTurnStraight, kYawAccel);
+        push(Kind::Straight, straight + kTurnStraight, kTop, v);
+        push(Kind::Curve, kCell / 2 - kTurnStraight, v, v, side);
+        straight = kTurnStraight;
+      } else {
+        if (straight > 0) push(Kind::Straight, straight, kTop, vTurn);
+        push(Kind::Curve, d90, vTurn, vTurn, side);
+        straight = 0;
+      }
+    }
+    x = static_cast<uint8_t>(x + stepX(d));
+    y = static_cast<uint8_t>(y + stepY(d));
+  }
+  // into the goal, then on through the open cells straight ahead (up to two) to a stop
+  float room = kCell / 2;
+  for (uint8_t i = 0; i < 2 && !maze.hasWall(x, y, d); ++i) {
+    if (!maze.isKnown(x, y, d)) break;
+    x = static_cast<uint8_t>(x + stepX(d));
+    y = static_cast<uint8_t>(y + stepY(d));
+    room += kCell;
+  }
+  push(Kind::Straight, straight + room, kTop, 0);
+  // backwards: a curve runs at the speed it is entered at, so each one is slowed to what the
+  // straight after it can brake from for the next
+  float next = 0;
+  for (uint8_t i = tail; i != head;) {
+    i = static_cast<uint8_t>((i + kQueue - 1) % kQueue);
+    Segment& g = queue[i];
+    if (g.kind == Kind::Straight) {
+      g.vExit = fminf(g.vExit, next);
+      next = fminf(g.vMax, sqrtf(g.vExit * g.vExit + 2 * kAccelRun * g.length));
+    } else {
+      g.vMax = g.vExit = fminf(g.vMax, next);
+      next = g.vMax;
+    }
+  }
+  racing = true;
+}
+
+// the robot is about to enter (nextX, nextY) facing `heading`: record its walls and queue what
+// it does in it, through to the next cell's edge
+void decide() {
+  const uint8_t x = nextX, y = nextY;
+  if (minLeft > 8) minLeft = robot.leftDistance();
+  if (minRight > 8) minRight = robot.rightDistance();
+  if (minFront > 8) minFront = robot.frontDistance();
+  recordWall(x, y, turnLeft(heading), minLeft < kSideWall);
+  recordWall(x, y, turnRight(heading), minRight < kSideWall);
+  recordWall(x, y, heading, minFront < kFrontWall);
+  sendWalls(x, y);
+  minLeft = minRight = minFront = 9;
+  const Action a = paths.nextAction(x, y, heading);
+  if (kTraceDecisions) {
+    char line[40];
+    snprintf(line, sizeof(line), "at %u %u %u do %u", x, y, static_cast<unsigned>(heading),
+             static_cast<unsigned>(a));
+    robot.log(line);
+  }
+  if (paths.phase() == PathManager<kMaxSide, kMaxSide>::Phase::SpeedRun && x == 0 && y == 0) {
+    // home after exploring: stop in the start cell's centre, face north, and race
+    push(Kind::Straight, kCell / 2, kSearch, 0);
+    const int quarter = (static_cast<int>(heading) - static_cast<int>(Direction::North) + 4) % 4;
+    if (quarter != 0) push(Kind::Pivot, 0, 0, 0, static_cast<int8_t>(quarter == 3 ? -1 : quarter));
+    push(Kind::Pause, 0.3f, 0, 0);
+    heading = Direction::North;
+    decided = true;
+    then = Then::Race;
+    return;
+  }
+  if (a == Action::None) {
+    push(Kind::Straight, kCell / 2, kSearch, 0);
+    robot.log("no way to the goal");
+    decided = true;
+    then = Then::Finish;
+    return;
+  }
+  if (a == Action::Forward) {
+    push(Kind::Straight, kCell, kSearch, kSearch, 0, true);
+  } else {
+    const Direction h1 = turned(heading, a);
+    const Action b = paths.nextAction(x, y, h1);
+    if (b == Action::Forward) {
+      const float vTurn = curveSpeed(kCell / 2 - kTurnStraight, kYawAccel);
+      push(Kind::Straight, kTurnStraight, kSearch, vTurn);
+      push(Kind::Curve, kCell / 2 - kTurnStraight, vTurn, vTurn, a == Action::TurnLeft ? 1 : -1);
+      push(Kind::Straight, kTurnStraight, kSearch, kSearch, 0, true);
+      heading = h1;
+    } else {
+      // turning round: stop in the cell's centre, pivot, and go back out
+      const Direction h2 = b == Action::None ? turnAround(heading) : turned(h1, b);
+      push(Kind::Straight, kCell / 2, kSearch, 0);
+      const int8_t quarters = static_cast<int8_t>(a == Action::TurnLeft ? 2 : -2);
+      push(Kind::Pivot, 0, 0, 0, quarters);
+      push(Kind::Pause, 0.05f, 0, 0);
+      push(Kind::Straight, kCell / 2, kSearch, kSearch, 0, true);
+      heading = h2;
+    }
+  }
+  nextX = static_cast<uint8_t>(x + stepX(heading));
+  nextY = static_cast<uint8_t>(y + stepY(heading));
+  decided = false;
+}
+
+// the maze as the simulator said (or the classic one), and every length at its scale
+void setupMaze() {
+  const MazeInfoSensor& info = robot.maze();
+  if (info.received() && info.width() > 0) {
+    const uint8_t width = info.width() < kMaxSide ? info.width() : kMaxSide;
+    const uint8_t height = info.height() < kMaxSide ? info.height() : kMaxSide;
+    if (width != info.width() || height != info.height()) {
+      robot.log("the maze is larger than this firmware's room: it explores what fits");
+    }
+    maze.resize(width, height);
+    paths.setGoal(info.goalX0(), info.goalY0(), info.goalX1(), info.goalY1());
+    kScale = info.cellMetres() / kCell;
+  } else {
+    maze.resize(16, 16);
+    robot.log("no maze from the simulator: a classic 16 x 16 maze, centre goal");
+  }
+  robot.reportMazeSize(maze.width(), maze.height());
+  float* lengths[] = {&kCell,      &kWallFace,    &kSensorAhead, &kSensorSide,
+                      &kWheelBase, &kWheelRadius, &kAccel,       &kAccelRun,
+                      &kLateral,   &kTop,         &kSearch,      &kSideWall,
+                      &kFrontWall, &kSenseFrom,   &kDecideAt,    &kTurnStraight};
+  for (float* l : lengths) *l *= kScale;
+  // the half-size robot's short-range sensors read 0.1 m when they see nothing
+  // (robots/unimouse-half.yaml): nearer than that a reading is a wall
+  if (kScale < 1) kRange = 0.095f;
+  kFrontWall = fminf(kFrontWall, kRange);
+  // a wheel's command per m/s and per m of travel: the same motor on a smaller wheel
+  kSpeedFF /= kScale;
+  kWheelP /= kScale;
+  kWheelD /= kScale;
+  maze.placeWall(0, 0, Direction::East);
+  maze.removeWall(0, 0, Direction::North);
+  refX = estX = refY = estY = kCell / 2;
+  refTheta = estTheta = headingAngle(Direction::North);
+}
+
+void setup() {
+  Serial.begin(UNIMOUSE_BAUD);
+  robot.requestMaze();  // before begin(): in lock-step the answer comes with the first step
+  robot.begin();
+}
+
+void loop() {
+  robot.update();
+  // the loops run once a millisecond: on the PC each loop() is one 1 ms step; a board without
+  // lock-step loops faster, and its encoder frames come once a millisecond
+  const uint32_t now = micros();
+  if (mode != Mode::AwaitMaze && now - lastMicros < 1000) return;
+  float dt = (now - lastMicros) * 1e-6f;
+  lastMicros = now;
+  // a board that spent a while planning (a flood fill takes some 20 ms on a Mega 2560) catches up
+  if (dt <= 0) dt = 0.001f;
+  if (dt > 0.05f) dt = 0.05f;
+  switch (mode) {
+    case Mode::AwaitMaze:
+      if (!robot.maze().received() && millis() < 1000) return;
+      setupMaze();
+      lastLeft = robot.leftEncoderTotal();
+      lastRight = robot.rightEncoderTotal();
+      mode = Mode::Calibrate;
+      return;
+    case Mode::Calibrate:
+      // at rest: the gyro's bias, if the robot sends the gyro
+      if (robot.imu().axis(2).hasNewData()) {
+        hasGyro = true;
+        gyroBias += robot.gyroZ();
+        ++gyroSamples;
+      }
+      if (millis() < 1300) return;
+      if (hasGyro) gyroBias /= gyroSamples;
+      push(Kind::Straight, kCell / 2, kSearch, kSearch, 0, true);
+      decided = false;
+      mode = Mode::Run;
+      return;
+    case Mode::Run:
+      break;
+    case Mode::Done:
+      robot.motorLeft(0);
+      robot.motorRight(0);
+      return;
+  }
+  updateEstimate(dt);
+  correctEstimate();
+  advanceReference(dt);
+  // exploring: watch the cell ahead while approaching it, and decide before entering it
+  if (!decided && !queueEmpty() && queue[head].sense && segmentStarted) {
+    const float left = queue[head].length - refS;
+    if (left < kSenseFrom) {
+      minLeft = fminf(minLeft, robot.leftDistance());
+      minRight = fminf(minRight, robot.rightDistance());
+      minFront = fminf(minFront, robot.frontDistance());
+    }
+    if (left < kDecideAt) {
+      queue[head].sense = false;
+      decide();
+    }
+  }
+  if (queueEmpty() && then == Then::Race) {
+    then = Then::Finish;
+    planSpeedRun();
+  } else if (queueEmpty() && then == Then::Finish) {
+    if (racing) {
+      char line[40];
+      snprintf(line, sizeof(line), "speed run 1: path cost %u", speedRunCost);
+      robot.log(line);
+    }
+    finish(NULL);
+    return;
+  }
+  control(dt);
+}

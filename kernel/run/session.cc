@@ -7,6 +7,7 @@
 #include <cmath>
 #include <csignal>
 #include <filesystem>
+#include <map>
 #include <numbers>
 #include <variant>
 
@@ -363,6 +364,7 @@ void Session::Assemble() {
   const std::string log_path = (fs::path(o.out_dir) / "log.txt").string();
   log_.reset(std::fopen(log_path.c_str(), "w"));
   UNIMOUSE_THROW_UNLESS(log_ != nullptr, log_path + ": cannot write the run's log");
+  OpenRecording();
   KernelOptions kernel_options;
   kernel_options.seed = o.seed;
   kernel_options.output_dir = o.out_dir;
@@ -380,6 +382,7 @@ void Session::Assemble() {
     std::fprintf(log_.get(), "%.6f\t%s\t%s%s\n", time_s, component.c_str(), kind, message.c_str());
     if (level == UNIMOUSE_LOG_WARNING) warnings_.push_back(component + ": " + message);
     std::fflush(log_.get());
+    Record([&](RunRecording& r) { r.Log(time_s, level, component, message); });
   };
   if (robots_.size() == 1) {
     kernel_ = Kernel::Create(robots_.front().spec, maze_.get(), *registry, kernel_options);
@@ -449,6 +452,7 @@ void Session::Assemble() {
   // sets the pace itself
   pace_ = !o.paced_by_caller && (o.realtime || kernel_->declared(UNIMOUSE_TRAIT_WALL_CLOCK));
   pacer_ = std::make_unique<RealTimePacer>(kernel_->timestep_s());
+  Record([&](RunRecording& r) { r.Sample(*kernel_); });
   start_ = std::chrono::steady_clock::now();
 }
 
@@ -458,6 +462,7 @@ void Session::Step() {
     kernel_->Step();
     CountContacts();
     pictures_->AfterStep();
+    Record([&](RunRecording& r) { r.Sample(*kernel_); });
   } catch (const RuntimeFault& e) {
     fault_ = e.what();
     return;
@@ -541,6 +546,68 @@ void Session::DrawFirmwareMaze() {
   const fs::path base = fs::path(options_.out_dir) / "maze";
   WriteMazePicture(picture, base.string() + ".png");
   WriteMazePicture(picture, base.string() + ".svg");
+}
+
+void Session::OpenRecording() {
+  const RecordLevel level = ParseRecordLevel(options_.record);
+  const std::string path = (fs::path(options_.out_dir) / "run.mcap").string();
+  if (level == RecordLevel::kOff) {
+    // never an earlier run's recording beside this run's result
+    std::error_code ignored;
+    fs::remove(path, ignored);
+    return;
+  }
+  recording_ = std::make_unique<RunRecording>(path, level, maze_.get());
+}
+
+// a recording that cannot be written ends with a warning; the run goes on without it
+void Session::Record(const std::function<void(RunRecording&)>& write) {
+  if (!recording_) return;
+  try {
+    write(*recording_);
+  } catch (const InputError& e) {
+    recording_.reset();
+    // said here, not through the kernel's log: this may be inside its log sink
+    const std::string why = std::string(e.what()) + "; the run goes on unrecorded";
+    warnings_.push_back("run: " + why);
+    std::fprintf(stderr, "run: warning: %s\n", why.c_str());
+    const double time_s = kernel_ ? kernel_->state().data().time : 0.0;
+    if (log_) std::fprintf(log_.get(), "%.6f\trun\twarning: %s\n", time_s, why.c_str());
+  }
+}
+
+// the files the run read, its result and its identity travel inside the recording, so that
+// the file alone says what ran
+void Session::CloseRecording(const nlohmann::json& record) {
+  const double end_s = kernel_->state().data().time;
+  Record([&](RunRecording& r) {
+    r.Attach("result.json", record.dump(2, ' ', false, nlohmann::json::error_handler_t::replace),
+             "application/json", end_s);
+    for (const Robot& robot : robots_) {
+      r.AttachFile(fs::path(robot.file).filename().string(), robot.file, "application/yaml", 0);
+    }
+    if (!scenario_file_.empty()) {
+      r.AttachFile(fs::path(scenario_file_).filename().string(), scenario_file_, "text/x-lua", 0);
+    }
+    if (!maze_file_.empty()) {
+      r.AttachFile(fs::path(maze_file_).filename().string(), maze_file_, "text/plain", 0);
+    }
+    std::map<std::string, std::string> identity = {
+        {"unimouse_version", record.value("unimouse_version", "")},
+        {"seed", std::to_string(options_.seed)},
+        {"status", record.value("status", "")}};
+    for (size_t i = 0; i < robots_.size(); ++i) {
+      const std::string key = robots_.size() == 1 ? "robot" : "robot." + robots_[i].name;
+      identity[key + "_sha256"] = robots_[i].sha256;
+    }
+    if (!scenario_sha256_.empty()) identity["scenario_sha256"] = scenario_sha256_;
+    if (record.contains("maze_sha256") && record["maze_sha256"].is_string()) {
+      identity["maze_sha256"] = record["maze_sha256"];
+    }
+    r.AddMetadata("unimouse.run", identity);
+    r.Close();
+  });
+  recording_.reset();
 }
 
 SessionResult Session::Finish(const nlohmann::json& extra) {
@@ -645,6 +712,7 @@ SessionResult Session::Finish(const nlohmann::json& extra) {
   r["exit_code"] = result.exit_code;
   if (extra.is_object()) r.update(extra);
   WriteResultRecord(options_.out_dir, r);
+  CloseRecording(r);
   result.record = std::move(r);
   return result;
 }

@@ -26,6 +26,7 @@
 #include "real_time_pacer.h"
 #include "robot_spec.h"
 #include "run_pictures.h"
+#include "run_recording.h"
 #include "scenario.h"
 #include "trace_options.h"
 
@@ -73,6 +74,7 @@ struct SessionOptions {
   std::vector<std::string> link_sets;        ///< link parameters, "name=value"
   std::string firmware_profile;  ///< what the firmware expects ("unimousesim-0.1"); "" default
   TraceOptions trace;            ///< the trace loggers' rate and signals, or no trace
+  std::string record = "light";  ///< the recording, run.mcap: off, light or full (docs/replay.md)
   std::string maze_class;  ///< without a scenario: "classic" or "half" builds the maze so; "" its
                            ///< size's class
   bool realtime = false;   ///< pace to the wall clock, even a firmware in lock-step (to watch)
@@ -159,6 +161,11 @@ class Session {
   void PlaceRobots(ScenarioWorld& world);
   void CountContacts();
   void DrawFirmwareMaze();
+  // the recording (run_recording.h): opened before the robots are built, fed at every step
+  // boundary, closed after the result with the run's files attached
+  void OpenRecording();
+  void Record(const std::function<void(RunRecording&)>& write);
+  void CloseRecording(const nlohmann::json& record);
 
   // a robot of the run, as loaded, and what happened to it
   struct Robot {
@@ -196,6 +203,7 @@ class Session {
   std::vector<std::string> warnings_;  // every warning logged, "component: text", for the record
   std::unique_ptr<RunPictures> pictures_;
   std::unique_ptr<RealTimePacer> pacer_;
+  std::unique_ptr<RunRecording> recording_;
   bool pace_ = false;
   std::string fault_;
   std::string interrupted_;  // by which signal, when

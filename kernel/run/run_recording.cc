@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "run_recording.h"
 
+#include <charconv>
 #include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -100,6 +101,29 @@ std::string SignalsSchema(const std::vector<std::string>& names) {
       .dump();
 }
 
+// a number as JSON, in the fewest digits that read back to the same double; JSON has no NaN
+// or infinity
+void AppendNumber(std::string& out, double value) {
+  if (!std::isfinite(value)) {
+    out += "null";
+    return;
+  }
+  char digits[32];
+  const auto [end, error] = std::to_chars(digits, digits + sizeof(digits), value);
+  UNIMOUSE_DEMAND(error == std::errc());
+  out.append(digits, end);
+}
+
+// a name from a robot file as a JSON string; text that is not UTF-8 is replaced, never refused
+std::string JsonText(const std::string& text) {
+  return json(text).dump(-1, ' ', false, json::error_handler_t::replace);
+}
+
+void AppendTimestamp(std::string& out, uint64_t time_ns) {
+  out += "{\"sec\":" + std::to_string(time_ns / 1'000'000'000) +
+         ",\"nsec\":" + std::to_string(time_ns % 1'000'000'000) + "}";
+}
+
 uint64_t Nanoseconds(double time_s) {
   return time_s <= 0 ? 0 : static_cast<uint64_t>(std::llround(time_s * 1e9));
 }
@@ -195,11 +219,12 @@ void RunRecording::OpenRobotChannels(const Kernel& kernel) {
   const int robots = kernel.robot_count();
   for (int i = 0; i < robots; ++i) {
     const std::string& name = kernel.robot_name(i);
-    frame_names_.push_back(name.empty() ? "robot" : name);
+    frame_names_.push_back(JsonText(name.empty() ? "robot" : name));
     const std::string topic = name.empty() ? "/robot/pose" : "/robots/" + name + "/pose";
     pose_channels_.push_back(writer_->AddChannel(frame_transform_schema_, topic, "json"));
   }
   const std::vector<std::string>& names = kernel.model().signal_names;
+  for (const std::string& name : names) signal_keys_.push_back(JsonText(name) + ":");
   signals_channel_ = writer_->AddChannel(
       writer_->AddSchema("unimouse.Signals", "jsonschema", SignalsSchema(names)), "/signals",
       "json");
@@ -215,25 +240,36 @@ void RunRecording::Sample(const Kernel& kernel) {
   if (state.step() % sample_every_steps_ != 0) return;
   const mjData& d = state.data();
   const uint64_t time_ns = Nanoseconds(d.time);
+
+  // written by hand, not through a JSON library: this runs a hundred times a simulated second
+  std::string& m = message_;
   for (size_t i = 0; i < pose_channels_.size(); ++i) {
     const Pose2D pose = kernel.world().RobotPose(d, static_cast<int>(i));
-    json message = {{"timestamp", Timestamp(time_ns)},
-                    {"parent_frame_id", "world"},
-                    {"child_frame_id", frame_names_[i]},
-                    {"translation", {{"x", pose.x_m}, {"y", pose.y_m}, {"z", 0.0}}},
-                    {"rotation",
-                     {{"x", 0.0},
-                      {"y", 0.0},
-                      {"z", std::sin(pose.yaw_rad / 2)},
-                      {"w", std::cos(pose.yaw_rad / 2)}}}};
-    writer_->Write(pose_channels_[i], time_ns, message.dump());
+    m = "{\"timestamp\":";
+    AppendTimestamp(m, time_ns);
+    m += ",\"parent_frame_id\":\"world\",\"child_frame_id\":" + frame_names_[i];
+    m += ",\"translation\":{\"x\":";
+    AppendNumber(m, pose.x_m);
+    m += ",\"y\":";
+    AppendNumber(m, pose.y_m);
+    m += ",\"z\":0},\"rotation\":{\"x\":0,\"y\":0,\"z\":";
+    AppendNumber(m, std::sin(pose.yaw_rad / 2));
+    m += ",\"w\":";
+    AppendNumber(m, std::cos(pose.yaw_rad / 2));
+    m += "}}";
+    writer_->Write(pose_channels_[i], time_ns, m);
   }
-  json values = json::object();
-  const std::vector<std::string>& names = kernel.model().signal_names;
   const std::vector<double>& signals = state.signals();
-  for (size_t i = 0; i < names.size() && i < signals.size(); ++i) values[names[i]] = signals[i];
-  writer_->Write(signals_channel_, time_ns,
-                 json{{"timestamp", Timestamp(time_ns)}, {"values", values}}.dump());
+  m = "{\"timestamp\":";
+  AppendTimestamp(m, time_ns);
+  m += ",\"values\":{";
+  for (size_t i = 0; i < signal_keys_.size() && i < signals.size(); ++i) {
+    if (i > 0) m += ',';
+    m += signal_keys_[i];
+    AppendNumber(m, signals[i]);
+  }
+  m += "}}";
+  writer_->Write(signals_channel_, time_ns, m);
 }
 
 void RunRecording::Log(double time_s, int level, const std::string& component,

@@ -28,12 +28,13 @@ using nlohmann::json;
 
 const std::string kFirmware = UNIMOUSE_FIRMWARE_DIR "/micromouse.so";
 
-json ReadRecording(const std::string& file) {
+// with cut_ok, a file that stops short (a killed run) reads up to its last whole record
+json ReadRecording(const std::string& file, bool cut_ok = false) {
   const std::string complaint = file + ".err";
   const testing::Outcome o =
       testing::Shell("(" + std::string(UNIMOUSE_PYTHON3) +
-                     " " UNIMOUSE_SOURCE_DIR "/tests/support/mcap_reader.py '" + file + "' 2>'" +
-                     complaint + "')");
+                     " " UNIMOUSE_SOURCE_DIR "/tests/support/mcap_reader.py '" + file + "'" +
+                     (cut_ok ? " --cut-ok" : "") + " 2>'" + complaint + "')");
   EXPECT_EQ(o.exit_code, 0) << ReadTextFile(complaint);
   if (o.exit_code != 0) return json();
   return json::parse(o.output);
@@ -182,6 +183,48 @@ TEST(RunRecordingTest, FullRecordsEveryStepAndOffRecordsNothing) {
   ASSERT_EQ(off.outcome.exit_code, 1) << off.outcome.output;
   EXPECT_FALSE(fs::exists(OutDir("record_off") + "/run.mcap"));
   EXPECT_TRUE(fs::exists(OutDir("record_off") + "/result.json"));
+}
+
+TEST(RunRecordingTest, AFirmwareCrashLeavesACompleteRecordingOfEachRobot) {
+  const testing::RunResult r = testing::UnimouseRun(
+      "--maze japan2018 --scenario none --duration 1 --no-pictures --robot unimouse --link "
+      "inproc:" +
+          kFirmware + " --robot unimouse --name crasher --start 15,15,S --link inproc:" +
+          UNIMOUSE_TEST_BINARY_DIR "/null_pointer_firmware.so",
+      "record_crash");
+  ASSERT_EQ(r.outcome.exit_code, 3) << r.outcome.output;
+  const json recording = ReadRecording(OutDir("record_crash") + "/run.mcap");
+  ASSERT_TRUE(recording.is_object());
+  EXPECT_TRUE(recording["complete"].get<bool>());
+  // each robot its own frame, up to the step that faulted at 0.2 s
+  for (const std::string name : {"unimouse", "crasher"}) {
+    const auto poses = OnTopic(recording, "/robots/" + name + "/pose");
+    ASSERT_GE(poses.size(), 20u) << name;
+    EXPECT_EQ(poses.back()["data"]["child_frame_id"], name);
+    EXPECT_NEAR(poses.back()["log_time"].get<double>() * 1e-9, 0.2, 0.011) << name;
+  }
+  std::string result;
+  for (const json& a : recording["attachments"]) {
+    if (a["name"] == "result.json") result = a["data"];
+  }
+  EXPECT_EQ(json::parse(result)["status"], "fault");
+}
+
+TEST(RunRecordingTest, AKilledRunLeavesARecordingThatReadsToItsLastWholeChunk) {
+  // killed outright, as by the OOM killer or a lost machine: no finish, no result
+  const testing::RunResult r =
+      testing::UnimouseRun("--scenario micromouse --set end_on_log=done --link inproc:" + kFirmware,
+                           "record_killed", "timeout -s KILL 3 ");
+  ASSERT_EQ(r.outcome.exit_code, 128 + 9) << r.outcome.output;
+  const json recording = ReadRecording(OutDir("record_killed") + "/run.mcap", /*cut_ok=*/true);
+  ASSERT_TRUE(recording.is_object());
+  EXPECT_FALSE(recording["complete"].get<bool>());
+  // every 10 ms from 0, at least a second of them (a chunk is written out every second)
+  const auto poses = OnTopic(recording, "/robot/pose");
+  ASSERT_GE(poses.size(), 100u);
+  for (size_t k = 0; k < poses.size(); ++k) {
+    ASSERT_EQ(poses[k]["log_time"].get<uint64_t>(), k * 10'000'000) << k;
+  }
 }
 
 TEST(RunRecordingTest, ParsesItsThreeLevels) {

@@ -71,8 +71,10 @@ class RunRecording {
   uint16_t log_channel_ = 0;
   uint16_t signals_channel_ = 0;
   std::vector<uint16_t> pose_channels_;
-  std::vector<std::string> frame_names_;
-  int64_t sample_every_steps_ = 0;  // 0 until the first sample knows the step
+  std::vector<std::string> frame_names_;  // as JSON strings
+  std::vector<std::string> signal_keys_;  // "name": of each signal, as JSON
+  std::string message_;                   // the message being written, its memory kept
+  int64_t sample_every_steps_ = 0;        // 0 until the first sample knows the step
 };
 
 }  // namespace unimouse

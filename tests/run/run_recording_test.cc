@@ -1,8 +1,10 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // A run's recording, run.mcap, read by the tests' own MCAP reader (tests/support/mcap_reader.py,
-// written from the specification, sharing nothing with the writer): the main job's poses are
-// the trace's at the same times, its channels carry Foxglove's schema names, the files the run
-// read are attached byte for byte, and `--record` turns it off or asks for every step.
+// written from the specification, sharing nothing with the writer, which also checks every
+// message against its channel's JSON Schema): the main job's poses are the trace's at the same
+// times, its channels carry Foxglove's schema names, the files the run read are attached byte
+// for byte, a crashed or killed run leaves a readable recording, and `--record` turns it off or
+// asks for every step.
 #include "run_recording.h"
 
 #include <gtest/gtest.h>

@@ -2,14 +2,16 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """An MCAP reader for the tests, written from the published specification (mcap.dev/spec), that
 shares nothing with unimouse's writer: it reads a file record by record, checks every record,
-CRC, index and the summary against what it read itself, and prints what the file holds as JSON.
+CRC, index and the summary against what it read itself, and every JSON message against its
+channel's JSON Schema, and prints what the file holds as JSON.
 
     mcap_reader.py FILE [--cut-ok]
 
 Exit 0 and JSON on stdout when the file is valid; exit 1 and one line on stderr naming the first
 fault otherwise. With --cut-ok a file that stops short of its end (a run that died) is read up
 to its last whole record and reported with "complete": false; anything else wrong in it is
-still a fault. Needs python3-zstandard and python3-lz4 (Debian) for compressed chunks.
+still a fault. Needs python3-zstandard and python3-lz4 (Debian) for compressed chunks and
+python3-jsonschema for the schemas.
 """
 
 import json
@@ -135,7 +137,7 @@ class Reader:
         self.data, self.cut_ok = data, cut_ok
         self.schemas, self.channels = {}, {}
         self.messages, self.chunks, self.attachments, self.metadata = [], [], [], []
-        self.message_indexes = {}  # file offset -> (channel id, entries, record length)
+        self.validators = {}  # schema id -> its JSON Schema validator
         self.complete = False
 
     def schema(self, content, what):
@@ -152,6 +154,25 @@ class Reader:
                   "message_encoding": f.string(), "metadata": f.string_map()}
         f.end()
         return record
+
+    def validate(self, channel, message, what):
+        """Checks a JSON message against its channel's JSON Schema (python3-jsonschema)."""
+        schema = self.schemas.get(channel["schema_id"])
+        if schema is None or schema["encoding"] != "jsonschema":
+            return
+        validator = self.validators.get(schema["id"])
+        if validator is None:
+            import jsonschema
+            try:
+                parsed = json.loads(schema["data"])
+                validator = jsonschema.validators.validator_for(parsed)(parsed)
+                validator.check_schema(parsed)
+            except (json.JSONDecodeError, jsonschema.SchemaError) as e:
+                raise Fault(f"schema {schema['name']!r} is not a JSON Schema: {e}")
+            self.validators[schema["id"]] = validator
+        error = next(iter(validator.iter_errors(message)), None)
+        demand(error is None, f"{what}: the message does not follow schema {schema['name']!r}: "
+               f"{error.message if error else ''}")
 
     def define(self, table, record, what):
         old = table.get(record["id"])
@@ -171,6 +192,7 @@ class Reader:
                 record["data"] = json.loads(raw.decode("utf-8"))
             except (UnicodeDecodeError, json.JSONDecodeError) as e:
                 raise Fault(f"{what}: a json message that is not JSON: {e}")
+            self.validate(channel, record["data"], what)
         else:
             record["data_hex"] = raw.hex()
         return record

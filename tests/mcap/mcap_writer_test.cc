@@ -17,6 +17,13 @@
 #include "unimouse/errors.h"
 
 namespace unimouse {
+
+// a compression as the test's name and messages give it
+void PrintTo(McapCompression compression, std::ostream* out) {
+  const char* name = McapCompressionName(compression);
+  *out << (*name ? name : "none");
+}
+
 namespace {
 
 namespace fs = std::filesystem;

@@ -10,6 +10,8 @@ packages=(
   # simulator libraries (libqhull-dev: the MuJoCo CMake config names its include dir)
   libmujoco-dev libqhull-dev libeigen3-dev liblua5.4-dev libyaml-cpp-dev libboost-dev libboost-context-dev libcli11-dev
   nlohmann-json3-dev libpng-dev
+  # recordings (run.mcap): their chunks' compressions
+  libzstd-dev liblz4-dev
   # rendering: offscreen EGL (Mesa) and the live viewer
   libegl-dev libgl-dev libopengl-dev libegl-mesa0 libgl1-mesa-dri libglfw3-dev libx11-dev xvfb xauth
   # video export of a run (optional at run time: without it, --video says so)
@@ -18,6 +20,8 @@ packages=(
   # check (docs/result.schema.json); a headless browser for the batch report, and Slurm (the
   # tests start its daemons on one node, from their own config)
   libgtest-dev libgmock-dev libbenchmark-dev clang libclang-rt-14-dev python3-jsonschema
+  # the tests' own MCAP reader (tests/support/mcap_reader.py): the chunks' decompressions
+  python3-zstandard python3-lz4
   chromium slurmctld slurmd slurm-client
   # counting a run's system calls (tests/run/step_system_calls_test.cc)
   strace
@@ -26,6 +30,13 @@ packages=(
   # firmware: AVR builds and emulation
   gcc-avr avr-libc binutils-avr arduino-core-avr simavr libsimavr-dev libelf-dev
 )
+
+# the official MCAP reader runs in the tests on node, installed from npm into the build tree
+# (tests/mcap/package-lock.json): Debian's node and npm, unless the machine has a node with
+# its own npm already (whose package conflicts with Debian's npm)
+if ! command -v npm >/dev/null 2>&1; then
+  packages+=(nodejs npm)
+fi
 
 sudo_cmd=()
 if [ "$(id -u)" -ne 0 ]; then

@@ -578,6 +578,11 @@ void AddRunCommand(CommandLine& cli) {
   run_cmd->add_option("--trace-signals", run->session.trace.signals,
                       "the signals the trace records, comma-separated, instead of the robot "
                       "file's list");
+  run_cmd
+      ->add_option("--record", run->session.record,
+                   "the recording, run.mcap (docs/replay.md): light (poses and signals at "
+                   "100 Hz, the log, the maze), full (every step) or off")
+      ->capture_default_str();
 
   // pictures: none of these changes what is run
   run_cmd->add_option("--camera", run->camera, "camera of the pictures: top, chase or free")

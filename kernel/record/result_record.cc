@@ -15,9 +15,11 @@ nlohmann::json NewResultRecord(const std::string& command) {
            {{"name", "unimouse-result"},
             {"version", kResultSchemaVersion},
             {"docs", "docs/results.md"}}},
-          {"unimouse_version", UNIMOUSE_VERSION},
+          {"unimouse_version", UnimouseVersion()},
           {"command", command}};
 }
+
+const char* UnimouseVersion() { return UNIMOUSE_VERSION; }
 
 FileRecord IdentifyFile(const std::string& path) { return {path, FileSha256(path)}; }
 

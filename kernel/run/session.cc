@@ -7,6 +7,7 @@
 #include <cmath>
 #include <csignal>
 #include <filesystem>
+#include <map>
 #include <numbers>
 #include <variant>
 
@@ -350,6 +351,7 @@ void Session::Assemble() {
   const std::string log_path = (fs::path(o.out_dir) / "log.txt").string();
   log_.reset(std::fopen(log_path.c_str(), "w"));
   UNIMOUSE_THROW_UNLESS(log_ != nullptr, log_path + ": cannot write the run's log");
+  OpenRecording();
   KernelOptions kernel_options;
   kernel_options.seed = o.seed;
   kernel_options.output_dir = o.out_dir;
@@ -368,6 +370,7 @@ void Session::Assemble() {
     std::fprintf(log_.get(), "%.6f\t%s\t%s%s\n", time_s, component.c_str(), kind, message.c_str());
     if (level == UNIMOUSE_LOG_WARNING) warnings_.push_back(component + ": " + message);
     std::fflush(log_.get());
+    Record([&](RunRecording& r) { r.Log(time_s, level, component, message); });
   };
   if (robots_.size() == 1) {
     kernel_ = Kernel::Create(robots_.front().spec, maze_.get(), *registry, kernel_options);
@@ -438,6 +441,7 @@ void Session::Assemble() {
   pace_ = !o.paced_by_caller && (o.realtime || kernel_->declared(UNIMOUSE_TRAIT_WALL_CLOCK));
   pacer_ = std::make_unique<RealTimePacer>(kernel_->timestep_s());
   if (o.progress && o.console) progress_ = std::make_unique<ConsoleProgress>(stderr);
+  Record([&](RunRecording& r) { r.Sample(*kernel_); });
   start_ = std::chrono::steady_clock::now();
 }
 
@@ -447,6 +451,7 @@ void Session::Step() {
     kernel_->Step();
     LogContacts();
     pictures_->AfterStep();
+    Record([&](RunRecording& r) { r.Sample(*kernel_); });
   } catch (const RuntimeFault& e) {
     fault_ = e.what();
     return;
@@ -556,6 +561,66 @@ void Session::DrawFirmwareMaze() {
   WriteMazePicture(picture, base.string() + ".svg");
 }
 
+void Session::OpenRecording() {
+  const RecordLevel level = ParseRecordLevel(options_.record);
+  const std::string path = (fs::path(options_.out_dir) / "run.mcap").string();
+  if (level == RecordLevel::kOff) {
+    // never an earlier run's recording beside this run's result
+    std::error_code ignored;
+    fs::remove(path, ignored);
+    return;
+  }
+  recording_ = std::make_unique<RunRecording>(path, level, maze_.get());
+}
+
+// a recording that cannot be written ends with a warning; the run goes on without it
+void Session::Record(const std::function<void(RunRecording&)>& write) {
+  if (!recording_) return;
+  try {
+    write(*recording_);
+  } catch (const InputError& e) {
+    recording_.reset();
+    // said here, not through the kernel's log: this may be inside its log sink
+    const std::string why = std::string(e.what()) + "; the run goes on unrecorded";
+    warnings_.push_back("run: " + why);
+    std::fprintf(stderr, "run: warning: %s\n", why.c_str());
+    const double time_s = kernel_ ? kernel_->state().data().time : 0.0;
+    if (log_) std::fprintf(log_.get(), "%.6f\trun\twarning: %s\n", time_s, why.c_str());
+  }
+}
+
+// the files the run read, its result and its identity travel inside the recording, so that
+// the file alone says what ran
+void Session::CloseRecording(const RunRecord& record, const nlohmann::json& result_json) {
+  const double end_s = kernel_->state().data().time;
+  Record([&](RunRecording& r) {
+    r.Attach("result.json",
+             result_json.dump(2, ' ', false, nlohmann::json::error_handler_t::replace),
+             "application/json", end_s);
+    for (const Robot& robot : robots_) {
+      r.AttachFile(fs::path(robot.file).filename().string(), robot.file, "application/yaml", 0);
+    }
+    if (!scenario_file_.empty()) {
+      r.AttachFile(fs::path(scenario_file_).filename().string(), scenario_file_, "text/x-lua", 0);
+    }
+    if (!maze_file_.empty()) {
+      r.AttachFile(fs::path(maze_file_).filename().string(), maze_file_, "text/plain", 0);
+    }
+    std::map<std::string, std::string> identity = {{"unimouse_version", UnimouseVersion()},
+                                                   {"seed", std::to_string(options_.seed)},
+                                                   {"status", record.status}};
+    for (size_t i = 0; i < robots_.size(); ++i) {
+      const std::string key = robots_.size() == 1 ? "robot" : "robot." + robots_[i].name;
+      identity[key + "_sha256"] = robots_[i].sha256;
+    }
+    if (!scenario_sha256_.empty()) identity["scenario_sha256"] = scenario_sha256_;
+    if (record.maze) identity["maze_sha256"] = record.maze->sha256;
+    r.AddMetadata("unimouse.run", identity);
+    r.Close();
+  });
+  recording_.reset();
+}
+
 RunRecord Session::Finish(std::optional<int64_t> view_frames) {
   UNIMOUSE_DEMAND(!finished_);
   finished_ = true;
@@ -639,7 +704,9 @@ RunRecord Session::Finish(std::optional<int64_t> view_frames) {
   r.contacts_not_kept = kernel_->contacts().contacts_not_kept();
   r.warnings = warnings_;
   r.view_frames = view_frames;
-  WriteResultRecord(options_.out_dir, RunRecordJson(r));
+  const nlohmann::json json = RunRecordJson(r);
+  WriteResultRecord(options_.out_dir, json);
+  CloseRecording(r, json);
   return r;
 }
 

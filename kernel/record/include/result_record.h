@@ -19,6 +19,9 @@ namespace unimouse {
 /// renamed, or one whose type or meaning changes, raises the major.
 inline constexpr const char* kResultSchemaVersion = "1.5";
 
+/// The version of unimouse that writes records, e.g. "0.1.0".
+const char* UnimouseVersion();
+
 /// A file a run read, and the SHA-256 of its content as the run read it.
 struct FileRecord {
   std::string file;

@@ -27,6 +27,7 @@
 #include "robot_spec.h"
 #include "run_pictures.h"
 #include "run_record.h"
+#include "run_recording.h"
 #include "scenario.h"
 #include "trace_options.h"
 
@@ -74,6 +75,7 @@ struct SessionOptions {
   std::vector<std::string> link_sets;        ///< link parameters, "name=value"
   std::string firmware_profile;  ///< what the firmware expects ("unimousesim-0.1"); "" default
   TraceOptions trace;            ///< the trace loggers' rate and signals, or no trace
+  std::string record = "light";  ///< the recording, run.mcap: off, light or full (docs/replay.md)
   std::string maze_class;  ///< without a scenario: "classic" or "half" builds the maze so; "" its
                            ///< size's class
   bool realtime = false;   ///< pace to the wall clock, even a firmware in lock-step (to watch)
@@ -160,6 +162,11 @@ class Session {
   void LogContacts();
   void CheckReportedCell(int robot, int x, int y);
   void DrawFirmwareMaze();
+  // the recording (run_recording.h): opened before the robots are built, fed at every step
+  // boundary, closed after the result with the run's files attached
+  void OpenRecording();
+  void Record(const std::function<void(RunRecording&)>& write);
+  void CloseRecording(const RunRecord& record, const nlohmann::json& result_json);
 
   // a robot of the run, as loaded, and what happened to it
   struct Robot {
@@ -195,6 +202,7 @@ class Session {
   std::unique_ptr<RealTimePacer> pacer_;
   std::unique_ptr<ConsoleProgress> progress_;
   size_t logged_contacts_ = 0;
+  std::unique_ptr<RunRecording> recording_;
   bool pace_ = false;
   std::string fault_;
   std::string interrupted_;  // by which signal, when

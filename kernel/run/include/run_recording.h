@@ -1,0 +1,82 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The recording of a run, run.mcap in its output folder (docs/replay.md): JSON messages, each
+// channel with its JSON Schema, the 3D ones in Foxglove's published schemas so that Foxglove,
+// Lichtblick and PlotJuggler show them as they are. Session feeds it what the run already has
+// (poses, signals, the log) at its step boundaries; plugins never write it. Its chunks reach the
+// disk at least every simulated second, so a run that dies leaves a recording that reads up to
+// then.
+#ifndef UNIMOUSE_RUN_RUN_RECORDING_H_
+#define UNIMOUSE_RUN_RUN_RECORDING_H_
+
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "kernel.h"
+#include "maze.h"
+
+namespace unimouse {
+
+class McapWriter;
+
+/// How much of a run its recording holds.
+enum class RecordLevel {
+  kOff,    ///< no recording
+  kLight,  ///< poses and signals at 100 Hz, the log, the maze
+  kFull,   ///< poses and signals at every step, the log, the maze
+};
+
+/// Parses `--record`'s value: "off", "light" or "full"; throws InputError otherwise.
+RecordLevel ParseRecordLevel(const std::string& text);
+
+/// Seconds between two samples of poses and signals at kLight.
+inline constexpr double kLightRecordPeriod_s = 0.01;
+
+/// A run's recording, open from before its first step to after its result.
+class RunRecording {
+ public:
+  /// Creates the file at `path` (throws InputError when it cannot) and records the maze (none
+  /// when null) once, at time 0.
+  RunRecording(const std::string& path, RecordLevel level, const Maze* maze);
+  /// Closes the file as Close() does, dropping an error.
+  ~RunRecording();
+  RunRecording(const RunRecording&) = delete;
+  RunRecording& operator=(const RunRecording&) = delete;
+
+  /// Records every robot's pose and every signal at the kernel's present time, when a sample is
+  /// due there (every step at kFull, every 10 ms at kLight).
+  void Sample(const Kernel& kernel);
+  /// Records a line of the run's log (a UNIMOUSE_LOG_* level) at `time_s`.
+  void Log(double time_s, int level, const std::string& component, const std::string& message);
+  /// Attaches a file read from `path` under `name`, stamped `time_s`; a file that cannot be
+  /// read is left out, returning false.
+  bool AttachFile(const std::string& name, const std::string& path, const std::string& media_type,
+                  double time_s);
+  /// Attaches `content` under `name`, stamped `time_s`.
+  void Attach(const std::string& name, const std::string& content, const std::string& media_type,
+              double time_s);
+  /// Adds a named set of key-value pairs (the version, seed, hashes).
+  void AddMetadata(const std::string& name, const std::map<std::string, std::string>& values);
+  /// Ends the recording: the summary and indexes that make it quick to open.
+  void Close();
+
+ private:
+  void OpenRobotChannels(const Kernel& kernel);
+
+  std::unique_ptr<McapWriter> writer_;
+  RecordLevel level_;
+  uint16_t frame_transform_schema_ = 0;
+  uint16_t log_channel_ = 0;
+  uint16_t signals_channel_ = 0;
+  std::vector<uint16_t> pose_channels_;
+  std::vector<std::string> frame_names_;  // as JSON strings
+  std::vector<std::string> signal_keys_;  // "name": of each signal, as JSON
+  std::string message_;                   // the message being written, its memory kept
+  int64_t sample_every_steps_ = 0;        // 0 until the first sample knows the step
+};
+
+}  // namespace unimouse
+
+#endif  // UNIMOUSE_RUN_RUN_RECORDING_H_

@@ -1,0 +1,312 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "run_recording.h"
+
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "mcap_writer.h"
+#include "unimouse/errors.h"
+
+namespace unimouse {
+namespace {
+
+using nlohmann::json;
+
+// the JSON Schemas of Foxglove's message types, as far as the recording uses them: their
+// names tell Foxglove and Lichtblick what a channel holds
+constexpr const char* kTimeSchema =
+    R"({"type":"object","properties":{"sec":{"type":"integer","minimum":0},)"
+    R"("nsec":{"type":"integer","minimum":0,"maximum":999999999}}})";
+constexpr const char* kVector3Schema =
+    R"({"type":"object","properties":{"x":{"type":"number"},"y":{"type":"number"},)"
+    R"("z":{"type":"number"}}})";
+constexpr const char* kQuaternionSchema =
+    R"({"type":"object","properties":{"x":{"type":"number"},"y":{"type":"number"},)"
+    R"("z":{"type":"number"},"w":{"type":"number"}}})";
+
+std::string FrameTransformSchema() {
+  return json{{"title", "foxglove.FrameTransform"},
+              {"description", "where a robot is: its frame in the world's"},
+              {"type", "object"},
+              {"properties",
+               {{"timestamp", json::parse(kTimeSchema)},
+                {"parent_frame_id", {{"type", "string"}}},
+                {"child_frame_id", {{"type", "string"}}},
+                {"translation", json::parse(kVector3Schema)},
+                {"rotation", json::parse(kQuaternionSchema)}}}}
+      .dump();
+}
+
+std::string LogSchema() {
+  json levels = json::array();
+  for (int level = 0; level <= 5; ++level) levels.push_back({{"const", level}});
+  return json{{"title", "foxglove.Log"},
+              {"description", "a line of the run's log"},
+              {"type", "object"},
+              {"properties",
+               {{"timestamp", json::parse(kTimeSchema)},
+                {"level", {{"oneOf", levels}}},
+                {"message", {{"type", "string"}}},
+                {"name", {{"type", "string"}}},
+                {"file", {{"type", "string"}}},
+                {"line", {{"type", "integer"}, {"minimum", 0}}}}}}
+      .dump();
+}
+
+std::string SceneUpdateSchema() {
+  const json pose = {{"type", "object"},
+                     {"properties",
+                      {{"position", json::parse(kVector3Schema)},
+                       {"orientation", json::parse(kQuaternionSchema)}}}};
+  const json color = {{"type", "object"},
+                      {"properties",
+                       {{"r", {{"type", "number"}}},
+                        {"g", {{"type", "number"}}},
+                        {"b", {{"type", "number"}}},
+                        {"a", {{"type", "number"}}}}}};
+  const json cube = {
+      {"type", "object"},
+      {"properties", {{"pose", pose}, {"size", json::parse(kVector3Schema)}, {"color", color}}}};
+  const json entity = {{"type", "object"},
+                       {"properties",
+                        {{"timestamp", json::parse(kTimeSchema)},
+                         {"frame_id", {{"type", "string"}}},
+                         {"id", {{"type", "string"}}},
+                         {"lifetime", json::parse(kTimeSchema)},
+                         {"frame_locked", {{"type", "boolean"}}},
+                         {"cubes", {{"type", "array"}, {"items", cube}}}}}};
+  return json{
+      {"title", "foxglove.SceneUpdate"},
+      {"description", "the maze's walls and posts"},
+      {"type", "object"},
+      {"properties",
+       {{"deletions", {{"type", "array"}}}, {"entities", {{"type", "array"}, {"items", entity}}}}}}
+      .dump();
+}
+
+std::string SignalsSchema(const std::vector<std::string>& names) {
+  json values = json::object();
+  for (const std::string& name : names) values[name] = {{"type", {"number", "null"}}};
+  return json{{"title", "unimouse.Signals"},
+              {"description",
+               "every signal of the run's robots, by name (SI units, the unit in the name); "
+               "null for a value that is not a number"},
+              {"type", "object"},
+              {"properties",
+               {{"timestamp", json::parse(kTimeSchema)},
+                {"values", {{"type", "object"}, {"properties", values}}}}}}
+      .dump();
+}
+
+// a number as JSON, in the fewest digits that read back to the same double; JSON has no NaN
+// or infinity
+void AppendNumber(std::string& out, double value) {
+  if (!std::isfinite(value)) {
+    out += "null";
+    return;
+  }
+  char digits[32];
+  const auto [end, error] = std::to_chars(digits, digits + sizeof(digits), value);
+  UNIMOUSE_DEMAND(error == std::errc());
+  out.append(digits, end);
+}
+
+// a name from a robot file as a JSON string; text that is not UTF-8 is replaced, never refused
+std::string JsonText(const std::string& text) {
+  return json(text).dump(-1, ' ', false, json::error_handler_t::replace);
+}
+
+void AppendTimestamp(std::string& out, uint64_t time_ns) {
+  out += "{\"sec\":" + std::to_string(time_ns / 1'000'000'000) +
+         ",\"nsec\":" + std::to_string(time_ns % 1'000'000'000) + "}";
+}
+
+uint64_t Nanoseconds(double time_s) {
+  return time_s <= 0 ? 0 : static_cast<uint64_t>(std::llround(time_s * 1e9));
+}
+
+json Timestamp(uint64_t time_ns) {
+  return {{"sec", time_ns / 1'000'000'000}, {"nsec", time_ns % 1'000'000'000}};
+}
+
+// a wall or post as a box in the world frame
+json Cube(double x, double y, double size_x, double size_y, const MazeDimensions& dims,
+          const json& color) {
+  return {{"pose",
+           {{"position", {{"x", x}, {"y", y}, {"z", dims.wall_height_m / 2}}},
+            {"orientation", {{"x", 0}, {"y", 0}, {"z", 0}, {"w", 1}}}}},
+          {"size", {{"x", size_x}, {"y", size_y}, {"z", dims.wall_height_m}}},
+          {"color", color}};
+}
+
+json MazeScene(const Maze& maze) {
+  const MazeDimensions& dims = maze.dimensions();
+  const double cell = dims.cell_m;
+  const double t = dims.wall_thickness_m;
+  const json wall_color = {{"r", 0.93}, {"g", 0.93}, {"b", 0.9}, {"a", 1.0}};
+  const json post_color = {{"r", 0.85}, {"g", 0.15}, {"b", 0.1}, {"a", 1.0}};
+  json cubes = json::array();
+  for (int y = 0; y <= maze.height(); ++y) {
+    for (int x = 0; x <= maze.width(); ++x) {
+      cubes.push_back(Cube(x * cell, y * cell, t, t, dims, post_color));
+      if (x < maze.width() && maze.HasHorizontalWall(x, y)) {
+        cubes.push_back(Cube((x + 0.5) * cell, y * cell, cell - t, t, dims, wall_color));
+      }
+      if (y < maze.height() && maze.HasVerticalWall(x, y)) {
+        cubes.push_back(Cube(x * cell, (y + 0.5) * cell, t, cell - t, dims, wall_color));
+      }
+    }
+  }
+  json entity = {{"timestamp", Timestamp(0)},
+                 {"frame_id", "world"},
+                 {"id", "maze"},
+                 {"lifetime", Timestamp(0)},  // for ever
+                 {"frame_locked", false},
+                 {"metadata", json::array()},
+                 {"arrows", json::array()},
+                 {"cubes", cubes},
+                 {"spheres", json::array()},
+                 {"cylinders", json::array()},
+                 {"lines", json::array()},
+                 {"triangles", json::array()},
+                 {"texts", json::array()},
+                 {"models", json::array()}};
+  return {{"deletions", json::array()}, {"entities", json::array({entity})}};
+}
+
+// Foxglove's levels: 2 info, 3 warning, 4 error
+int FoxgloveLevel(int level) {
+  switch (level) {
+    case UNIMOUSE_LOG_WARNING:
+      return 3;
+    case UNIMOUSE_LOG_ERROR:
+      return 4;
+    case UNIMOUSE_LOG_DETAIL:
+      return 1;  // DEBUG: Foxglove's viewers can hide it, as the console does
+  }
+  return 2;
+}
+
+}  // namespace
+
+RecordLevel ParseRecordLevel(const std::string& text) {
+  if (text == "off") return RecordLevel::kOff;
+  if (text == "light") return RecordLevel::kLight;
+  if (text == "full") return RecordLevel::kFull;
+  throw InputError("--record " + text + ": give off, light or full");
+}
+
+RunRecording::RunRecording(const std::string& path, RecordLevel level, const Maze* maze)
+    : level_(level) {
+  UNIMOUSE_DEMAND(level != RecordLevel::kOff);
+  writer_ = std::make_unique<McapWriter>(path, McapWriterOptions{});
+  frame_transform_schema_ =
+      writer_->AddSchema("foxglove.FrameTransform", "jsonschema", FrameTransformSchema());
+  log_channel_ = writer_->AddChannel(writer_->AddSchema("foxglove.Log", "jsonschema", LogSchema()),
+                                     "/log", "json");
+  if (maze != nullptr) {
+    uint16_t scene = writer_->AddChannel(
+        writer_->AddSchema("foxglove.SceneUpdate", "jsonschema", SceneUpdateSchema()), "/maze",
+        "json");
+    writer_->Write(scene, 0, MazeScene(*maze).dump());
+  }
+}
+
+RunRecording::~RunRecording() = default;
+
+void RunRecording::OpenRobotChannels(const Kernel& kernel) {
+  const int robots = kernel.robot_count();
+  for (int i = 0; i < robots; ++i) {
+    const std::string& name = kernel.robot_name(i);
+    frame_names_.push_back(JsonText(name.empty() ? "robot" : name));
+    const std::string topic = name.empty() ? "/robot/pose" : "/robots/" + name + "/pose";
+    pose_channels_.push_back(writer_->AddChannel(frame_transform_schema_, topic, "json"));
+  }
+  const std::vector<std::string>& names = kernel.model().signal_names;
+  for (const std::string& name : names) signal_keys_.push_back(JsonText(name) + ":");
+  signals_channel_ = writer_->AddChannel(
+      writer_->AddSchema("unimouse.Signals", "jsonschema", SignalsSchema(names)), "/signals",
+      "json");
+  sample_every_steps_ =
+      level_ == RecordLevel::kFull
+          ? 1
+          : std::max<int64_t>(1, std::llround(kLightRecordPeriod_s / kernel.timestep_s()));
+}
+
+void RunRecording::Sample(const Kernel& kernel) {
+  if (sample_every_steps_ == 0) OpenRobotChannels(kernel);
+  const State& state = kernel.state();
+  if (state.step() % sample_every_steps_ != 0) return;
+  const mjData& d = state.data();
+  const uint64_t time_ns = Nanoseconds(d.time);
+
+  // written by hand, not through a JSON library: this runs a hundred times a simulated second
+  std::string& m = message_;
+  for (size_t i = 0; i < pose_channels_.size(); ++i) {
+    const Pose2D pose = kernel.world().RobotPose(d, static_cast<int>(i));
+    m = "{\"timestamp\":";
+    AppendTimestamp(m, time_ns);
+    m += ",\"parent_frame_id\":\"world\",\"child_frame_id\":" + frame_names_[i];
+    m += ",\"translation\":{\"x\":";
+    AppendNumber(m, pose.x_m);
+    m += ",\"y\":";
+    AppendNumber(m, pose.y_m);
+    m += ",\"z\":0},\"rotation\":{\"x\":0,\"y\":0,\"z\":";
+    AppendNumber(m, std::sin(pose.yaw_rad / 2));
+    m += ",\"w\":";
+    AppendNumber(m, std::cos(pose.yaw_rad / 2));
+    m += "}}";
+    writer_->Write(pose_channels_[i], time_ns, m);
+  }
+  const std::vector<double>& signals = state.signals();
+  m = "{\"timestamp\":";
+  AppendTimestamp(m, time_ns);
+  m += ",\"values\":{";
+  for (size_t i = 0; i < signal_keys_.size() && i < signals.size(); ++i) {
+    if (i > 0) m += ',';
+    m += signal_keys_[i];
+    AppendNumber(m, signals[i]);
+  }
+  m += "}}";
+  writer_->Write(signals_channel_, time_ns, m);
+}
+
+void RunRecording::Log(double time_s, int level, const std::string& component,
+                       const std::string& message) {
+  const uint64_t time_ns = Nanoseconds(time_s);
+  json line = {{"timestamp", Timestamp(time_ns)},
+               {"level", FoxgloveLevel(level)},
+               {"message", message},
+               {"name", component},
+               {"file", ""},
+               {"line", 0}};
+  // a line of a firmware or a script need not be UTF-8: replaced, never refused
+  writer_->Write(log_channel_, time_ns, line.dump(-1, ' ', false, json::error_handler_t::replace));
+}
+
+bool RunRecording::AttachFile(const std::string& name, const std::string& path,
+                              const std::string& media_type, double time_s) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return false;
+  std::stringstream content;
+  content << in.rdbuf();
+  Attach(name, content.str(), media_type, time_s);
+  return true;
+}
+
+void RunRecording::Attach(const std::string& name, const std::string& content,
+                          const std::string& media_type, double time_s) {
+  writer_->Attach(name, media_type, Nanoseconds(time_s), content);
+}
+
+void RunRecording::AddMetadata(const std::string& name,
+                               const std::map<std::string, std::string>& values) {
+  writer_->AddMetadata(name, values);
+}
+
+void RunRecording::Close() { writer_->Close(); }
+
+}  // namespace unimouse

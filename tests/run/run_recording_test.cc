@@ -1,0 +1,250 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// A run's recording, run.mcap, read by the tests' own MCAP reader (tests/support/mcap_reader.py,
+// written from the specification, sharing nothing with the writer, which also checks every
+// message against its channel's JSON Schema): the main job's poses are the trace's at the same
+// times, its channels carry Foxglove's schema names, the files the run read are attached byte
+// for byte, a crashed or killed run leaves a readable recording, and `--record` turns it off or
+// asks for every step.
+#include "run_recording.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <numbers>
+#include <sstream>
+#include <string>
+
+#include "run_program.h"
+#include "text_file.h"
+#include "unimouse/errors.h"
+
+namespace unimouse {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+const std::string kFirmware = UNIMOUSE_FIRMWARE_DIR "/micromouse.so";
+
+// with cut_ok, a file that stops short (a killed run) reads up to its last whole record
+json ReadRecording(const std::string& file, bool cut_ok = false) {
+  const std::string complaint = file + ".err";
+  const testing::Outcome o =
+      testing::Shell("(" + std::string(UNIMOUSE_PYTHON3) +
+                     " " UNIMOUSE_SOURCE_DIR "/tests/support/mcap_reader.py '" + file + "'" +
+                     (cut_ok ? " --cut-ok" : "") + " 2>'" + complaint + "')");
+  EXPECT_EQ(o.exit_code, 0) << ReadTextFile(complaint);
+  if (o.exit_code != 0) return json();
+  return json::parse(o.output);
+}
+
+// the messages of one topic
+std::vector<json> OnTopic(const json& recording, const std::string& topic) {
+  int channel = -1;
+  for (const json& c : recording["channels"]) {
+    if (c["topic"] == topic) channel = c["id"];
+  }
+  std::vector<json> out;
+  for (const json& m : recording["messages"]) {
+    if (m["channel_id"] == channel) out.push_back(m);
+  }
+  return out;
+}
+
+std::string SchemaOf(const json& recording, const std::string& topic) {
+  for (const json& c : recording["channels"]) {
+    if (c["topic"] != topic) continue;
+    for (const json& s : recording["schemas"]) {
+      if (s["id"] == c["schema_id"]) return s["name"];
+    }
+  }
+  return "";
+}
+
+// trace.csv as rows of named numbers
+std::vector<std::map<std::string, double>> ReadTrace(const std::string& file) {
+  std::ifstream in(file);
+  std::string line;
+  std::getline(in, line);
+  std::vector<std::string> columns;
+  std::stringstream header(line);
+  for (std::string c; std::getline(header, c, ',');) columns.push_back(c);
+  std::vector<std::map<std::string, double>> rows;
+  while (std::getline(in, line)) {
+    std::stringstream cells(line);
+    std::map<std::string, double> row;
+    size_t i = 0;
+    for (std::string cell; std::getline(cells, cell, ',') && i < columns.size(); ++i) {
+      row[columns[i]] = std::stod(cell);
+    }
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+uint64_t Nanoseconds(double time_s) { return static_cast<uint64_t>(std::llround(time_s * 1e9)); }
+
+std::string OutDir(const std::string& name) { return (fs::temp_directory_path() / name).string(); }
+
+double Yaw(const json& rotation) {
+  return 2 * std::atan2(rotation["z"].get<double>(), rotation["w"].get<double>());
+}
+
+double AngleBetween(double a, double b) { return std::remainder(a - b, 2 * std::numbers::pi); }
+
+TEST(RunRecordingTest, TheMainJobsPosesAreItsTracesAtTheSameTimes) {
+  // the main job as the README runs it: the contest with the bundled firmware
+  const testing::RunResult run = testing::UnimouseRun(
+      "--scenario micromouse --set end_on_log=done --link inproc:" + kFirmware, "main_job_record");
+  ASSERT_EQ(run.outcome.exit_code, 0) << run.outcome.output;
+  const std::string out = OutDir("main_job_record");
+  const json recording = ReadRecording(out + "/run.mcap");
+  ASSERT_TRUE(recording.is_object());
+  EXPECT_TRUE(recording["complete"].get<bool>());
+  EXPECT_EQ(SchemaOf(recording, "/robot/pose"), "foxglove.FrameTransform");
+
+  // the trace (every 10 ms, the bundled robot's logger) is the independent truth
+  std::map<uint64_t, json> poses;
+  for (const json& m : OnTopic(recording, "/robot/pose")) {
+    ASSERT_EQ(m["data"]["parent_frame_id"], "world");
+    ASSERT_EQ(m["data"]["timestamp"]["sec"].get<uint64_t>() * 1'000'000'000 +
+                  m["data"]["timestamp"]["nsec"].get<uint64_t>(),
+              m["log_time"].get<uint64_t>());
+    poses[m["log_time"].get<uint64_t>()] = m["data"];
+  }
+  const auto trace = ReadTrace(out + "/trace.csv");
+  ASSERT_GT(trace.size(), 1000u);
+  for (const auto& row : trace) {
+    const uint64_t time_ns = Nanoseconds(row.at("time_s"));
+    ASSERT_TRUE(poses.contains(time_ns)) << "no pose at " << row.at("time_s") << " s";
+    const json& pose = poses[time_ns];
+    ASSERT_NEAR(pose["translation"]["x"].get<double>(), row.at("x_m"), 1e-9) << time_ns;
+    ASSERT_NEAR(pose["translation"]["y"].get<double>(), row.at("y_m"), 1e-9) << time_ns;
+    ASSERT_NEAR(AngleBetween(Yaw(pose["rotation"]), row.at("yaw_rad")), 0, 1e-9) << time_ns;
+  }
+  // at 100 Hz, as the trace: the recording's last pose is the end of the last step, which no
+  // row of the trace sees
+  EXPECT_LE(poses.size(), trace.size() + 1);
+
+  // the log, the maze once, the signals at 100 Hz, in Foxglove's schemas where there is one
+  EXPECT_EQ(SchemaOf(recording, "/log"), "foxglove.Log");
+  EXPECT_EQ(SchemaOf(recording, "/maze"), "foxglove.SceneUpdate");
+  EXPECT_EQ(SchemaOf(recording, "/signals"), "unimouse.Signals");
+  EXPECT_EQ(OnTopic(recording, "/maze").size(), 1u);
+  EXPECT_EQ(OnTopic(recording, "/signals").size(), poses.size());
+  EXPECT_GT(OnTopic(recording, "/log").size(), 10u);
+}
+
+TEST(RunRecordingTest, AttachesTheFilesTheRunReadAndSaysWhatRan) {
+  const testing::RunResult run = testing::UnimouseRun(
+      "--scenario micromouse --link inproc:" + kFirmware + " --duration 0.3", "record_files");
+  ASSERT_EQ(run.outcome.exit_code, 1) << run.outcome.output;  // no run finished in 0.3 s
+  const std::string out = OutDir("record_files");
+  const json recording = ReadRecording(out + "/run.mcap");
+  ASSERT_TRUE(recording.is_object());
+
+  std::map<std::string, std::string> attached;
+  for (const json& a : recording["attachments"]) attached[a["name"]] = a.value("data", "");
+  EXPECT_EQ(attached["result.json"].empty(), false);
+  EXPECT_EQ(json::parse(attached["result.json"]), json::parse(ReadTextFile(out + "/result.json")));
+  const std::string robot = run.result["robots"][0]["file"];
+  EXPECT_EQ(attached[fs::path(robot).filename().string()], ReadTextFile(robot));
+  const std::string scenario = run.result["scenario"]["file"];
+  EXPECT_EQ(attached[fs::path(scenario).filename().string()], ReadTextFile(scenario));
+  const std::string maze = run.result["maze"];
+  EXPECT_EQ(attached[fs::path(maze).filename().string()], ReadTextFile(maze));
+
+  ASSERT_EQ(recording["metadata"].size(), 1u);
+  const json& identity = recording["metadata"][0]["metadata"];
+  EXPECT_EQ(recording["metadata"][0]["name"], "unimouse.run");
+  EXPECT_EQ(identity["seed"], "1");
+  EXPECT_EQ(identity["unimouse_version"], run.result["unimouse_version"]);
+  EXPECT_EQ(identity["robot_sha256"], run.result["robots"][0]["sha256"]);
+  EXPECT_EQ(identity["scenario_sha256"], run.result["scenario"]["sha256"]);
+  EXPECT_EQ(identity["maze_sha256"], run.result["maze_sha256"]);
+}
+
+TEST(RunRecordingTest, FullRecordsEveryStepAndOffRecordsNothing) {
+  const std::string args = "--scenario micromouse --link inproc:" + kFirmware + " --duration 0.2";
+  const testing::RunResult full = testing::UnimouseRun(args + " --record full", "record_full");
+  ASSERT_EQ(full.outcome.exit_code, 1) << full.outcome.output;
+  const json recording = ReadRecording(OutDir("record_full") + "/run.mcap");
+  ASSERT_TRUE(recording.is_object());
+  // time 0, then the end of each of the 200 steps of 1 ms
+  const auto poses = OnTopic(recording, "/robot/pose");
+  ASSERT_EQ(poses.size(), 201u);
+  for (size_t k = 0; k < poses.size(); ++k) {
+    ASSERT_NEAR(poses[k]["log_time"].get<double>(), static_cast<double>(k) * 1e6, 1e3) << k;
+  }
+
+  const testing::RunResult off = testing::UnimouseRun(args + " --record off", "record_off");
+  ASSERT_EQ(off.outcome.exit_code, 1) << off.outcome.output;
+  EXPECT_FALSE(fs::exists(OutDir("record_off") + "/run.mcap"));
+  EXPECT_TRUE(fs::exists(OutDir("record_off") + "/result.json"));
+}
+
+TEST(RunRecordingTest, AFirmwareCrashLeavesACompleteRecordingOfEachRobot) {
+  const testing::RunResult r = testing::UnimouseRun(
+      "--maze japan2018 --scenario none --duration 1 --no-pictures --robot unimouse --link "
+      "inproc:" +
+          kFirmware + " --robot unimouse --name crasher --start 15,15,S --link inproc:" +
+          UNIMOUSE_TEST_BINARY_DIR "/null_pointer_firmware.so",
+      "record_crash");
+  ASSERT_EQ(r.outcome.exit_code, 3) << r.outcome.output;
+  const json recording = ReadRecording(OutDir("record_crash") + "/run.mcap");
+  ASSERT_TRUE(recording.is_object());
+  EXPECT_TRUE(recording["complete"].get<bool>());
+  // each robot its own frame, up to the step that faulted at 0.2 s
+  for (const std::string name : {"unimouse", "crasher"}) {
+    const auto poses = OnTopic(recording, "/robots/" + name + "/pose");
+    ASSERT_GE(poses.size(), 20u) << name;
+    EXPECT_EQ(poses.back()["data"]["child_frame_id"], name);
+    EXPECT_NEAR(poses.back()["log_time"].get<double>() * 1e-9, 0.2, 0.011) << name;
+  }
+  std::string result;
+  for (const json& a : recording["attachments"]) {
+    if (a["name"] == "result.json") result = a["data"];
+  }
+  EXPECT_EQ(json::parse(result)["status"], "fault");
+}
+
+TEST(RunRecordingTest, AKilledRunLeavesARecordingThatReadsToItsLastWholeChunk) {
+  // killed outright, as by the OOM killer or a lost machine: no finish, no result. The contest
+  // runs to its 10-minute limit here, some seconds after the kill
+  const testing::RunResult r = testing::UnimouseRun(
+      "--scenario micromouse --link inproc:" + kFirmware, "record_killed", "timeout -s KILL 3 ");
+  ASSERT_EQ(r.outcome.exit_code, 128 + 9) << r.outcome.output;
+  const json recording = ReadRecording(OutDir("record_killed") + "/run.mcap", /*cut_ok=*/true);
+  ASSERT_TRUE(recording.is_object());
+  EXPECT_FALSE(recording["complete"].get<bool>());
+  // every 10 ms from 0 (sim time, within its rounding to nanoseconds), at least a second of
+  // them: a chunk is written out every second
+  const auto poses = OnTopic(recording, "/robot/pose");
+  ASSERT_GE(poses.size(), 100u);
+  for (size_t k = 0; k < poses.size(); ++k) {
+    ASSERT_NEAR(poses[k]["log_time"].get<double>(), static_cast<double>(k) * 10e6, 1e3) << k;
+  }
+}
+
+TEST(RunRecordingTest, ParsesItsThreeLevels) {
+  EXPECT_EQ(ParseRecordLevel("off"), RecordLevel::kOff);
+  EXPECT_EQ(ParseRecordLevel("light"), RecordLevel::kLight);
+  EXPECT_EQ(ParseRecordLevel("full"), RecordLevel::kFull);
+  EXPECT_THROW(ParseRecordLevel("Full"), InputError);
+}
+
+TEST(RunRecordingTest, AnUnknownLevelIsBadInput) {
+  const testing::RunResult run =
+      testing::UnimouseRun("--duration 0.1 --record sometimes", "record_unknown");
+  EXPECT_EQ(run.outcome.exit_code, 2) << run.outcome.output;
+  EXPECT_NE(run.outcome.output.find("--record sometimes: give off, light or full"),
+            std::string::npos)
+      << run.outcome.output;
+}
+
+}  // namespace
+}  // namespace unimouse

@@ -56,6 +56,22 @@ nlohmann::json ScenarioJson(const ScenarioRunRecord& s) {
 
 }  // namespace
 
+nlohmann::json ContactJson(const Contact& c, const std::vector<std::string>& robot_names) {
+  const auto name = [&](int robot) { return robot_names[static_cast<size_t>(robot)]; };
+  nlohmann::json side = nullptr;
+  if (c.side == 'P') side = "post";
+  if (c.side != 0 && c.side != 'P') side = std::string(1, c.side);
+  return {{"robot", name(c.robot)},
+          {"t_s", c.time_s},
+          {"with", c.other_robot >= 0 ? "robot" : "scenery"},
+          {"other_robot", c.other_robot >= 0 ? nlohmann::json(name(c.other_robot)) : nullptr},
+          {"x_m", c.x_m},
+          {"y_m", c.y_m},
+          {"cell", c.cell ? nlohmann::json{c.cell->x, c.cell->y} : nlohmann::json(nullptr)},
+          {"side", side},
+          {"part", c.part}};
+}
+
 nlohmann::json RunRecordJson(const RunRecord& record) {
   const RunRecord& r = record;
   nlohmann::json j = NewResultRecord("run");
@@ -109,23 +125,10 @@ nlohmann::json RunRecordJson(const RunRecord& record) {
   if (r.firmware_maze) j["firmware_maze"] = "maze.png";
   if (!r.measurements.empty()) j["measurements"] = r.measurements;
   if (r.restarts) j["restarts"] = *r.restarts;
+  std::vector<std::string> names;
+  for (const RobotRecord& robot : r.robots) names.push_back(robot.name);
   nlohmann::json contacts = nlohmann::json::array();
-  for (const Contact& c : r.contacts) {
-    const auto name = [&](int robot) { return r.robots[static_cast<size_t>(robot)].name; };
-    nlohmann::json side = nullptr;
-    if (c.side == 'P') side = "post";
-    if (c.side != 0 && c.side != 'P') side = std::string(1, c.side);
-    contacts.push_back(
-        {{"robot", name(c.robot)},
-         {"t_s", c.time_s},
-         {"with", c.other_robot >= 0 ? "robot" : "scenery"},
-         {"other_robot", c.other_robot >= 0 ? nlohmann::json(name(c.other_robot)) : nullptr},
-         {"x_m", c.x_m},
-         {"y_m", c.y_m},
-         {"cell", c.cell ? nlohmann::json{c.cell->x, c.cell->y} : nlohmann::json(nullptr)},
-         {"side", side},
-         {"part", c.part}});
-  }
+  for (const Contact& c : r.contacts) contacts.push_back(ContactJson(c, names));
   j["contacts"] = contacts;
   j["contacts_not_kept"] = r.contacts_not_kept;
   j["warnings"] = r.warnings;

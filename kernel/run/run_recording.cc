@@ -101,6 +101,21 @@ std::string SignalsSchema(const std::vector<std::string>& names) {
       .dump();
 }
 
+std::string EventSchema() {
+  return json{{"title", "unimouse.Event"},
+              {"description",
+               "something that happened in the run, for a replay to jump to (docs/replay.md)"},
+              {"type", "object"},
+              {"required", {"timestamp", "kind", "robot", "text", "data"}},
+              {"properties",
+               {{"timestamp", json::parse(kTimeSchema)},
+                {"kind", {{"enum", {"contact", "lost"}}}},
+                {"robot", {{"type", "string"}}},
+                {"text", {{"type", "string"}}},
+                {"data", {{"type", "object"}}}}}}
+      .dump();
+}
+
 // a number as JSON, in the fewest digits that read back to the same double; JSON has no NaN
 // or infinity
 void AppendNumber(std::string& out, double value) {
@@ -207,6 +222,8 @@ RunRecording::RunRecording(const std::string& path, RecordLevel level, const Maz
       writer_->AddSchema("foxglove.FrameTransform", "jsonschema", FrameTransformSchema());
   log_channel_ = writer_->AddChannel(writer_->AddSchema("foxglove.Log", "jsonschema", LogSchema()),
                                      "/log", "json");
+  events_channel_ = writer_->AddChannel(
+      writer_->AddSchema("unimouse.Event", "jsonschema", EventSchema()), "/events", "json");
   if (maze != nullptr) {
     uint16_t scene = writer_->AddChannel(
         writer_->AddSchema("foxglove.SceneUpdate", "jsonschema", SceneUpdateSchema()), "/maze",
@@ -272,6 +289,16 @@ void RunRecording::Sample(const Kernel& kernel) {
   }
   m += "}}";
   writer_->Write(signals_channel_, time_ns, m);
+}
+
+void RunRecording::Event(double time_s, const std::string& kind, const std::string& robot,
+                         const std::string& text, const std::string& data_json) {
+  const uint64_t time_ns = Nanoseconds(time_s);
+  std::string m = "{\"timestamp\":";
+  AppendTimestamp(m, time_ns);
+  m += ",\"kind\":" + JsonText(kind) + ",\"robot\":" + JsonText(robot) +
+       ",\"text\":" + JsonText(text) + ",\"data\":" + data_json + "}";
+  writer_->Write(events_channel_, time_ns, m);
 }
 
 void RunRecording::Log(double time_s, int level, const std::string& component,

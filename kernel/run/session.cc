@@ -314,9 +314,7 @@ void Session::Assemble() {
       scenario_ = Scenario::Load(scenario_file_, overrides, o.seed, on_hang);
     }
     scenario_sha256_ = FileSha256(scenario_file_);
-    std::vector<std::string> names;
-    for (const Robot& r : robots_) names.push_back(r.name);
-    scenario_->SetRobotNames(names);
+    scenario_->SetRobotNames(RobotNames());
     world = scenario_->BuildWorld();
     maze_ = std::move(world.maze);
     maze_file_ = world.maze_file;
@@ -464,6 +462,12 @@ void Session::Step() {
   }
 }
 
+std::vector<std::string> Session::RobotNames() const {
+  std::vector<std::string> names;
+  for (const Robot& r : robots_) names.push_back(r.name);
+  return names;
+}
+
 // the moment a mouse gets lost: the first time the cell its firmware says it is in and the cell
 // it is in differ by more than one (a report may come as the robot crosses into the next cell)
 void Session::CheckReportedCell(int robot, int x, int y) {
@@ -475,14 +479,21 @@ void Session::CheckReportedCell(int robot, int x, int y) {
   const int true_y = static_cast<int>(std::floor(pose.y_m / cell_m));
   if (std::max(std::abs(true_x - x), std::abs(true_y - y)) <= 1) return;
   r.lost_reported = true;
-  kernel_->Log(UNIMOUSE_LOG_WARNING, "run",
-               (robots_.size() > 1 ? r.name + "'s " : std::string()) + "firmware reports cell (" +
-                   std::to_string(x) + ", " + std::to_string(y) + ") but the robot is in cell (" +
-                   std::to_string(true_x) + ", " + std::to_string(true_y) +
-                   "): it has lost its position");
+  const std::string text =
+      (robots_.size() > 1 ? r.name + "'s " : std::string()) + "firmware reports cell (" +
+      std::to_string(x) + ", " + std::to_string(y) + ") but the robot is in cell (" +
+      std::to_string(true_x) + ", " + std::to_string(true_y) + "): it has lost its position";
+  kernel_->Log(UNIMOUSE_LOG_WARNING, "run", text);
+  const nlohmann::json data = {{"reported_cell", {x, y}},
+                               {"true_cell", {true_x, true_y}},
+                               {"x_m", pose.x_m},
+                               {"y_m", pose.y_m}};
+  Record([&](RunRecording& rec) {
+    rec.Event(kernel_->state().data().time, "lost", r.name, text, data.dump());
+  });
 }
 
-// each contact, as it begins, a line of the log
+// each contact, as it begins, a line of the log and an event of the recording
 void Session::LogContacts() {
   const std::vector<Contact>& contacts = kernel_->contacts().contacts();
   for (; logged_contacts_ < contacts.size(); ++logged_contacts_) {
@@ -499,7 +510,12 @@ void Session::LogContacts() {
     } else {
       text += "the scenery";
     }
-    kernel_->Log(UNIMOUSE_LOG_DETAIL, "run", text + " with its " + c.part);
+    text += " with its " + c.part;
+    kernel_->Log(UNIMOUSE_LOG_DETAIL, "run", text);
+    Record([&](RunRecording& r) {
+      r.Event(c.time_s, "contact", robots_[static_cast<size_t>(c.robot)].name,
+              text.substr(sizeof("contact: ") - 1), ContactJson(c, RobotNames()).dump());
+    });
   }
 }
 

@@ -18,6 +18,7 @@
 #include <sstream>
 #include <string>
 
+#include "inline_assets.h"
 #include "run_program.h"
 #include "text_file.h"
 #include "unimouse/errors.h"
@@ -137,6 +138,37 @@ TEST(RunRecordingTest, TheMainJobsPosesAreItsTracesAtTheSameTimes) {
   EXPECT_EQ(OnTopic(recording, "/maze").size(), 1u);
   EXPECT_EQ(OnTopic(recording, "/signals").size(), poses.size());
   EXPECT_GT(OnTopic(recording, "/log").size(), 10u);
+}
+
+TEST(RunRecordingTest, ContactsAndTheMomentAMouseIsLostAreEventsAsTheResultListsThem) {
+  // the bundled example loses its position in Portugal 2024's final maze at 65.6 s, after
+  // touching walls (ResultRecordTest.TheMomentTheExampleMouseLosesItsPositionIsAWarning)
+  const std::string shared = testing::SharedMazesDir();
+  if (shared.empty())
+    GTEST_SKIP() << "the maze collection (../shared/mazes) is not beside the project";
+  const testing::RunResult run = testing::UnimouseRun(
+      "--maze " + shared + "/classic/Portugal-2024-Final.txt --duration 70", "lost_record");
+  ASSERT_EQ(run.outcome.exit_code, 1) << run.outcome.output;
+  const json recording = ReadRecording(OutDir("lost_record") + "/run.mcap");
+  ASSERT_TRUE(recording.is_object());
+  EXPECT_EQ(SchemaOf(recording, "/events"), "unimouse.Event");
+  std::vector<json> contacts, lost;
+  for (const json& m : OnTopic(recording, "/events")) {
+    (m["data"]["kind"] == "contact" ? contacts : lost).push_back(m["data"]);
+  }
+  // every contact of result.json, with the same facts, at its time
+  const json& listed = run.result["contacts"];
+  ASSERT_GT(listed.size(), 0u);
+  ASSERT_EQ(contacts.size(), listed.size());
+  for (size_t i = 0; i < contacts.size(); ++i) {
+    EXPECT_EQ(contacts[i]["data"], listed[i]);
+    EXPECT_EQ(contacts[i]["robot"], "unimouse");
+  }
+  ASSERT_EQ(lost.size(), 1u);
+  EXPECT_EQ(lost[0]["kind"], "lost");
+  EXPECT_EQ(lost[0]["data"]["reported_cell"], json({11, 11}));
+  EXPECT_EQ(lost[0]["data"]["true_cell"], json({11, 9}));
+  EXPECT_EQ(lost[0]["timestamp"]["sec"], 65);
 }
 
 TEST(RunRecordingTest, AttachesTheFilesTheRunReadAndSaysWhatRan) {

@@ -90,6 +90,10 @@ struct RunRecord {
   const RobotRecord& robot() const { return robots.front(); }
 };
 
+/// A contact as result.json's `contacts` and the recording's events hold it; `robot_names` by
+/// robot index.
+nlohmann::json ContactJson(const Contact& contact, const std::vector<std::string>& robot_names);
+
 /// The record as result.json holds it (schema kResultSchemaVersion, docs/results.md).
 nlohmann::json RunRecordJson(const RunRecord& record);
 

@@ -48,6 +48,10 @@ class RunRecording {
   /// Records every robot's pose and every signal at the kernel's present time, when a sample is
   /// due there (every step at kFull, every 10 ms at kLight).
   void Sample(const Kernel& kernel);
+  /// Records an event at `time_s` on /events, for a replay to jump to: its kind ("contact",
+  /// "lost"), the robot it happened to ("" none), a sentence, and its facts as a JSON object.
+  void Event(double time_s, const std::string& kind, const std::string& robot,
+             const std::string& text, const std::string& data_json);
   /// Records a line of the run's log (a UNIMOUSE_LOG_* level) at `time_s`.
   void Log(double time_s, int level, const std::string& component, const std::string& message);
   /// Attaches a file read from `path` under `name`, stamped `time_s`; a file that cannot be
@@ -69,6 +73,7 @@ class RunRecording {
   RecordLevel level_;
   uint16_t frame_transform_schema_ = 0;
   uint16_t log_channel_ = 0;
+  uint16_t events_channel_ = 0;
   uint16_t signals_channel_ = 0;
   std::vector<uint16_t> pose_channels_;
   std::vector<std::string> frame_names_;  // as JSON strings

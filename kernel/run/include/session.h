@@ -161,6 +161,7 @@ class Session {
   void PlaceRobots(ScenarioWorld& world);
   void LogContacts();
   void CheckReportedCell(int robot, int x, int y);
+  std::vector<std::string> RobotNames() const;
   void DrawFirmwareMaze();
   // the recording (run_recording.h): opened before the robots are built, fed at every step
   // boundary, closed after the result with the run's files attached

@@ -22,7 +22,7 @@ namespace unimouse {
 
 /// The firmware link that drives a robot, as its components declared it.
 struct LinkRecord {
-  std::string transport;               ///< the scheme: "inproc", "native", "avr", "tcp", ...
+  std::string transport;               ///< the spec's scheme (docs/results.md lists them)
   std::string spec;                    ///< the whole transport spec
   std::string profile;                 ///< what the firmware expects ("unimousesim-0.1")
   std::optional<FileRecord> firmware;  ///< none for a board's or a port's firmware

@@ -49,6 +49,41 @@ void BM_MainJobJapan2018(benchmark::State& bench) {
 }
 BENCHMARK(BM_MainJobJapan2018)->Unit(benchmark::kMillisecond)->Iterations(3)->UseRealTime();
 
+// the main job with its recording off, light (the default) and full: what recording costs in
+// wall time, and the size of run.mcap (docs/performance.md, "Recording")
+void BM_MainJobRecording(benchmark::State& bench) {
+  const char* levels[] = {"off", "light", "full"};
+  SessionOptions options;
+  options.scenario = "micromouse";
+  options.sets = {"end_on_log=done"};
+  options.link = "inproc:" UNIMOUSE_FIRMWARE_DIR "/micromouse.so";
+  options.record = levels[bench.range(0)];
+  bench.SetLabel(options.record);
+  PluginRegistry registry;
+  AddBundledComponents(registry);
+  options.registry = &registry;
+  options.out_dir = (std::filesystem::temp_directory_path() / "unimouse-bench-record").string();
+  options.only_asked_pictures = true;
+  options.console = false;
+  for (auto _ : bench) {
+    std::unique_ptr<Session> session = Session::Open(options);
+    while (!session->Over()) session->Step();
+    session->Finish();
+  }
+  const std::filesystem::path file = std::filesystem::path(options.out_dir) / "run.mcap";
+  const bool recorded = std::filesystem::exists(file);
+  bench.counters["mcap_MB"] =
+      recorded ? static_cast<double>(std::filesystem::file_size(file)) / 1e6 : 0.0;
+  std::filesystem::remove_all(options.out_dir);
+}
+BENCHMARK(BM_MainJobRecording)
+    ->Arg(0)
+    ->Arg(1)
+    ->Arg(2)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(1)
+    ->UseRealTime();
+
 // a step with one full robot (its components, the bundled firmware in-process, in lock-step)
 // exploring All Japan 2018, and with two: the second from the opposite corner, its own copy of
 // the firmware. Set side by side: us_per_step of the two against that of the one

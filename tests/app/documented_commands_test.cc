@@ -63,5 +63,33 @@ TEST(DocumentedCommandsTest, AnImuDriverOnTheEmulatedBoardRunsAsFirmwareMdShows)
 #endif
 }
 
+TEST(DocumentedCommandsTest, TheRacerRunsTheContestAsFirmwareMdShows) {
+  const std::vector<std::string> commands =
+      DocumentedCommands("docs/firmware.md", "## A fast mouse: the racer example");
+  ASSERT_EQ(commands.size(), 1u);
+  const std::string dir = FreshDirectory("documented_racer");
+  const testing::Outcome o = RunDocumented(commands[0], dir);
+  ASSERT_EQ(o.exit_code, 0) << commands[0] << "\n" << o.output;
+  // what the page says of it: the optimal path (cost 108) in 27.2 s
+  EXPECT_NE(o.output.find("best 27.219 s (path cost 108)"), std::string::npos) << o.output;
+}
+
+// protocol.md and replay.md name `unimouse run -v` and `unimouse run` in their text: the main job
+// with every report of the firmware on the console, and its recording beside its result
+TEST(DocumentedCommandsTest, TheMainJobWithVShowsEveryReportAndLeavesItsRecording) {
+  const std::string dir = FreshDirectory("documented_verbose");
+  const testing::Outcome o = RunDocumented("unimouse run -v", dir);
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  const std::string log = ReadTextFile(dir + "/out/log.txt");
+  size_t reports = 0;
+  for (size_t at = log.find("debug walls"); at != std::string::npos;
+       at = log.find("debug walls", at + 1)) {
+    ++reports;
+    EXPECT_NE(o.output.find(log.substr(at, log.find('\n', at) - at)), std::string::npos);
+  }
+  EXPECT_GT(reports, 200u);
+  EXPECT_TRUE(fs::is_regular_file(dir + "/out/run.mcap"));
+}
+
 }  // namespace
 }  // namespace unimouse

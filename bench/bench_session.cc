@@ -24,6 +24,11 @@ void RunSessionBenchmark(benchmark::State& bench, SessionOptions options) {
     bench.counters["sim_time_s"] = record.sim_time_s;
     bench.counters["us_per_step"] = 1e6 * record.wall_time_s / static_cast<double>(record.steps);
   }
+  // the size of the recording, where the run made one
+  const std::filesystem::path recording = std::filesystem::path(options.out_dir) / "run.mcap";
+  bench.counters["mcap_MB"] = std::filesystem::exists(recording)
+                                  ? static_cast<double>(std::filesystem::file_size(recording)) / 1e6
+                                  : 0.0;
   std::filesystem::remove_all(options.out_dir);
 }
 
@@ -59,22 +64,7 @@ void BM_MainJobRecording(benchmark::State& bench) {
   options.link = "inproc:" UNIMOUSE_FIRMWARE_DIR "/micromouse.so";
   options.record = levels[bench.range(0)];
   bench.SetLabel(options.record);
-  PluginRegistry registry;
-  AddBundledComponents(registry);
-  options.registry = &registry;
-  options.out_dir = (std::filesystem::temp_directory_path() / "unimouse-bench-record").string();
-  options.only_asked_pictures = true;
-  options.console = false;
-  for (auto _ : bench) {
-    std::unique_ptr<Session> session = Session::Open(options);
-    while (!session->Over()) session->Step();
-    session->Finish();
-  }
-  const std::filesystem::path file = std::filesystem::path(options.out_dir) / "run.mcap";
-  const bool recorded = std::filesystem::exists(file);
-  bench.counters["mcap_MB"] =
-      recorded ? static_cast<double>(std::filesystem::file_size(file)) / 1e6 : 0.0;
-  std::filesystem::remove_all(options.out_dir);
+  RunSessionBenchmark(bench, options);
 }
 BENCHMARK(BM_MainJobRecording)
     ->Arg(0)

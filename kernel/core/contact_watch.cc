@@ -31,8 +31,7 @@ void PlaceOnMaze(const World& world, Contact& contact) {
   const Maze* maze = world.maze();
   if (maze == nullptr) return;
   const MazeDimensions dims = maze->dimensions();
-  const Cell cell{static_cast<int>(std::floor(contact.x_m / dims.cell_m)),
-                  static_cast<int>(std::floor(contact.y_m / dims.cell_m))};
+  const Cell cell = CellAt(contact.x_m, contact.y_m, dims);
   if (!maze->Contains(cell)) return;
   contact.cell = cell;
   const double in_x = contact.x_m - cell.x * dims.cell_m;

@@ -288,6 +288,11 @@ Pose2D CellCentre(Cell c, Heading h, const MazeDimensions& dims) {
   return {dims.cell_m * (c.x + 0.5), dims.cell_m * (c.y + 0.5), HeadingYaw(h)};
 }
 
+Cell CellAt(double x_m, double y_m, const MazeDimensions& dims) {
+  return {static_cast<int>(std::floor(x_m / dims.cell_m)),
+          static_cast<int>(std::floor(y_m / dims.cell_m))};
+}
+
 World::~World() = default;
 
 std::unique_ptr<World> World::Build(const RobotSpec& robot, const Maze* maze,

@@ -107,10 +107,14 @@ bool IsRobotName(const std::string& name) {
              std::string::npos;
 }
 
+// a cell as the log and errors write it: "(x, y)"
+std::string CellText(Cell c) {
+  return "(" + std::to_string(c.x) + ", " + std::to_string(c.y) + ")";
+}
+
 // the cell a pose is in
 std::string CellOf(const Pose2D& pose, const MazeDimensions& dims) {
-  return "(" + std::to_string(static_cast<int>(std::floor(pose.x_m / dims.cell_m))) + ", " +
-         std::to_string(static_cast<int>(std::floor(pose.y_m / dims.cell_m))) + ")";
+  return CellText(CellAt(pose.x_m, pose.y_m, dims));
 }
 
 volatile std::sig_atomic_t interrupt_signal = 0;
@@ -474,20 +478,15 @@ void Session::CheckReportedCell(int robot, int x, int y) {
   Robot& r = robots_[static_cast<size_t>(robot)];
   if (!maze_ || r.lost_reported) return;
   const Pose2D pose = kernel_->world().RobotPose(kernel_->state().data(), robot);
-  const double cell_m = kernel_->world().maze_dimensions().cell_m;
-  const int true_x = static_cast<int>(std::floor(pose.x_m / cell_m));
-  const int true_y = static_cast<int>(std::floor(pose.y_m / cell_m));
-  if (std::max(std::abs(true_x - x), std::abs(true_y - y)) <= 1) return;
+  const Cell at = CellAt(pose.x_m, pose.y_m, kernel_->world().maze_dimensions());
+  if (std::max(std::abs(at.x - x), std::abs(at.y - y)) <= 1) return;
   r.lost_reported = true;
   const std::string text =
-      (robots_.size() > 1 ? r.name + "'s " : std::string()) + "firmware reports cell (" +
-      std::to_string(x) + ", " + std::to_string(y) + ") but the robot is in cell (" +
-      std::to_string(true_x) + ", " + std::to_string(true_y) + "): it has lost its position";
+      (robots_.size() > 1 ? r.name + "'s " : std::string()) + "firmware reports cell " +
+      CellText({x, y}) + " but the robot is in cell " + CellText(at) + ": it has lost its position";
   kernel_->Log(UNIMOUSE_LOG_WARNING, "run", text);
-  const nlohmann::json data = {{"reported_cell", {x, y}},
-                               {"true_cell", {true_x, true_y}},
-                               {"x_m", pose.x_m},
-                               {"y_m", pose.y_m}};
+  const nlohmann::json data = {
+      {"reported_cell", {x, y}}, {"true_cell", {at.x, at.y}}, {"x_m", pose.x_m}, {"y_m", pose.y_m}};
   Record([&](RunRecording& rec) {
     rec.Event(kernel_->state().data().time, "lost", r.name, text, data.dump());
   });
@@ -502,11 +501,9 @@ void Session::LogContacts() {
     if (c.other_robot >= 0) {
       text += "robot " + robots_[static_cast<size_t>(c.other_robot)].name;
     } else if (c.side == 'P') {
-      text +=
-          "a post of cell (" + std::to_string(c.cell->x) + ", " + std::to_string(c.cell->y) + ")";
+      text += "a post of cell " + CellText(*c.cell);
     } else if (c.side != 0) {
-      text += "the " + std::string(1, c.side) + " wall of cell (" + std::to_string(c.cell->x) +
-              ", " + std::to_string(c.cell->y) + ")";
+      text += "the " + std::string(1, c.side) + " wall of cell " + CellText(*c.cell);
     } else {
       text += "the scenery";
     }

@@ -132,12 +132,12 @@ struct ScenarioApi {
   static int RobotGetCell(LuaCall& call) {
     const Kernel& k = RunningKernel(call);
     const Pose2D p = k.world().RobotPose(k.state().data(), RobotIndex(call, 1));
-    const MazeDimensions dims = k.world().maze_dimensions();
+    const Cell cell = CellAt(p.x_m, p.y_m, k.world().maze_dimensions());
     lua_State* L = call.state();
     lua_createtable(L, 0, 2);
-    lua_pushinteger(L, static_cast<lua_Integer>(std::floor(p.x_m / dims.cell_m)));
+    lua_pushinteger(L, cell.x);
     lua_setfield(L, -2, "x");
-    lua_pushinteger(L, static_cast<lua_Integer>(std::floor(p.y_m / dims.cell_m)));
+    lua_pushinteger(L, cell.y);
     lua_setfield(L, -2, "y");
     return 1;
   }

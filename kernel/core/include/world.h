@@ -51,6 +51,9 @@ std::vector<StaticBox> MazeCollisionBoxes(const Maze& maze);
 /// Returns the world position of a cell's centre.
 Pose2D CellCentre(Cell c, Heading h, const MazeDimensions& dims = {});
 
+/// Returns the cell a point on the floor is in (outside the maze too: negative, or beyond it).
+Cell CellAt(double x_m, double y_m, const MazeDimensions& dims);
+
 /// One robot of a world: its file, the prefix of every name it brings into the physics model
 /// ("" for the only robot of a run, "name/" when there are several), and where it starts.
 struct WorldRobot {

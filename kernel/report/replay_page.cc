@@ -15,17 +15,16 @@ namespace {
 using nlohmann::json;
 
 // policy and skeleton are constants: the data only ever goes inside the JSON script element
-constexpr std::string_view kHead = R"(<!DOCTYPE html>
+constexpr std::string_view kHead = R"html(<!DOCTYPE html>
 <html lang="en">
 <head>
 <meta charset="utf-8">
 <meta name="viewport" content="width=device-width, initial-scale=1">
 <meta http-equiv="Content-Security-Policy" content="default-src 'none'; style-src 'unsafe-inline'; script-src 'unsafe-inline'; img-src data:; base-uri 'none'; form-action 'none'">
-)";
+)html";
 
-// the elements replay.js fills in
-constexpr std::string_view kBody =
-    R"(<body>
+// the elements replay.js fills in (its titles hold ")\"", so the literal has a delimiter)
+constexpr std::string_view kBody = R"html(<body>
 <h1 id="title">Replay</h1>
 <noscript><p>This page draws the replay with JavaScript; please allow it for this file.</p></noscript>
 <p id="divergence" hidden></p>
@@ -40,14 +39,12 @@ constexpr std::string_view kBody =
 </div>
 <div id="timeline">
 <div id="controls">
-<button type="button" id="play" aria-pressed="false" title="play or pause (space)" > Play</ button>
-    <button type = "button" id = "step-back" title = "one sample back (left arrow)">& #9664;
-Step</ button>
-    <button type = "button" id = "step-forward" title = "one sample forward (right arrow)">
-        Step& #9654;
-</ button><label> Speed<select id = "speed"></ select></ label>
-    <button type = "button" id = "previous-event" title = "the previous event">& #8676;
-Event</ button><button type = "button" id = "next-event" title = "the next event"> Event& #8677;</button>
+<button type="button" id="play" aria-pressed="false" title="play or pause (space)">Play</button>
+<button type="button" id="step-back" title="one sample back (left arrow)">&#9664; Step</button>
+<button type="button" id="step-forward" title="one sample forward (right arrow)">Step &#9654;</button>
+<label>Speed <select id="speed"></select></label>
+<button type="button" id="previous-event" title="the previous event">&#8676; Event</button>
+<button type="button" id="next-event" title="the next event">Event &#8677;</button>
 <span id="time">0.000 s</span>
 </div>
 <div id="track"><input type="range" id="cursor-range" min="0" max="0" step="any" value="0" aria-label="time"><div id="timeline-marks"></div></div>
@@ -56,7 +53,7 @@ Event</ button><button type = "button" id = "next-event" title = "the next event
 <div id="plots"></div>
 <h2>Log</h2>
 <table id="log"><tbody></tbody></table>
-)";
+)html";
 
 // the data as JSON that cannot end its script element: '<' is written \u003c (so neither
 // "</script" nor "<!--" can appear) and U+2028/U+2029 as escapes; both only occur in strings

@@ -1,9 +1,9 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
 /*
- * The replay page's behaviour: it reads the run's data from <script id="replay-data">, draws the
- * scene top-down (north up) at the cursor's time, and keeps the panels, plots and log in step with
- * the cursor. Every text from the data goes into the page as textContent or as canvas text, never
- * as markup. Nothing is fetched: the page is one file.
+ * The replay page's behaviour: it reads the run's data from the JSON element #replay-data,
+ * draws the scene top-down (north up) at the cursor's time, and keeps the panels, plots and log
+ * in step with the cursor. Every text from the data goes into the page as textContent or as
+ * canvas text, never as markup. Nothing is fetched: the page is one file.
  *
  * Hooks for tests (tests/report/replay_page_browser_test.cc reads them):
  *   canvas#scene  data-origin-x, data-origin-y: the CSS-pixel position of world (0, 0) inside the
@@ -134,7 +134,9 @@
 
   var signals = data.signals && typeof data.signals === 'object' ? data.signals : {};
   var signalTimes = array(signals.t);
-  var series = array(signals.series).filter(function (one) { return one && typeof one === 'object'; });
+  var series = array(signals.series).filter(function (one) {
+    return one && typeof one === 'object';
+  });
 
   var events = byTime(data.events);
   var eventTimes = times(events);
@@ -155,7 +157,9 @@
     robots.forEach(function (robot) {
       if (robot.t.length > 0) endS = Math.max(endS, robot.t[robot.t.length - 1]);
     });
-    if (signalTimes.length > 0) endS = Math.max(endS, number(signalTimes[signalTimes.length - 1], 0));
+    if (signalTimes.length > 0) {
+      endS = Math.max(endS, number(signalTimes[signalTimes.length - 1], 0));
+    }
     endS = Math.max(endS, 0);
   }
 
@@ -288,7 +292,8 @@
       ctx.beginPath();
       path.forEach(function (entry, i) {
         var c = cellCentre(entry[0], entry[1]);
-        if (i === 0) ctx.moveTo(screenX(c[0]), screenY(c[1])); else ctx.lineTo(screenX(c[0]), screenY(c[1]));
+        if (i === 0) ctx.moveTo(screenX(c[0]), screenY(c[1]));
+        else ctx.lineTo(screenX(c[0]), screenY(c[1]));
       });
       ctx.stroke();
       ctx.setLineDash([]);
@@ -417,14 +422,17 @@
       var about = [];
       if (robot.ghost) about.push('ghost');
       if (robot.source !== '') about.push(robot.source);
-      if (about.length > 0) item.appendChild(element('span', 'robot-about', ' (' + about.join(', ') + ')'));
+      if (about.length > 0) {
+        item.appendChild(element('span', 'robot-about', ' (' + about.join(', ') + ')'));
+      }
       legend.appendChild(item);
     });
 
     if (divergence !== null) {
       var line = byId('divergence');
       line.textContent = 'Divergence at ' + seconds(divergence.t) + ' s' +
-          (isNumber(divergence.distance_m) ? ', ' + shown(divergence.distance_m) + ' m apart' : '') +
+          (isNumber(divergence.distance_m) ?
+              ', ' + shown(divergence.distance_m) + ' m apart' : '') +
           (text(divergence.text) !== '' ? ': ' + text(divergence.text) : '');
       line.hidden = false;
     }
@@ -501,7 +509,9 @@
       frame.appendChild(minLabel);
       figure.appendChild(frame);
       box.appendChild(figure);
-      plots.push({canvas: canvas, cursor: cursorLine, values: points, count: count, low: low, high: high});
+      plots.push({
+        canvas: canvas, cursor: cursorLine, values: points, count: count, low: low, high: high
+      });
     });
     if (series.length === 0) box.appendChild(element('p', 'empty', 'No signals were recorded.'));
   }
@@ -687,6 +697,10 @@
 
   function setSpeed(value, quiet) {
     speed = value;
+    // the chosen option carries the `selected` attribute too, so that the page's DOM tells it
+    Array.prototype.forEach.call(byId('speed').options, function (option) {
+      option.defaultSelected = option.value === String(value);
+    });
     byId('speed').value = String(value);
     if (!quiet) updateAddress();
   }
@@ -724,7 +738,8 @@
       if (event.altKey || event.ctrlKey || event.metaKey) return;
       var target = event.target;
       var tag = target && target.tagName;
-      if (tag === 'SELECT' || tag === 'TEXTAREA' || (tag === 'INPUT' && target.type !== 'range')) return;
+      if (tag === 'SELECT' || tag === 'TEXTAREA') return;
+      if (tag === 'INPUT' && target.type !== 'range') return;
       if (event.key === ' ') {
         event.preventDefault();
         setPlaying(!playing);
@@ -738,7 +753,9 @@
     });
     // a focused button would take the space as a click too
     document.addEventListener('keyup', function (event) {
-      if (event.key === ' ' && event.target && event.target.tagName === 'BUTTON') event.preventDefault();
+      if (event.key === ' ' && event.target && event.target.tagName === 'BUTTON') {
+        event.preventDefault();
+      }
     });
   }
 

@@ -9,6 +9,7 @@
 #include "fit_commands.h"
 #include "maze_commands.h"
 #include "mms_command.h"
+#include "replay_command.h"
 
 int main(int argc, char** argv) {
   using namespace unimouse;
@@ -24,5 +25,6 @@ int main(int argc, char** argv) {
   AddFirmwareCommands(cli);
   AddBatchCommands(cli);
   AddFitCommands(cli);
+  AddReplayCommand(cli);
   return cli.Run(argc, argv);
 }

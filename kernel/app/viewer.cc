@@ -38,25 +38,32 @@ constexpr const char* kDisplayLost = "the viewer's display went away (its X serv
 
 }  // namespace
 
-Viewer::Viewer(const std::string& title, std::string out_dir, int max_frames)
-    : out_dir_(std::move(out_dir)), max_frames_(max_frames) {
+GLFWwindow* OpenViewerWindow(const std::string& title, const std::string& option) {
   glfwSetErrorCallback(KeepGlfwError);
   if (!glfwInit()) {
-    throw InputError("--view needs a display: " + (last_glfw_error.empty()
-                                                       ? std::string("GLFW cannot start")
-                                                       : last_glfw_error));
+    throw InputError(
+        option + " needs a display: " +
+        (last_glfw_error.empty() ? std::string("GLFW cannot start") : last_glfw_error));
   }
   if (Display* display = glfwGetX11Display()) {
     XSetIOErrorHandler(DisplayLost);
     XSetIOErrorExitHandler(display, DisplayLostExit, nullptr);
   }
   glfwWindowHint(GLFW_SAMPLES, 4);
-  window_ = glfwCreateWindow(1200, 900, title.c_str(), nullptr, nullptr);
-  if (window_ == nullptr) {
-    throw InputError("--view cannot open a window: " + last_glfw_error);
+  GLFWwindow* window = glfwCreateWindow(1200, 900, title.c_str(), nullptr, nullptr);
+  if (window == nullptr) {
+    throw InputError(option + " cannot open a window: " + last_glfw_error);
   }
-  glfwMakeContextCurrent(window_);
+  glfwMakeContextCurrent(window);
   glfwSwapInterval(1);
+  return window;
+}
+
+bool ViewerDisplayLost() { return display_lost; }
+
+Viewer::Viewer(const std::string& title, std::string out_dir, int max_frames)
+    : out_dir_(std::move(out_dir)), max_frames_(max_frames) {
+  window_ = OpenViewerWindow(title, "--view");
   glfwSetWindowUserPointer(window_, this);
   glfwSetKeyCallback(window_, [](GLFWwindow* w, int key, int, int action, int) {
     if (action != GLFW_RELEASE) Of(w)->controls_.Key(key);

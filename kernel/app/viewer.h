@@ -21,6 +21,14 @@ namespace unimouse {
 
 class SceneRenderer;
 
+/// Opens a 1200 x 900 window with its OpenGL context current, for the viewers; throws
+/// InputError naming `option` (exit code 2) when there is no display. GLFW, once initialised,
+/// stays so until the process ends.
+GLFWwindow* OpenViewerWindow(const std::string& title, const std::string& option);
+/// Whether the viewers' display went away (its X server quit): then no window can be drawn in,
+/// nor let go of.
+bool ViewerDisplayLost();
+
 class Viewer {
  public:
   /// Opens the window; throws InputError (exit code 2) when there is no display. GLFW, once

@@ -37,4 +37,43 @@ std::string CompressChunk(McapCompression compression, std::string_view records)
   return out;
 }
 
+std::string DecompressChunk(const std::string& compression, std::string_view compressed,
+                            uint64_t size) {
+  std::string out(size, '\0');
+  if (size == 0 && compressed.empty()) return out;
+  if (compression.empty()) {
+    if (compressed.size() != size) throw InputError("is not as long as it says");
+    return std::string(compressed);
+  }
+  if (compression == "zstd") {
+    const size_t n = ZSTD_decompress(out.data(), out.size(), compressed.data(), compressed.size());
+    if (ZSTD_isError(n) || n != size) throw InputError("cannot be decompressed (zstd)");
+    return out;
+  }
+  if (compression == "lz4") {
+    LZ4F_dctx* context = nullptr;
+    if (LZ4F_isError(LZ4F_createDecompressionContext(&context, LZ4F_VERSION))) {
+      throw InputError("cannot be decompressed (lz4)");
+    }
+    size_t written = 0, read = 0;
+    size_t status = 1;
+    // one frame, possibly in several calls: it is complete when the decoder says 0 remains
+    while (status != 0 && read < compressed.size() && written < out.size()) {
+      size_t out_n = out.size() - written, in_n = compressed.size() - read;
+      status = LZ4F_decompress(context, out.data() + written, &out_n, compressed.data() + read,
+                               &in_n, nullptr);
+      if (LZ4F_isError(status)) break;
+      written += out_n;
+      read += in_n;
+      if (out_n == 0 && in_n == 0) break;
+    }
+    LZ4F_freeDecompressionContext(context);
+    if (LZ4F_isError(status) || status != 0 || written != size) {
+      throw InputError("cannot be decompressed (lz4)");
+    }
+    return out;
+  }
+  throw InputError("uses compression " + compression + ", which this unimouse cannot read");
+}
+
 }  // namespace unimouse

@@ -3,8 +3,10 @@
 
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <set>
 #include <sstream>
 
 #include "mcap_writer.h"
@@ -70,17 +72,23 @@ std::string SceneUpdateSchema() {
   const json cube = {
       {"type", "object"},
       {"properties", {{"pose", pose}, {"size", json::parse(kVector3Schema)}, {"color", color}}}};
-  const json entity = {{"type", "object"},
-                       {"properties",
-                        {{"timestamp", json::parse(kTimeSchema)},
-                         {"frame_id", {{"type", "string"}}},
-                         {"id", {{"type", "string"}}},
-                         {"lifetime", json::parse(kTimeSchema)},
-                         {"frame_locked", {{"type", "boolean"}}},
-                         {"cubes", {{"type", "array"}, {"items", cube}}}}}};
+  const json entity = {
+      {"type", "object"},
+      {"properties",
+       {{"timestamp", json::parse(kTimeSchema)},
+        {"frame_id", {{"type", "string"}}},
+        {"id", {{"type", "string"}}},
+        {"lifetime", json::parse(kTimeSchema)},
+        {"frame_locked", {{"type", "boolean"}}},
+        {"metadata",
+         {{"type", "array"},
+          {"items",
+           {{"type", "object"},
+            {"properties", {{"key", {{"type", "string"}}}, {"value", {{"type", "string"}}}}}}}}},
+        {"cubes", {{"type", "array"}, {"items", cube}}}}}};
   return json{
       {"title", "foxglove.SceneUpdate"},
-      {"description", "the maze's walls and posts"},
+      {"description", "the scenery: a maze's walls and posts, a scenario's boxes"},
       {"type", "object"},
       {"properties",
        {{"deletions", {{"type", "array"}}}, {"entities", {{"type", "array"}, {"items", entity}}}}}}
@@ -116,6 +124,63 @@ std::string EventSchema() {
       .dump();
 }
 
+// a list of cells, each [x, y] and more
+json CellsSchema(int extra_items, const json& extra) {
+  json items = json::array({{{"type", "integer"}}, {{"type", "integer"}}});
+  for (int i = 0; i < extra_items; ++i) items.push_back(extra);
+  return {{"type", "array"},
+          {"items",
+           {{"type", "array"},
+            {"prefixItems", items},
+            {"minItems", 2 + extra_items},
+            {"maxItems", 2 + extra_items}}}};
+}
+
+std::string BeliefsSchema() {
+  return json{{"title", "unimouse.Beliefs"},
+              {"description",
+               "what the firmware (or an mms program) believes about the maze, whole, whenever it "
+               "changes: walls [x, y, walls, known] (side bits N 1, E 2, S 4, W 8), visited "
+               "cells, the path it plans, cell colours as #rrggbb and cell texts"},
+              {"type", "object"},
+              {"required", {"timestamp", "robot", "walls", "visited", "path", "colours", "texts"}},
+              {"properties",
+               {{"timestamp", json::parse(kTimeSchema)},
+                {"robot", {{"type", "string"}}},
+                {"walls", CellsSchema(2, {{"type", "integer"}, {"minimum", 0}, {"maximum", 15}})},
+                {"visited", CellsSchema(0, {})},
+                {"path", CellsSchema(0, {})},
+                {"colours", CellsSchema(1, {{"type", "string"}, {"pattern", "^#[0-9a-f]{6}$"}})},
+                {"texts", CellsSchema(1, {{"type", "string"}})}}}}
+      .dump();
+}
+
+std::string HudSchema() {
+  return json{{"title", "unimouse.Hud"},
+              {"description", "the lines the scenario shows, whenever they change"},
+              {"type", "object"},
+              {"required", {"timestamp", "lines"}},
+              {"properties",
+               {{"timestamp", json::parse(kTimeSchema)},
+                {"lines", {{"type", "array"}, {"items", {{"type", "string"}}}}}}}}
+      .dump();
+}
+
+std::string FirmwareValuesSchema() {
+  return json{{"title", "unimouse.FirmwareValues"},
+              {"description",
+               "the named numbers a robot's firmware reported (debug value frames), the latest "
+               "of each, whenever one changes"},
+              {"type", "object"},
+              {"required", {"timestamp", "robot", "values"}},
+              {"properties",
+               {{"timestamp", json::parse(kTimeSchema)},
+                {"robot", {{"type", "string"}}},
+                {"values",
+                 {{"type", "object"}, {"additionalProperties", {{"type", {"number", "null"}}}}}}}}}
+      .dump();
+}
+
 // a number as JSON, in the fewest digits that read back to the same double; JSON has no NaN
 // or infinity
 void AppendNumber(std::string& out, double value) {
@@ -147,48 +212,47 @@ json Timestamp(uint64_t time_ns) {
   return {{"sec", time_ns / 1'000'000'000}, {"nsec", time_ns % 1'000'000'000}};
 }
 
-// a wall or post as a box in the world frame
-json Cube(double x, double y, double size_x, double size_y, const MazeDimensions& dims,
-          const json& color) {
-  return {{"pose",
-           {{"position", {{"x", x}, {"y", y}, {"z", dims.wall_height_m / 2}}},
-            {"orientation", {{"x", 0}, {"y", 0}, {"z", 0}, {"w", 1}}}}},
-          {"size", {{"x", size_x}, {"y", size_y}, {"z", dims.wall_height_m}}},
-          {"color", color}};
-}
-
-json MazeScene(const Maze& maze) {
-  const MazeDimensions& dims = maze.dimensions();
-  const double cell = dims.cell_m;
-  const double t = dims.wall_thickness_m;
+// the scenery (a maze's walls and posts, a scenario's boxes) as cubes in the world frame; with a
+// maze, its dimensions ride along as the entity's metadata, for a player to place cells
+json SceneryUpdate(const World& world) {
   const json wall_color = {{"r", 0.93}, {"g", 0.93}, {"b", 0.9}, {"a", 1.0}};
   const json post_color = {{"r", 0.85}, {"g", 0.15}, {"b", 0.1}, {"a", 1.0}};
+  const json obstacle_color = {{"r", 0.55}, {"g", 0.55}, {"b", 0.6}, {"a", 1.0}};
   json cubes = json::array();
-  for (int y = 0; y <= maze.height(); ++y) {
-    for (int x = 0; x <= maze.width(); ++x) {
-      cubes.push_back(Cube(x * cell, y * cell, t, t, dims, post_color));
-      if (x < maze.width() && maze.HasHorizontalWall(x, y)) {
-        cubes.push_back(Cube((x + 0.5) * cell, y * cell, cell - t, t, dims, wall_color));
-      }
-      if (y < maze.height() && maze.HasVerticalWall(x, y)) {
-        cubes.push_back(Cube(x * cell, (y + 0.5) * cell, t, cell - t, dims, wall_color));
-      }
-    }
+  for (const StaticBox& box : world.scenery()) {
+    const json& color = box.kind == StaticBox::Kind::kPost   ? post_color
+                        : box.kind == StaticBox::Kind::kWall ? wall_color
+                                                             : obstacle_color;
+    cubes.push_back(
+        {{"pose",
+          {{"position", {{"x", box.center_m[0]}, {"y", box.center_m[1]}, {"z", box.center_m[2]}}},
+           {"orientation",
+            {{"x", 0},
+             {"y", 0},
+             {"z", std::sin(box.yaw_rad / 2)},
+             {"w", std::cos(box.yaw_rad / 2)}}}}},
+         {"size", {{"x", 2 * box.half_m[0]}, {"y", 2 * box.half_m[1]}, {"z", 2 * box.half_m[2]}}},
+         {"color", color}});
   }
-  json entity = {{"timestamp", Timestamp(0)},
-                 {"frame_id", "world"},
-                 {"id", "maze"},
-                 {"lifetime", Timestamp(0)},  // for ever
-                 {"frame_locked", false},
-                 {"metadata", json::array()},
-                 {"arrows", json::array()},
-                 {"cubes", cubes},
-                 {"spheres", json::array()},
-                 {"cylinders", json::array()},
-                 {"lines", json::array()},
-                 {"triangles", json::array()},
-                 {"texts", json::array()},
-                 {"models", json::array()}};
+  json metadata = json::array();
+  if (const Maze* maze = world.maze()) {
+    const MazeDimensions& dims = maze->dimensions();
+    auto add = [&](const char* key, const std::string& value) {
+      metadata.push_back({{"key", key}, {"value", value}});
+    };
+    add("maze_width_cells", std::to_string(maze->width()));
+    add("maze_height_cells", std::to_string(maze->height()));
+    add("cell_m", json(dims.cell_m).dump());
+    add("wall_thickness_m", json(dims.wall_thickness_m).dump());
+    add("wall_height_m", json(dims.wall_height_m).dump());
+  }
+  json entity = {{"timestamp", Timestamp(0)}, {"frame_id", "world"},
+                 {"id", "scenery"},           {"lifetime", Timestamp(0)},  // for ever
+                 {"frame_locked", false},     {"metadata", metadata},
+                 {"arrows", json::array()},   {"cubes", cubes},
+                 {"spheres", json::array()},  {"cylinders", json::array()},
+                 {"lines", json::array()},    {"triangles", json::array()},
+                 {"texts", json::array()},    {"models", json::array()}};
   return {{"deletions", json::array()}, {"entities", json::array({entity})}};
 }
 
@@ -214,27 +278,31 @@ RecordLevel ParseRecordLevel(const std::string& text) {
   throw InputError("--record " + text + ": give off, light or full");
 }
 
-RunRecording::RunRecording(const std::string& path, RecordLevel level, const Maze* maze)
-    : level_(level) {
+RunRecording::RunRecording(const std::string& path, RecordLevel level) : level_(level) {
   UNIMOUSE_DEMAND(level != RecordLevel::kOff);
   writer_ = std::make_unique<McapWriter>(path, McapWriterOptions{});
+  // first, so that a player meets it before anything it might misread
+  writer_->AddMetadata("unimouse.recording", {{"format", std::to_string(kRecordingFormat)}});
   frame_transform_schema_ =
       writer_->AddSchema("foxglove.FrameTransform", "jsonschema", FrameTransformSchema());
-  log_channel_ = writer_->AddChannel(writer_->AddSchema("foxglove.Log", "jsonschema", LogSchema()),
-                                     "/log", "json");
-  events_channel_ = writer_->AddChannel(
-      writer_->AddSchema("unimouse.Event", "jsonschema", EventSchema()), "/events", "json");
-  if (maze != nullptr) {
-    uint16_t scene = writer_->AddChannel(
-        writer_->AddSchema("foxglove.SceneUpdate", "jsonschema", SceneUpdateSchema()), "/maze",
-        "json");
-    writer_->Write(scene, 0, MazeScene(*maze).dump());
-  }
+  auto channel = [&](const char* schema_name, const std::string& schema, const char* topic) {
+    return writer_->AddChannel(writer_->AddSchema(schema_name, "jsonschema", schema), topic,
+                               "json");
+  };
+  log_channel_ = channel("foxglove.Log", LogSchema(), "/log");
+  events_channel_ = channel("unimouse.Event", EventSchema(), "/events");
+  beliefs_channel_ = channel("unimouse.Beliefs", BeliefsSchema(), "/beliefs");
+  hud_channel_ = channel("unimouse.Hud", HudSchema(), "/hud");
+  values_channel_ = channel("unimouse.FirmwareValues", FirmwareValuesSchema(), "/firmware/values");
 }
 
 RunRecording::~RunRecording() = default;
 
 void RunRecording::OpenRobotChannels(const Kernel& kernel) {
+  const uint16_t scenery = writer_->AddChannel(
+      writer_->AddSchema("foxglove.SceneUpdate", "jsonschema", SceneUpdateSchema()), "/scenery",
+      "json");
+  writer_->Write(scenery, 0, SceneryUpdate(kernel.world()).dump());
   const int robots = kernel.robot_count();
   for (int i = 0; i < robots; ++i) {
     const std::string& name = kernel.robot_name(i);
@@ -253,10 +321,10 @@ void RunRecording::OpenRobotChannels(const Kernel& kernel) {
           : std::max<int64_t>(1, std::llround(kLightRecordPeriod_s / kernel.timestep_s()));
 }
 
-void RunRecording::Sample(const Kernel& kernel) {
+bool RunRecording::Sample(const Kernel& kernel) {
   if (sample_every_steps_ == 0) OpenRobotChannels(kernel);
   const State& state = kernel.state();
-  if (state.step() % sample_every_steps_ != 0) return;
+  if (state.step() % sample_every_steps_ != 0) return false;
   const mjData& d = state.data();
   const uint64_t time_ns = Nanoseconds(d.time);
 
@@ -289,6 +357,64 @@ void RunRecording::Sample(const Kernel& kernel) {
   }
   m += "}}";
   writer_->Write(signals_channel_, time_ns, m);
+  return true;
+}
+
+void RunRecording::Beliefs(double time_s, const std::string& robot,
+                           const FirmwareBeliefs& beliefs) {
+  const uint64_t time_ns = Nanoseconds(time_s);
+  json walls = json::array(), visited = json::array(), path = json::array(),
+       colours = json::array(), texts = json::array();
+  for (const auto& [cell, w] : beliefs.walls) {
+    walls.push_back({cell.first, cell.second, w.walls, w.known});
+  }
+  // each cell once, in the order first visited: a snapshot stays as small as the maze
+  std::set<std::pair<int, int>> seen;
+  for (const Cell& c : beliefs.visited) {
+    if (seen.insert({c.x, c.y}).second) visited.push_back({c.x, c.y});
+  }
+  for (const Cell& c : beliefs.path) path.push_back({c.x, c.y});
+  for (const auto& [cell, letter] : beliefs.colours) {
+    if (const std::optional<Rgb8> rgb = CellColourOf(letter)) {
+      char hex[8];
+      std::snprintf(hex, sizeof(hex), "#%02x%02x%02x", rgb->r, rgb->g, rgb->b);
+      colours.push_back({cell.first, cell.second, hex});
+    }
+  }
+  for (const auto& [cell, text] : beliefs.texts) texts.push_back({cell.first, cell.second, text});
+  const json message = {{"timestamp", Timestamp(time_ns)},
+                        {"robot", robot},
+                        {"walls", walls},
+                        {"visited", visited},
+                        {"path", path},
+                        {"colours", colours},
+                        {"texts", texts}};
+  writer_->Write(beliefs_channel_, time_ns,
+                 message.dump(-1, ' ', false, json::error_handler_t::replace));
+}
+
+void RunRecording::Hud(double time_s, const std::vector<std::string>& lines) {
+  const uint64_t time_ns = Nanoseconds(time_s);
+  const json message = {{"timestamp", Timestamp(time_ns)}, {"lines", lines}};
+  writer_->Write(hud_channel_, time_ns,
+                 message.dump(-1, ' ', false, json::error_handler_t::replace));
+}
+
+void RunRecording::FirmwareValues(double time_s, const std::string& robot,
+                                  const std::map<std::string, double>& values) {
+  const uint64_t time_ns = Nanoseconds(time_s);
+  std::string m = "{\"timestamp\":";
+  AppendTimestamp(m, time_ns);
+  m += ",\"robot\":" + JsonText(robot) + ",\"values\":{";
+  bool first = true;
+  for (const auto& [name, value] : values) {
+    if (!first) m += ',';
+    first = false;
+    m += JsonText(name) + ":";
+    AppendNumber(m, value);
+  }
+  m += "}}";
+  writer_->Write(values_channel_, time_ns, m);
 }
 
 void RunRecording::Event(double time_s, const std::string& kind, const std::string& robot,

@@ -382,17 +382,26 @@ void Session::Assemble() {
     kernel_ = Kernel::Create(placed, maze_.get(), *registry, kernel_options);
   }
   // the maze picture shows what the first robot's firmware believes
-  kernel_->AddReportListener(
-      [this](const std::string& component, int robot, const unimouse_report& report) {
-        if (report.kind == UNIMOUSE_REPORT_MEASURE && report.name != nullptr) {
-          measurements_[component][report.name] = report.value;
-        } else if (report.kind == UNIMOUSE_REPORT_RESTART) {
-          ++robots_[static_cast<size_t>(robot)].restarts;
-        } else {
-          if (report.kind == UNIMOUSE_REPORT_VISITED) CheckReportedCell(robot, report.x, report.y);
-          if (robot == 0) beliefs_.Apply(report);
-        }
-      });
+  kernel_->AddReportListener([this](const std::string& component, int robot,
+                                    const unimouse_report& report) {
+    if (report.kind == UNIMOUSE_REPORT_MEASURE && report.name != nullptr) {
+      measurements_[component][report.name] = report.value;
+    } else if (report.kind == UNIMOUSE_REPORT_RESTART) {
+      ++robots_[static_cast<size_t>(robot)].restarts;
+    } else if (report.kind == UNIMOUSE_REPORT_VALUE && report.name != nullptr) {
+      Robot& r = robots_[static_cast<size_t>(robot)];
+      auto [at, added] = r.firmware_values.try_emplace(report.name, report.value);
+      // NaN never equals itself: a NaN reported again is no change
+      if (added ||
+          !(at->second == report.value || (std::isnan(at->second) && std::isnan(report.value)))) {
+        at->second = report.value;
+        r.firmware_values_recorded = false;
+      }
+    } else {
+      if (report.kind == UNIMOUSE_REPORT_VISITED) CheckReportedCell(robot, report.x, report.y);
+      if (robot == 0 && beliefs_.Apply(report)) beliefs_recorded_ = false;
+    }
+  });
   if (scenario_) scenario_->Attach(*kernel_, controllers);
   for (size_t i = 0; i < robots_.size(); ++i) {
     robots_[i].driver = IdentifyDriver(controllers[i], robots_[i].spec, *registry);
@@ -443,7 +452,8 @@ void Session::Assemble() {
   pace_ = !o.paced_by_caller && (o.realtime || kernel_->declared(UNIMOUSE_TRAIT_WALL_CLOCK));
   pacer_ = std::make_unique<RealTimePacer>(kernel_->timestep_s());
   if (o.progress && o.console) progress_ = std::make_unique<ConsoleProgress>(stderr);
-  Record([&](RunRecording& r) { r.Sample(*kernel_); });
+  AttachInputs();
+  RecordSample();
   start_ = std::chrono::steady_clock::now();
 }
 
@@ -453,7 +463,7 @@ void Session::Step() {
     kernel_->Step();
     LogContacts();
     pictures_->AfterStep();
-    Record([&](RunRecording& r) { r.Sample(*kernel_); });
+    RecordSample();
   } catch (const RuntimeFault& e) {
     fault_ = e.what();
     return;
@@ -525,6 +535,7 @@ std::vector<std::string> Session::hud() const { return scenario_ ? scenario_->hu
 
 void Session::ShowDisplay(FirmwareBeliefs beliefs, std::vector<std::string> hud) {
   beliefs_ = std::move(beliefs);
+  beliefs_recorded_ = false;
   shown_hud_ = std::move(hud);
 }
 
@@ -583,7 +594,50 @@ void Session::OpenRecording() {
     fs::remove(path, ignored);
     return;
   }
-  recording_ = std::make_unique<RunRecording>(path, level, maze_.get());
+  recording_ = std::make_unique<RunRecording>(path, level);
+}
+
+void Session::RecordSample() {
+  if (!recording_) return;
+  Record([&](RunRecording& r) {
+    if (!r.Sample(*kernel_)) return;
+    const double time_s = kernel_->state().data().time;
+    if (!beliefs_recorded_) r.Beliefs(time_s, robots_.front().name, beliefs_);
+    beliefs_recorded_ = true;
+    if (std::vector<std::string> lines = hud(); lines != recorded_hud_) {
+      r.Hud(time_s, lines);
+      recorded_hud_ = std::move(lines);
+    }
+    for (Robot& robot : robots_) {
+      if (!robot.firmware_values_recorded)
+        r.FirmwareValues(time_s, robot.name, robot.firmware_values);
+      robot.firmware_values_recorded = true;
+    }
+  });
+}
+
+// the files the run reads travel inside its recording from the start, so that even a recording
+// cut short says what ran
+void Session::AttachInputs() {
+  Record([&](RunRecording& r) {
+    // which attachment is which robot's file: robots of one file share its name
+    std::map<std::string, std::string> files;
+    for (size_t i = 0; i < robots_.size(); ++i) {
+      const std::string name = fs::path(robots_[i].file).filename().string();
+      files[std::to_string(i) + ".name"] = robots_[i].name;
+      files[std::to_string(i) + ".file"] = name;
+      if (i == 0 || name != fs::path(robots_[i - 1].file).filename().string()) {
+        r.AttachFile(name, robots_[i].file, "application/yaml", 0);
+      }
+    }
+    r.AddMetadata("unimouse.robots", files);
+    if (!scenario_file_.empty()) {
+      r.AttachFile(fs::path(scenario_file_).filename().string(), scenario_file_, "text/x-lua", 0);
+    }
+    if (!maze_file_.empty()) {
+      r.AttachFile(fs::path(maze_file_).filename().string(), maze_file_, "text/plain", 0);
+    }
+  });
 }
 
 // a recording that cannot be written ends with a warning; the run goes on without it
@@ -602,23 +656,14 @@ void Session::Record(const std::function<void(RunRecording&)>& write) {
   }
 }
 
-// the files the run read, its result and its identity travel inside the recording, so that
-// the file alone says what ran
+// the run's result and its identity close the recording, so that the file alone says what ran
+// and how it ended
 void Session::CloseRecording(const RunRecord& record, const nlohmann::json& result_json) {
   const double end_s = kernel_->state().data().time;
   Record([&](RunRecording& r) {
     r.Attach("result.json",
              result_json.dump(2, ' ', false, nlohmann::json::error_handler_t::replace),
              "application/json", end_s);
-    for (const Robot& robot : robots_) {
-      r.AttachFile(fs::path(robot.file).filename().string(), robot.file, "application/yaml", 0);
-    }
-    if (!scenario_file_.empty()) {
-      r.AttachFile(fs::path(scenario_file_).filename().string(), scenario_file_, "text/x-lua", 0);
-    }
-    if (!maze_file_.empty()) {
-      r.AttachFile(fs::path(maze_file_).filename().string(), maze_file_, "text/plain", 0);
-    }
     std::map<std::string, std::string> identity = {{"unimouse_version", UnimouseVersion()},
                                                    {"seed", std::to_string(options_.seed)},
                                                    {"status", record.status}};

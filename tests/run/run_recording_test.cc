@@ -19,6 +19,7 @@
 #include <string>
 
 #include "inline_assets.h"
+#include "maze.h"
 #include "run_program.h"
 #include "text_file.h"
 #include "unimouse/errors.h"
@@ -131,13 +132,40 @@ TEST(RunRecordingTest, TheMainJobsPosesAreItsTracesAtTheSameTimes) {
   // row of the trace sees
   EXPECT_LE(poses.size(), trace.size() + 1);
 
-  // the log, the maze once, the signals at 100 Hz, in Foxglove's schemas where there is one
+  // the log, the scenery once, the signals at 100 Hz, in Foxglove's schemas where there is one
   EXPECT_EQ(SchemaOf(recording, "/log"), "foxglove.Log");
-  EXPECT_EQ(SchemaOf(recording, "/maze"), "foxglove.SceneUpdate");
+  EXPECT_EQ(SchemaOf(recording, "/scenery"), "foxglove.SceneUpdate");
   EXPECT_EQ(SchemaOf(recording, "/signals"), "unimouse.Signals");
-  EXPECT_EQ(OnTopic(recording, "/maze").size(), 1u);
+  ASSERT_EQ(OnTopic(recording, "/scenery").size(), 1u);
   EXPECT_EQ(OnTopic(recording, "/signals").size(), poses.size());
   EXPECT_GT(OnTopic(recording, "/log").size(), 10u);
+
+  // the scenery: one cube for each post and wall of the maze, and the maze's dimensions
+  const Maze maze = LoadMaze(UNIMOUSE_SOURCE_DIR "/mazes/japan2018.txt");
+  size_t boxes = (maze.width() + 1) * (maze.height() + 1);
+  for (int y = 0; y <= maze.height(); ++y) {
+    for (int x = 0; x <= maze.width(); ++x) {
+      boxes += (x < maze.width() && maze.HasHorizontalWall(x, y)) +
+               (y < maze.height() && maze.HasVerticalWall(x, y));
+    }
+  }
+  const json scenery = OnTopic(recording, "/scenery")[0]["data"]["entities"][0];
+  EXPECT_EQ(scenery["cubes"].size(), boxes);
+  EXPECT_EQ(scenery["metadata"][2], json({{"key", "cell_m"}, {"value", "0.18"}}));
+
+  // what the firmware believed, whenever it changed: at the end, the walls the scenario kept of
+  // its reports (firmware_beliefs.json)
+  EXPECT_EQ(SchemaOf(recording, "/beliefs"), "unimouse.Beliefs");
+  const auto beliefs = OnTopic(recording, "/beliefs");
+  ASSERT_GT(beliefs.size(), 100u);
+  EXPECT_EQ(beliefs.back()["data"]["walls"],
+            json::parse(ReadTextFile(out + "/firmware_beliefs.json"))["walls"]);
+  // the HUD whenever it changed, never twice the same in a row
+  const auto hud = OnTopic(recording, "/hud");
+  ASSERT_GT(hud.size(), 100u);
+  for (size_t i = 1; i < hud.size(); ++i) {
+    ASSERT_NE(hud[i]["data"]["lines"], hud[i - 1]["data"]["lines"]) << i;
+  }
 }
 
 TEST(RunRecordingTest, ContactsAndTheMomentAMouseIsLostAreEventsAsTheResultListsThem) {
@@ -190,9 +218,15 @@ TEST(RunRecordingTest, AttachesTheFilesTheRunReadAndSaysWhatRan) {
   const std::string maze = run.result["maze"];
   EXPECT_EQ(attached[fs::path(maze).filename().string()], ReadTextFile(maze));
 
-  ASSERT_EQ(recording["metadata"].size(), 1u);
-  const json& identity = recording["metadata"][0]["metadata"];
-  EXPECT_EQ(recording["metadata"][0]["name"], "unimouse.run");
+  // the format first, which robot file is which, and at the end what ran
+  ASSERT_EQ(recording["metadata"].size(), 3u);
+  EXPECT_EQ(recording["metadata"][0]["name"], "unimouse.recording");
+  EXPECT_EQ(recording["metadata"][0]["metadata"], json({{"format", "1"}}));
+  EXPECT_EQ(recording["metadata"][1]["name"], "unimouse.robots");
+  EXPECT_EQ(recording["metadata"][1]["metadata"],
+            json({{"0.file", fs::path(robot).filename().string()}, {"0.name", "unimouse"}}));
+  const json& identity = recording["metadata"][2]["metadata"];
+  EXPECT_EQ(recording["metadata"][2]["name"], "unimouse.run");
   EXPECT_EQ(identity["seed"], "1");
   EXPECT_EQ(identity["unimouse_version"], run.result["unimouse_version"]);
   EXPECT_EQ(identity["robot_sha256"], run.result["robots"][0]["sha256"]);

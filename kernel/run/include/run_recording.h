@@ -14,8 +14,8 @@
 #include <string>
 #include <vector>
 
+#include "firmware_beliefs.h"
 #include "kernel.h"
-#include "maze.h"
 
 namespace unimouse {
 
@@ -34,20 +34,31 @@ RecordLevel ParseRecordLevel(const std::string& text);
 /// Seconds between two samples of poses and signals at kLight.
 inline constexpr double kLightRecordPeriod_s = 0.01;
 
+/// The version of what a recording holds (its channels and their messages), in its metadata
+/// `unimouse.recording`: a player refuses a recording of a later one.
+inline constexpr int kRecordingFormat = 1;
+
 /// A run's recording, open from before its first step to after its result.
 class RunRecording {
  public:
-  /// Creates the file at `path` (throws InputError when it cannot) and records the maze (none
-  /// when null) once, at time 0.
-  RunRecording(const std::string& path, RecordLevel level, const Maze* maze);
+  /// Creates the file at `path` (throws InputError when it cannot).
+  RunRecording(const std::string& path, RecordLevel level);
   /// Closes the file as Close() does, dropping an error.
   ~RunRecording();
   RunRecording(const RunRecording&) = delete;
   RunRecording& operator=(const RunRecording&) = delete;
 
   /// Records every robot's pose and every signal at the kernel's present time, when a sample is
-  /// due there (every step at kFull, every 10 ms at kLight).
-  void Sample(const Kernel& kernel);
+  /// due there (every step at kFull, every 10 ms at kLight), and returns whether it was. The
+  /// first call also records the world's scenery, once.
+  bool Sample(const Kernel& kernel);
+  /// Records what a robot's firmware believes about the maze, whole (call it when it changed).
+  void Beliefs(double time_s, const std::string& robot, const FirmwareBeliefs& beliefs);
+  /// Records the scenario's HUD lines (call it when they changed).
+  void Hud(double time_s, const std::vector<std::string>& lines);
+  /// Records the latest of each value a robot's firmware reported (call it when one changed).
+  void FirmwareValues(double time_s, const std::string& robot,
+                      const std::map<std::string, double>& values);
   /// Records an event at `time_s` on /events, for a replay to jump to: its kind ("contact",
   /// "lost"), the robot it happened to ("" none), a sentence, and its facts as a JSON object.
   void Event(double time_s, const std::string& kind, const std::string& robot,
@@ -75,6 +86,9 @@ class RunRecording {
   uint16_t log_channel_ = 0;
   uint16_t events_channel_ = 0;
   uint16_t signals_channel_ = 0;
+  uint16_t beliefs_channel_ = 0;
+  uint16_t hud_channel_ = 0;
+  uint16_t values_channel_ = 0;
   std::vector<uint16_t> pose_channels_;
   std::vector<std::string> frame_names_;  // as JSON strings
   std::vector<std::string> signal_keys_;  // "name": of each signal, as JSON

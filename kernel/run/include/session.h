@@ -180,6 +180,9 @@ class Session {
     int64_t restarts = 0;  // times its firmware started over inside the run (the link's reports)
     DriverRecord driver;
     bool lost_reported = false;  // its firmware's cell and its own were seen to differ
+    // the latest of each value its firmware reported, and whether the recording has them
+    std::map<std::string, double> firmware_values;
+    bool firmware_values_recorded = true;
   };
   std::vector<Robot> robots_;
 
@@ -196,6 +199,8 @@ class Session {
   std::unique_ptr<std::FILE, int (*)(std::FILE*)> log_{nullptr, &std::fclose};
   std::unique_ptr<Kernel> kernel_;
   FirmwareBeliefs beliefs_;
+  bool beliefs_recorded_ = true;  // whether the recording has beliefs_ as they are
+  std::vector<std::string> recorded_hud_;
   // what components measured over the run (UNIMOUSE_REPORT_MEASURE), by component and name
   std::map<std::string, std::map<std::string, double>> measurements_;
   std::vector<std::string> warnings_;  // every warning logged, "component: text", for the record
@@ -204,6 +209,9 @@ class Session {
   std::unique_ptr<ConsoleProgress> progress_;
   size_t logged_contacts_ = 0;
   std::unique_ptr<RunRecording> recording_;
+  // a sample of the recording, and what changed since the last one
+  void RecordSample();
+  void AttachInputs();
   bool pace_ = false;
   std::string fault_;
   std::string interrupted_;  // by which signal, when

@@ -736,6 +736,8 @@
       layout();
       drawScene();
     });
+    // anything that moved the canvas while the page loaded moves its page position too
+    window.addEventListener('load', drawScene);
     document.addEventListener('keydown', function (event) {
       if (event.altKey || event.ctrlKey || event.metaKey) return;
       var target = event.target;

@@ -28,15 +28,6 @@ constexpr std::string_view kBody = R"html(<body>
 <h1 id="title">Replay</h1>
 <noscript><p>This page draws the replay with JavaScript; please allow it for this file.</p></noscript>
 <p id="divergence" hidden></p>
-<div id="main">
-<div id="scene-box"><canvas id="scene" aria-label="the scene seen from above, north up"></canvas></div>
-<div id="side">
-<section><h2>Robots</h2><ul id="legend"></ul></section>
-<section><h2>HUD</h2><div id="hud"></div></section>
-<section><h2>Values</h2><table id="values"><tbody></tbody></table></section>
-<section><h2>Events</h2><ol id="events"></ol></section>
-</div>
-</div>
 <div id="timeline">
 <div id="controls">
 <button type="button" id="play" aria-pressed="false" title="play or pause (space)">Play</button>
@@ -48,6 +39,15 @@ constexpr std::string_view kBody = R"html(<body>
 <span id="time">0.000 s</span>
 </div>
 <div id="track"><input type="range" id="cursor-range" min="0" max="0" step="any" value="0" aria-label="time"><div id="timeline-marks"></div></div>
+</div>
+<div id="main">
+<div id="scene-box"><canvas id="scene" aria-label="the scene seen from above, north up"></canvas></div>
+<div id="side">
+<section><h2>Robots</h2><ul id="legend"></ul></section>
+<section><h2>HUD</h2><div id="hud"></div></section>
+<section><h2>Values</h2><table id="values"><tbody></tbody></table></section>
+<section><h2>Events</h2><ol id="events"></ol></section>
+</div>
 </div>
 <h2>Signals</h2>
 <div id="plots"></div>

@@ -217,12 +217,14 @@ class ReplayPageBrowserTest : public ::testing::Test {
   // Chromium on `address` in a 1200 x 1000 window at one device pixel per CSS pixel
   testing::Outcome Chromium(const std::string& options, const std::string& address) {
     // --no-sandbox: the sandbox cannot start as root, and this page is our own file; the
-    // profile and its caches stay in this test's directory
+    // profile and its caches stay in this test's directory. --hide-scrollbars: a screenshot
+    // would have a scroll bar that --dump-dom has not, and lay the page out 15 px narrower
     const fs::path profile = dir_ / "chromium-profile";
     return testing::Shell("XDG_CONFIG_HOME=" + profile.string() +
                           " XDG_CACHE_HOME=" + profile.string() + " " + chromium_ +
                           " --headless --no-sandbox --disable-gpu --no-first-run "
-                          "--force-device-scale-factor=1 --window-size=1200,1000 --user-data-dir=" +
+                          "--force-device-scale-factor=1 --window-size=1200,1000 --hide-scrollbars "
+                          "--user-data-dir=" +
                           profile.string() + " " + options + " '" + address + "' 2>/dev/null");
   }
 
@@ -349,8 +351,10 @@ std::vector<std::string> NetworkRequestsOfPages(const std::string& net_log_path)
   const json log = json::parse(ReadTextFile(net_log_path));
   const int start_job = log["constants"]["logEventTypes"]["URL_REQUEST_START_JOB"].get<int>();
   for (const auto& event : log["events"]) {
+    // the job's start names its address and who asked (its end only how it ended)
     if (event.value("type", -1) != start_job || !event.contains("params")) continue;
     const json& params = event["params"];
+    if (!params.contains("url")) continue;
     if (params.value("initiator", "") == "not an origin") continue;
     const std::string url = params.value("url", "");
     if (url.rfind("file:", 0) != 0) urls.push_back(url);

@@ -210,7 +210,9 @@
     var box = byId('scene-box');
     var spanX = extent.maxX - extent.minX, spanY = extent.maxY - extent.minY;
     var width = Math.max(160, Math.floor(box.clientWidth));
-    var maxHeight = Math.max(160, Math.floor(window.innerHeight * 0.72));
+    // its height follows its width alone, not the window's height (the timeline above it stays
+    // in sight when the page scrolls), so that the drawing does not change with a window's bars
+    var maxHeight = Math.max(300, Math.min(820, width));
     var scale = Math.min(width / spanX, maxHeight / spanY);
     var height = Math.ceil(spanY * scale);
     view.scale = scale;
@@ -734,6 +736,8 @@
       layout();
       drawScene();
     });
+    // anything that moved the canvas while the page loaded moves its page position too
+    window.addEventListener('load', drawScene);
     document.addEventListener('keydown', function (event) {
       if (event.altKey || event.ctrlKey || event.metaKey) return;
       var target = event.target;

@@ -15,6 +15,7 @@
 #include <Arduino.h>
 #include <stdint.h>
 #include <stdio.h>
+#include <string.h>
 
 #include "SimulationActuators.h"
 #include "SimulationSensors.h"
@@ -173,6 +174,21 @@ class SimulationRobot {
   /// A debug frame for the simulator's maze view (UNIMOUSE_ID_DEBUG_*; docs/protocol.md).
   void debug(uint8_t id, const uint8_t* payload, uint16_t size) {
     actuators_.send(id, payload, size);
+  }
+
+  /// A named number of the firmware for the simulator to show beside the run: its HUD, the
+  /// replay and the recording's /firmware/values (frame UNIMOUSE_ID_DEBUG_VALUE). Names longer
+  /// than 23 characters are cut.
+  void debugValue(const char* name, float value) {
+    uint8_t frame[4 + 24];
+    memcpy(frame, &value, 4);  // little-endian, as on the AVR and the PC
+    uint16_t n = 0;
+    while (n < 23 && name[n] != '\0') {
+      frame[4 + n] = static_cast<uint8_t>(name[n]);
+      ++n;
+    }
+    frame[4 + n] = 0;
+    actuators_.send(UNIMOUSE_ID_DEBUG_VALUE, frame, static_cast<uint16_t>(4 + n + 1));
   }
 
   /// Asks the simulator for the maze (an extension the original ignores); the answer comes

@@ -16,7 +16,7 @@ namespace unimouse {
 void AddMmsCommand(CommandLine& cli) {
   auto mms = std::make_shared<MmsRunOptions>();
   CLI::App* mms_cmd = cli.app().add_subcommand(
-      "mms", "run a program written for the mms simulator on the maze (docs/mms->md)");
+      "mms", "run a program written for the mms simulator on the maze (docs/mms.md)");
   mms_cmd->add_option("--maze", mms->maze, "maze file or bundled maze name")->capture_default_str();
   mms_cmd->add_option("--out", mms->out_dir, "directory for result.json")->capture_default_str();
   mms_cmd

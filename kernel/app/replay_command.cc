@@ -53,8 +53,8 @@ void AddReplayCommand(CommandLine& cli) {
   auto options = std::make_shared<ReplayOptions>();
   CLI::App* replay = cli.app().add_subcommand(
       "replay",
-      "Play a run's recording (run.mcap) again in a window, or write it as one offline page; "
-      "with two recordings, overlay them and say where they first diverge");
+      "play a run's recording (run.mcap) in a window or as one offline page, beside another run "
+      "(docs/replay.md)");
   replay->add_option("recording", options->recordings, "a run.mcap, or the output folder of a run")
       ->required()
       ->expected(1, 2);

@@ -346,6 +346,19 @@ TEST_F(ReplayCommandTest, TheWindowShowsTheRobotWhereTheRecordingPutsItAndTheHud
     for (const std::string& line : r.hud[Recording::Latest(r.hud, t)].value) {
       EXPECT_NE(o.output.find("    " + line + "\n"), std::string::npos) << line << "\n" << o.output;
     }
+    // and the firmware's values then: the micromouse example reports where it believes it is
+    // at each cell it reaches, less than a cell from where the robot is
+    const size_t firmware = o.output.find("    firmware: est_theta_rad=");
+    ASSERT_NE(firmware, std::string::npos) << o.output;
+    double theta = 0, est_x = 0, est_y = 0;
+    ASSERT_EQ(std::sscanf(o.output.c_str() + firmware,
+                          "    firmware: est_theta_rad=%lf est_x_m=%lf est_y_m=%lf", &theta, &est_x,
+                          &est_y),
+              3)
+        << o.output;
+    const TraceRow& now = trace[static_cast<size_t>(std::llround(t / 0.01))];
+    EXPECT_LT(std::hypot(est_x - now.x_m, est_y - now.y_m), 0.18) << o.output;
+
     const auto shown = RobotInScreenshot(dir + "/replay.png");
     ASSERT_TRUE(shown.has_value());
     // the trace's row at t (every 10 ms): the perspective of wall tops and plate differ by a

@@ -115,6 +115,14 @@ void sendVisited() {
   robot.debug(UNIMOUSE_ID_DEBUG_VISITED, frame, 2);
 }
 
+// where the mouse believes it is, for the HUD and the replay to set beside where it is
+void sendEstimate() {
+  const Pose& p = pose.getPose();
+  robot.debugValue("est_x_m", p.x);
+  robot.debugValue("est_y_m", p.y);
+  robot.debugValue("est_theta_rad", p.theta);
+}
+
 void recordWall(Direction side, bool wall) {
   if (wall) {
     maze.placeWall(x, y, side);
@@ -253,6 +261,7 @@ void loop() {
         recordWall(heading, wallAhead);
         sendWalls();
         sendVisited();
+        sendEstimate();
         settle();
         break;
       }

@@ -91,5 +91,22 @@ TEST(DocumentedCommandsTest, TheMainJobWithVShowsEveryReportAndLeavesItsRecordin
   EXPECT_TRUE(fs::is_regular_file(dir + "/out/run.mcap"));
 }
 
+// replay.md's two runs side by side: the main job and the contest with other sensor noise part
+// somewhere, and the page of both is written
+TEST(DocumentedCommandsTest, TwoRunsReplayedSideBySideAsReplayMdShows) {
+  const std::vector<std::string> commands =
+      DocumentedCommands("docs/replay.md", "### Two runs side by side");
+  ASSERT_EQ(commands.size(), 3u);
+  const std::string dir = FreshDirectory("documented_replay");
+  std::string said;
+  for (const std::string& command : commands) {
+    const testing::Outcome o = RunDocumented(command, dir);
+    ASSERT_EQ(o.exit_code, 0) << command << "\n" << o.output;
+    said = o.output;
+  }
+  EXPECT_NE(said.find("the runs first diverge at "), std::string::npos) << said;
+  EXPECT_TRUE(fs::is_regular_file(dir + "/both.html"));
+}
+
 }  // namespace
 }  // namespace unimouse

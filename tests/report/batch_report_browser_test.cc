@@ -2,16 +2,15 @@
 // The batch report as a teacher sees it: loaded from a file into headless Chromium (Debian's
 // `chromium`), its scripts run, and the rendered DOM read back with --dump-dom.
 #include <gtest/gtest.h>
-#include <unistd.h>
 
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "batch_report.h"
+#include "headless_chromium.h"
 #include "run_program.h"
 
 namespace unimouse {
@@ -37,42 +36,22 @@ const json kResults = json::parse(R"({
   "summary": []
 })");
 
-// the directory of PATH that holds `program`, or "" when none does
-std::string FindProgram(const std::string& program) {
-  const char* path = std::getenv("PATH");
-  std::istringstream dirs(path == nullptr ? "" : path);
-  for (std::string dir; std::getline(dirs, dir, ':');) {
-    if (!dir.empty() && ::access((dir + "/" + program).c_str(), X_OK) == 0) {
-      return dir + "/" + program;
-    }
-  }
-  return "";
-}
-
 class BatchReportBrowserTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    chromium_ = FindProgram("chromium");
-    if (chromium_.empty()) GTEST_SKIP() << "no chromium on PATH (Debian: apt-get install chromium)";
+    const std::string program = testing::FindProgram("chromium");
+    if (program.empty()) GTEST_SKIP() << "no chromium on PATH (Debian: apt-get install chromium)";
     dir_ = testing::FreshDirectory("report");
+    chromium_.emplace(program, dir_ / "chromium-profile");
     WriteBatchReport(kResults, dir_ / "report.html");
   }
 
   // the page's DOM after its scripts ran, opened at `fragment`
   std::string RenderedDom(const std::string& fragment) {
-    // --no-sandbox: the sandbox cannot start as root, and this page is our own file; the
-    // profile and its caches stay in this test's directory
-    const fs::path profile = dir_ / "chromium-profile";
-    const testing::Outcome chromium = testing::Shell(
-        "XDG_CONFIG_HOME=" + profile.string() + " XDG_CACHE_HOME=" + profile.string() + " " +
-        chromium_ + " --headless --no-sandbox --disable-gpu --no-first-run --user-data-dir=" +
-        profile.string() + " --dump-dom 'file://" + (dir_ / "report.html").string() + "#" +
-        fragment + "' 2>/dev/null");
-    EXPECT_EQ(chromium.exit_code, 0);
-    return chromium.output;
+    return chromium_->Dom("file://" + (dir_ / "report.html").string() + "#" + fragment);
   }
 
-  std::string chromium_;
+  std::optional<testing::HeadlessChromium> chromium_;
   fs::path dir_;
 };
 
@@ -163,14 +142,9 @@ TEST_F(BatchReportBrowserTest, FitsAWindow1280PixelsWideWhateverItsColumns) {
          "  var d = this.contentDocument.documentElement;"
          "  document.body.setAttribute('data-width', String(d.scrollWidth));"
          "};</script></body></html>";
-  const fs::path profile = dir_ / "chromium-profile";
-  const testing::Outcome chromium = testing::Shell(
-      "XDG_CONFIG_HOME=" + profile.string() + " XDG_CACHE_HOME=" + profile.string() + " " +
-      chromium_ +
-      " --headless --no-sandbox --disable-gpu --no-first-run --allow-file-access-from-files "
-      "--virtual-time-budget=5000 --user-data-dir=" +
-      profile.string() + " --dump-dom 'file://" + (dir_ / "measure.html").string() +
-      "' 2>/dev/null");
+  const testing::Outcome chromium =
+      chromium_->Run("--allow-file-access-from-files --virtual-time-budget=5000 --dump-dom",
+                     "file://" + (dir_ / "measure.html").string());
   const std::string marker = "data-width=\"";
   const size_t at = chromium.output.find(marker);
   ASSERT_NE(at, std::string::npos) << chromium.output;

@@ -2,21 +2,24 @@
 // The replay page as a student sees it: loaded from a file into headless Chromium (Debian's
 // `chromium`), its scripts run, the rendered DOM read back with --dump-dom and the drawing with
 // --screenshot. The robot's place on the screenshot is checked against the circle the test
-// itself drove it along.
+// itself drove it along, and, on the page `unimouse replay --html` writes after the main job,
+// against the run's trace.csv; that page's HUD against the recording as the tests' own MCAP
+// reader reads it.
 #include <gtest/gtest.h>
-#include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <numbers>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
 
-#include "png_file.h"
+#include "headless_chromium.h"
+#include "mcap_json.h"
 #include "replay_page.h"
 #include "replay_page_assets.h"
 #include "run_program.h"
@@ -131,101 +134,20 @@ json TestData() {
   return data;
 }
 
-// the path of `program` on PATH, or "" when none has it
-std::string FindProgram(const std::string& program) {
-  const char* path = std::getenv("PATH");
-  std::istringstream dirs(path == nullptr ? "" : path);
-  for (std::string dir; std::getline(dirs, dir, ':');) {
-    if (!dir.empty() && ::access((dir + "/" + program).c_str(), X_OK) == 0) {
-      return dir + "/" + program;
-    }
-  }
-  return "";
-}
-
-// the value of attribute `name` in the first tag of `dom` that starts with `tag_start`
-std::string AttributeOf(const std::string& dom, const std::string& tag_start,
-                        const std::string& name) {
-  const size_t tag = dom.find(tag_start);
-  if (tag == std::string::npos) return "";
-  const size_t end = dom.find('>', tag);
-  const std::string marker = " " + name + "=\"";
-  const size_t at = dom.find(marker, tag);
-  if (at == std::string::npos || at > end) return "";
-  const size_t start = at + marker.size();
-  return dom.substr(start, dom.find('"', start) - start);
-}
-
-double NumberAttribute(const std::string& dom, const std::string& tag_start,
-                       const std::string& name) {
-  const std::string value = AttributeOf(dom, tag_start, name);
-  EXPECT_FALSE(value.empty()) << tag_start << " has no " << name;
-  return value.empty() ? NAN : std::stod(value);
-}
-
 size_t Count(const std::string& text, const std::string& part) {
   size_t count = 0;
   for (size_t at = text.find(part); at != std::string::npos; at = text.find(part, at + 1)) ++count;
   return count;
 }
 
-// the pixels of one colour in a screenshot: how many, their centroid (pixel centres, in page
-// pixels) and the direction of their longer axis on screen (radians, y down, modulo pi)
-struct Blob {
-  double count = 0, x = 0, y = 0, axis = 0;
-};
-
-Blob FindColour(const std::vector<uint8_t>& rgb, int width, int height, int r, int g, int b) {
-  constexpr int kTolerance = 4;
-  Blob blob;
-  double sum_xx = 0, sum_yy = 0, sum_xy = 0;
-  for (int row = 0; row < height; ++row) {
-    for (int column = 0; column < width; ++column) {
-      const uint8_t* pixel = &rgb[3 * (static_cast<size_t>(row) * width + column)];
-      if (std::abs(pixel[0] - r) > kTolerance || std::abs(pixel[1] - g) > kTolerance ||
-          std::abs(pixel[2] - b) > kTolerance) {
-        continue;
-      }
-      const double x = column + 0.5, y = row + 0.5;
-      blob.count += 1;
-      blob.x += x;
-      blob.y += y;
-      sum_xx += x * x;
-      sum_yy += y * y;
-      sum_xy += x * y;
-    }
-  }
-  if (blob.count == 0) return blob;
-  blob.x /= blob.count;
-  blob.y /= blob.count;
-  const double mu20 = sum_xx / blob.count - blob.x * blob.x;
-  const double mu02 = sum_yy / blob.count - blob.y * blob.y;
-  const double mu11 = sum_xy / blob.count - blob.x * blob.y;
-  blob.axis = 0.5 * std::atan2(2 * mu11, mu20 - mu02);
-  return blob;
-}
-
 class ReplayPageBrowserTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    chromium_ = FindProgram("chromium");
-    if (chromium_.empty()) GTEST_SKIP() << "no chromium on PATH (Debian: apt-get install chromium)";
+    const std::string program = testing::FindProgram("chromium");
+    if (program.empty()) GTEST_SKIP() << "no chromium on PATH (Debian: apt-get install chromium)";
     dir_ = testing::FreshDirectory("replay");
+    chromium_.emplace(program, dir_ / "chromium-profile");
     WriteReplayPage(TestData(), (dir_ / "replay.html").string());
-  }
-
-  // Chromium on `address` in a 1200 x 1000 window at one device pixel per CSS pixel
-  testing::Outcome Chromium(const std::string& options, const std::string& address) {
-    // --no-sandbox: the sandbox cannot start as root, and this page is our own file; the
-    // profile and its caches stay in this test's directory. --hide-scrollbars: a screenshot
-    // would have a scroll bar that --dump-dom has not, and lay the page out 15 px narrower
-    const fs::path profile = dir_ / "chromium-profile";
-    return testing::Shell("XDG_CONFIG_HOME=" + profile.string() +
-                          " XDG_CACHE_HOME=" + profile.string() + " " + chromium_ +
-                          " --headless --no-sandbox --disable-gpu --no-first-run "
-                          "--force-device-scale-factor=1 --window-size=1200,1000 --hide-scrollbars "
-                          "--user-data-dir=" +
-                          profile.string() + " " + options + " '" + address + "' 2>/dev/null");
   }
 
   std::string PageAddress(const std::string& fragment) {
@@ -234,38 +156,10 @@ class ReplayPageBrowserTest : public ::testing::Test {
 
   // the page's DOM after its scripts ran, opened at `fragment`
   std::string RenderedDom(const std::string& fragment) {
-    const testing::Outcome chromium = Chromium("--dump-dom", PageAddress(fragment));
-    EXPECT_EQ(chromium.exit_code, 0);
-    return chromium.output;
+    return chromium_->Dom(PageAddress(fragment));
   }
 
-  // robot 0's pose as the screenshot shows it at `fragment`, mapped to metres through the
-  // scene's mapping that the same page gives in its DOM; `pixels_per_m` is that mapping's scale
-  Blob RobotOnScreen(const std::string& fragment, Pose* shown, double* pixels_per_m) {
-    const std::string dom = RenderedDom(fragment);
-    EXPECT_NE(dom.find("data-ready=\"1\""), std::string::npos) << dom;
-    const std::string canvas = "<canvas id=\"scene\"";
-    const double left = NumberAttribute(dom, canvas, "data-page-left");
-    const double top = NumberAttribute(dom, canvas, "data-page-top");
-    const double origin_x = NumberAttribute(dom, canvas, "data-origin-x");
-    const double origin_y = NumberAttribute(dom, canvas, "data-origin-y");
-    *pixels_per_m = NumberAttribute(dom, canvas, "data-px-per-m");
-
-    const std::string png = (dir_ / "screenshot.png").string();
-    std::error_code ignored;
-    fs::remove(png, ignored);
-    EXPECT_EQ(Chromium("--screenshot=" + png, PageAddress(fragment)).exit_code, 0);
-    int width = 0, height = 0;
-    const std::vector<uint8_t> rgb = ReadPng(png, &width, &height);
-    const Blob blob = FindColour(rgb, width, height, 0xe6, 0x00, 0x7e);
-    // on screen y grows downward: north is up
-    shown->x = (blob.x - left - origin_x) / *pixels_per_m;
-    shown->y = (origin_y - (blob.y - top)) / *pixels_per_m;
-    shown->yaw = -blob.axis;
-    return blob;
-  }
-
-  std::string chromium_;
+  std::optional<testing::HeadlessChromium> chromium_;
   fs::path dir_;
 };
 
@@ -274,19 +168,18 @@ TEST_F(ReplayPageBrowserTest, DrawsRobot0WhereItsCircleHasItAtTheCursor) {
   // long way round would turn the robot a quarter turn
   for (const double t : {2.345, 3.1425, 7.5}) {
     SCOPED_TRACE("t = " + std::to_string(t));
-    Pose shown;
-    double pixels_per_m = 0;
-    const Blob blob = RobotOnScreen("t=" + std::to_string(t), &shown, &pixels_per_m);
+    const testing::ShownRobot shown = testing::RobotOnScreen(
+        *chromium_, PageAddress("t=" + std::to_string(t)), dir_ / "screenshot.png");
     const Pose expected = CirclePose(t);
 
     // all of its body but its edges and its heading mark, and nothing else in its colour
-    const double area_px = kLength_m * kWidth_m * pixels_per_m * pixels_per_m;
-    EXPECT_GT(blob.count, 0.8 * area_px);
-    EXPECT_LT(blob.count, 1.02 * area_px);
-    EXPECT_NEAR(shown.x, expected.x, 0.01);
-    EXPECT_NEAR(shown.y, expected.y, 0.01);
+    const double area_px = kLength_m * kWidth_m * shown.pixels_per_m * shown.pixels_per_m;
+    EXPECT_GT(shown.blob.count, 0.8 * area_px);
+    EXPECT_LT(shown.blob.count, 1.02 * area_px);
+    EXPECT_NEAR(shown.x_m, expected.x, 0.01);
+    EXPECT_NEAR(shown.y_m, expected.y, 0.01);
     // its length lies along its heading (a rectangle's axis is known modulo a half turn)
-    EXPECT_NEAR(std::remainder(shown.yaw - expected.yaw, std::numbers::pi), 0, 0.07);
+    EXPECT_NEAR(std::remainder(shown.yaw_rad - expected.yaw, std::numbers::pi), 0, 0.07);
   }
 }
 
@@ -364,16 +257,204 @@ std::vector<std::string> NetworkRequestsOfPages(const std::string& net_log_path)
 
 TEST_F(ReplayPageBrowserTest, FetchesNothingFromTheNetwork) {
   const std::string net_log = (dir_ / "net-log.json").string();
-  Chromium("--log-net-log=" + net_log + " --dump-dom", PageAddress("t=2&speed=2"));
+  chromium_->Run("--log-net-log=" + net_log + " --dump-dom", PageAddress("t=2&speed=2"));
   EXPECT_EQ(NetworkRequestsOfPages(net_log), std::vector<std::string>{});
 
   // the check sees a page's request: a page with an image from a server is caught
   std::ofstream(dir_ / "fetching.html") << "<!DOCTYPE html><img src=\"http://127.0.0.1:9/x.png\">";
   const std::string control_log = (dir_ / "control-net-log.json").string();
-  Chromium("--log-net-log=" + control_log + " --dump-dom",
-           "file://" + (dir_ / "fetching.html").string());
+  chromium_->Run("--log-net-log=" + control_log + " --dump-dom",
+                 "file://" + (dir_ / "fetching.html").string());
   EXPECT_EQ(NetworkRequestsOfPages(control_log),
             std::vector<std::string>{"http://127.0.0.1:9/x.png"});
+}
+
+// ---- the page of a real run: `unimouse replay OUT --html PAGE` after the main job
+// ----------------
+
+// trace.csv's pose at `t`, linear between the two rows around it (the trace is written by the run
+// itself, beside the recording the page is made from)
+Pose TracePoseAt(const std::string& trace_csv, double t) {
+  std::ifstream in(trace_csv);
+  std::string line;
+  std::getline(in, line);
+  std::vector<std::string> header;
+  std::istringstream names(line);
+  for (std::string name; std::getline(names, name, ',');) header.push_back(name);
+  auto column = [&header](const std::string& name) {
+    return static_cast<size_t>(std::find(header.begin(), header.end(), name) - header.begin());
+  };
+  const size_t time = column("time_s"), x = column("x_m"), y = column("y_m"),
+               yaw = column("yaw_rad");
+  EXPECT_LT(std::max({time, x, y, yaw}), header.size()) << trace_csv << ": " << line;
+  std::vector<double> before;
+  while (std::getline(in, line)) {
+    std::vector<double> row;
+    std::istringstream cells(line);
+    for (std::string cell; std::getline(cells, cell, ',');) row.push_back(std::stod(cell));
+    if (row.size() != header.size()) continue;
+    if (row[time] >= t && !before.empty()) {
+      const double f = (t - before[time]) / (row[time] - before[time]);
+      // the yaw the short way round: the trace's is in (-pi, pi]
+      return {before[x] + f * (row[x] - before[x]), before[y] + f * (row[y] - before[y]),
+              before[yaw] + f * std::remainder(row[yaw] - before[yaw], 2 * std::numbers::pi)};
+    }
+    before = row;
+  }
+  ADD_FAILURE() << trace_csv << " has no rows around " << t << " s";
+  return {NAN, NAN, NAN};
+}
+
+// the lines of the recording's latest /hud message at or before `t`
+std::vector<std::string> RecordedHudAt(const json& recording, double t) {
+  const uint64_t at_ns = static_cast<uint64_t>(std::llround(t * 1e9));
+  uint64_t latest_ns = 0;
+  std::vector<std::string> lines;
+  for (const json& m : testing::OnTopic(recording, "/hud")) {
+    const uint64_t log_ns = m["log_time"].get<uint64_t>();
+    if (log_ns <= at_ns && log_ns >= latest_ns) {
+      latest_ns = log_ns;
+      lines = m["data"]["lines"].get<std::vector<std::string>>();
+    }
+  }
+  return lines;
+}
+
+// a text as Chromium writes it into a DOM's text node
+std::string AsDomText(const std::string& text) {
+  std::string out;
+  for (const char c : text) {
+    if (c == '&') {
+      out += "&amp;";
+    } else if (c == '<') {
+      out += "&lt;";
+    } else if (c == '>') {
+      out += "&gt;";
+    } else {
+      out += c;
+    }
+  }
+  return out;
+}
+
+// what the elements of `dom` that open with `open` hold, up to `close`, in the DOM's order
+std::vector<std::string> Contents(const std::string& dom, const std::string& open,
+                                  const std::string& close) {
+  std::vector<std::string> contents;
+  for (size_t at = dom.find(open); at != std::string::npos; at = dom.find(open, at + 1)) {
+    const size_t start = at + open.size();
+    contents.push_back(dom.substr(start, dom.find(close, start) - start));
+  }
+  return contents;
+}
+
+// the captions of the page's plots, in name order
+std::vector<std::string> PlotNames(const std::string& dom) {
+  std::vector<std::string> names;
+  const std::string figure = "<figure class=\"plot\">";
+  for (size_t at = dom.find(figure); at != std::string::npos; at = dom.find(figure, at + 1)) {
+    const std::string caption = "<figcaption>";
+    const size_t start = dom.find(caption, at) + caption.size();
+    names.push_back(dom.substr(start, dom.find("</figcaption>", start) - start));
+  }
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+const std::string kMainJob =
+    "--scenario micromouse --link inproc:" UNIMOUSE_FIRMWARE_DIR "/micromouse.so";
+
+class ReplayPageOfARunBrowserTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const std::string program = testing::FindProgram("chromium");
+    if (program.empty()) GTEST_SKIP() << "no chromium on PATH (Debian: apt-get install chromium)";
+    dir_ = testing::FreshDirectory("replay-run");
+    chromium_.emplace(program, dir_ / "chromium-profile");
+  }
+
+  std::optional<testing::HeadlessChromium> chromium_;
+  fs::path dir_;
+};
+
+TEST_F(ReplayPageOfARunBrowserTest, ShowsTheMainJobAsItsTraceAndRecordingHaveIt) {
+  const testing::RunResult run =
+      testing::UnimouseRun(kMainJob + " --duration 120", "replay_page_main_job");
+  const std::string out = (fs::temp_directory_path() / "replay_page_main_job").string();
+  // the contest is not decided in 120 s, but the run itself is whole
+  EXPECT_EQ(run.result.value("status", ""), "completed") << run.outcome.output;
+  ASSERT_TRUE(fs::exists(out + "/run.mcap")) << run.outcome.output;
+  ASSERT_TRUE(fs::exists(out + "/trace.csv")) << run.outcome.output;
+  const std::string page = (dir_ / "main_job.html").string();
+  const testing::Outcome replay = testing::Unimouse("replay " + out + " --html " + page);
+  ASSERT_EQ(replay.exit_code, 0) << replay.output;
+  const std::string address = "file://" + page;
+
+  // while it drives east, while it turns on the spot (its axis diagonal), while it drives west
+  for (const double t : {23.456, 95.365, 97.5}) {
+    SCOPED_TRACE("t = " + std::to_string(t));
+    const testing::ShownRobot shown = testing::RobotOnScreen(
+        *chromium_, address + "#t=" + std::to_string(t), dir_ / "screenshot.png");
+    ASSERT_GT(shown.blob.count, 100) << "robot 0 is not on the screenshot";
+    const Pose expected = TracePoseAt(out + "/trace.csv", t);
+    EXPECT_NEAR(shown.x_m, expected.x, 0.01);
+    EXPECT_NEAR(shown.y_m, expected.y, 0.01);
+    EXPECT_NEAR(std::remainder(shown.yaw_rad - expected.yaw, std::numbers::pi), 0, 0.07);
+  }
+
+  const std::string dom = chromium_->Dom(address + "#t=23.456");
+  // the HUD of the recording's latest /hud message at or before the cursor, read back by the
+  // tests' own MCAP reader
+  const json recording = testing::ReadRecording(out + "/run.mcap");
+  ASSERT_TRUE(recording.is_object());
+  std::vector<std::string> hud = RecordedHudAt(recording, 23.456);
+  ASSERT_FALSE(hud.empty()) << "the recording has no HUD before 23.456 s";
+  for (std::string& line : hud) line = AsDomText(line);
+  EXPECT_EQ(Contents(dom, "<div class=\"hud-line\">", "</div>"), hud);
+
+  // the default plots: what the motors get and the encoders and ToF sensors say, not the battery
+  EXPECT_EQ(PlotNames(dom),
+            (std::vector<std::string>{"left.current_a", "left.encoder_counts", "left.voltage_v",
+                                      "right.current_a", "right.encoder_counts", "right.voltage_v",
+                                      "tof.front_m", "tof.left_m", "tof.right_m"}));
+  EXPECT_EQ(dom.find("battery.voltage_v"), std::string::npos);
+
+  const std::string net_log = (dir_ / "net-log.json").string();
+  chromium_->Run("--log-net-log=" + net_log + " --dump-dom", address + "#t=97.5&speed=4");
+  EXPECT_EQ(NetworkRequestsOfPages(net_log), std::vector<std::string>{});
+}
+
+TEST_F(ReplayPageOfARunBrowserTest, PlotsOnlyTheSignalsAsked) {
+  const testing::RunResult run =
+      testing::UnimouseRun(kMainJob + " --duration 1", "replay_page_signal_job");
+  const std::string out = (fs::temp_directory_path() / "replay_page_signal_job").string();
+  ASSERT_TRUE(fs::exists(out + "/run.mcap")) << run.outcome.output;
+  const std::string page = (dir_ / "signal.html").string();
+  const testing::Outcome replay =
+      testing::Unimouse("replay " + out + " --html " + page + " --signal left.command");
+  ASSERT_EQ(replay.exit_code, 0) << replay.output;
+  EXPECT_EQ(PlotNames(chromium_->Dom("file://" + page + "#t=0.5")),
+            std::vector<std::string>{"left.command"});
+}
+
+// no browser: an unknown signal is the user's mistake, said before anything is written
+TEST(ReplayPageTest, RefusesASignalTheRecordingHasNot) {
+  const testing::RunResult run =
+      testing::UnimouseRun(kMainJob + " --duration 1", "replay_page_bad_signal_job");
+  const std::string out = (fs::temp_directory_path() / "replay_page_bad_signal_job").string();
+  ASSERT_TRUE(fs::exists(out + "/run.mcap")) << run.outcome.output;
+  const std::string page = testing::FreshDirectory("replay-bad-signal") + "/replay.html";
+  const testing::Outcome replay =
+      testing::Unimouse("replay " + out + " --html " + page + " --signal nonsense");
+  EXPECT_EQ(replay.exit_code, 2) << replay.output;
+  std::vector<std::string> naming;
+  std::istringstream lines(replay.output);
+  for (std::string line; std::getline(lines, line);) {
+    if (line.find("nonsense") != std::string::npos) naming.push_back(line);
+  }
+  ASSERT_EQ(naming.size(), 1u) << replay.output;
+  EXPECT_NE(naming[0].find("--signal nonsense"), std::string::npos) << naming[0];
+  EXPECT_FALSE(fs::exists(page));
 }
 
 // no browser: what the written file holds

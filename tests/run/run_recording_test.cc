@@ -20,6 +20,7 @@
 
 #include "inline_assets.h"
 #include "maze.h"
+#include "mcap_json.h"
 #include "run_program.h"
 #include "text_file.h"
 #include "unimouse/errors.h"
@@ -31,31 +32,6 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 
 const std::string kFirmware = UNIMOUSE_FIRMWARE_DIR "/micromouse.so";
-
-// with cut_ok, a file that stops short (a killed run) reads up to its last whole record
-json ReadRecording(const std::string& file, bool cut_ok = false) {
-  const std::string complaint = file + ".err";
-  const testing::Outcome o =
-      testing::Shell("(" + std::string(UNIMOUSE_PYTHON3) +
-                     " " UNIMOUSE_SOURCE_DIR "/tests/support/mcap_reader.py '" + file + "'" +
-                     (cut_ok ? " --cut-ok" : "") + " 2>'" + complaint + "')");
-  EXPECT_EQ(o.exit_code, 0) << ReadTextFile(complaint);
-  if (o.exit_code != 0) return json();
-  return json::parse(o.output);
-}
-
-// the messages of one topic
-std::vector<json> OnTopic(const json& recording, const std::string& topic) {
-  int channel = -1;
-  for (const json& c : recording["channels"]) {
-    if (c["topic"] == topic) channel = c["id"];
-  }
-  std::vector<json> out;
-  for (const json& m : recording["messages"]) {
-    if (m["channel_id"] == channel) out.push_back(m);
-  }
-  return out;
-}
 
 std::string SchemaOf(const json& recording, const std::string& topic) {
   for (const json& c : recording["channels"]) {
@@ -104,14 +80,14 @@ TEST(RunRecordingTest, TheMainJobsPosesAreItsTracesAtTheSameTimes) {
       "--scenario micromouse --set end_on_log=done --link inproc:" + kFirmware, "main_job_record");
   ASSERT_EQ(run.outcome.exit_code, 0) << run.outcome.output;
   const std::string out = OutDir("main_job_record");
-  const json recording = ReadRecording(out + "/run.mcap");
+  const json recording = testing::ReadRecording(out + "/run.mcap");
   ASSERT_TRUE(recording.is_object());
   EXPECT_TRUE(recording["complete"].get<bool>());
   EXPECT_EQ(SchemaOf(recording, "/robot/pose"), "foxglove.FrameTransform");
 
   // the trace (every 10 ms, the bundled robot's logger) is the independent truth
   std::map<uint64_t, json> poses;
-  for (const json& m : OnTopic(recording, "/robot/pose")) {
+  for (const json& m : testing::OnTopic(recording, "/robot/pose")) {
     ASSERT_EQ(m["data"]["parent_frame_id"], "world");
     ASSERT_EQ(m["data"]["timestamp"]["sec"].get<uint64_t>() * 1'000'000'000 +
                   m["data"]["timestamp"]["nsec"].get<uint64_t>(),
@@ -136,9 +112,9 @@ TEST(RunRecordingTest, TheMainJobsPosesAreItsTracesAtTheSameTimes) {
   EXPECT_EQ(SchemaOf(recording, "/log"), "foxglove.Log");
   EXPECT_EQ(SchemaOf(recording, "/scenery"), "foxglove.SceneUpdate");
   EXPECT_EQ(SchemaOf(recording, "/signals"), "unimouse.Signals");
-  ASSERT_EQ(OnTopic(recording, "/scenery").size(), 1u);
-  EXPECT_EQ(OnTopic(recording, "/signals").size(), poses.size());
-  EXPECT_GT(OnTopic(recording, "/log").size(), 10u);
+  ASSERT_EQ(testing::OnTopic(recording, "/scenery").size(), 1u);
+  EXPECT_EQ(testing::OnTopic(recording, "/signals").size(), poses.size());
+  EXPECT_GT(testing::OnTopic(recording, "/log").size(), 10u);
 
   // the scenery: one cube for each post and wall of the maze, and the maze's dimensions
   const Maze maze = LoadMaze(UNIMOUSE_SOURCE_DIR "/mazes/japan2018.txt");
@@ -149,19 +125,19 @@ TEST(RunRecordingTest, TheMainJobsPosesAreItsTracesAtTheSameTimes) {
                (y < maze.height() && maze.HasVerticalWall(x, y));
     }
   }
-  const json scenery = OnTopic(recording, "/scenery")[0]["data"]["entities"][0];
+  const json scenery = testing::OnTopic(recording, "/scenery")[0]["data"]["entities"][0];
   EXPECT_EQ(scenery["cubes"].size(), boxes);
   EXPECT_EQ(scenery["metadata"][2], json({{"key", "cell_m"}, {"value", "0.18"}}));
 
   // what the firmware believed, whenever it changed: at the end, the walls the scenario kept of
   // its reports (firmware_beliefs.json)
   EXPECT_EQ(SchemaOf(recording, "/beliefs"), "unimouse.Beliefs");
-  const auto beliefs = OnTopic(recording, "/beliefs");
+  const auto beliefs = testing::OnTopic(recording, "/beliefs");
   ASSERT_GT(beliefs.size(), 100u);
   EXPECT_EQ(beliefs.back()["data"]["walls"],
             json::parse(ReadTextFile(out + "/firmware_beliefs.json"))["walls"]);
   // the HUD whenever it changed, never twice the same in a row
-  const auto hud = OnTopic(recording, "/hud");
+  const auto hud = testing::OnTopic(recording, "/hud");
   ASSERT_GT(hud.size(), 100u);
   for (size_t i = 1; i < hud.size(); ++i) {
     ASSERT_NE(hud[i]["data"]["lines"], hud[i - 1]["data"]["lines"]) << i;
@@ -177,11 +153,11 @@ TEST(RunRecordingTest, ContactsAndTheMomentAMouseIsLostAreEventsAsTheResultLists
   const testing::RunResult run = testing::UnimouseRun(
       "--maze " + shared + "/classic/Portugal-2024-Final.txt --duration 70", "lost_record");
   ASSERT_EQ(run.outcome.exit_code, 1) << run.outcome.output;
-  const json recording = ReadRecording(OutDir("lost_record") + "/run.mcap");
+  const json recording = testing::ReadRecording(OutDir("lost_record") + "/run.mcap");
   ASSERT_TRUE(recording.is_object());
   EXPECT_EQ(SchemaOf(recording, "/events"), "unimouse.Event");
   std::vector<json> contacts, lost;
-  for (const json& m : OnTopic(recording, "/events")) {
+  for (const json& m : testing::OnTopic(recording, "/events")) {
     (m["data"]["kind"] == "contact" ? contacts : lost).push_back(m["data"]);
   }
   // every contact of result.json, with the same facts, at its time
@@ -204,7 +180,7 @@ TEST(RunRecordingTest, AttachesTheFilesTheRunReadAndSaysWhatRan) {
       "--scenario micromouse --link inproc:" + kFirmware + " --duration 0.3", "record_files");
   ASSERT_EQ(run.outcome.exit_code, 1) << run.outcome.output;  // no run finished in 0.3 s
   const std::string out = OutDir("record_files");
-  const json recording = ReadRecording(out + "/run.mcap");
+  const json recording = testing::ReadRecording(out + "/run.mcap");
   ASSERT_TRUE(recording.is_object());
 
   std::map<std::string, std::string> attached;
@@ -238,10 +214,10 @@ TEST(RunRecordingTest, FullRecordsEveryStepAndOffRecordsNothing) {
   const std::string args = "--scenario micromouse --link inproc:" + kFirmware + " --duration 0.2";
   const testing::RunResult full = testing::UnimouseRun(args + " --record full", "record_full");
   ASSERT_EQ(full.outcome.exit_code, 1) << full.outcome.output;
-  const json recording = ReadRecording(OutDir("record_full") + "/run.mcap");
+  const json recording = testing::ReadRecording(OutDir("record_full") + "/run.mcap");
   ASSERT_TRUE(recording.is_object());
   // time 0, then the end of each of the 200 steps of 1 ms
-  const auto poses = OnTopic(recording, "/robot/pose");
+  const auto poses = testing::OnTopic(recording, "/robot/pose");
   ASSERT_EQ(poses.size(), 201u);
   for (size_t k = 0; k < poses.size(); ++k) {
     ASSERT_NEAR(poses[k]["log_time"].get<double>(), static_cast<double>(k) * 1e6, 1e3) << k;
@@ -261,12 +237,12 @@ TEST(RunRecordingTest, AFirmwareCrashLeavesACompleteRecordingOfEachRobot) {
           UNIMOUSE_TEST_BINARY_DIR "/null_pointer_firmware.so",
       "record_crash");
   ASSERT_EQ(r.outcome.exit_code, 3) << r.outcome.output;
-  const json recording = ReadRecording(OutDir("record_crash") + "/run.mcap");
+  const json recording = testing::ReadRecording(OutDir("record_crash") + "/run.mcap");
   ASSERT_TRUE(recording.is_object());
   EXPECT_TRUE(recording["complete"].get<bool>());
   // each robot its own frame, up to the step that faulted at 0.2 s
   for (const std::string name : {"unimouse", "crasher"}) {
-    const auto poses = OnTopic(recording, "/robots/" + name + "/pose");
+    const auto poses = testing::OnTopic(recording, "/robots/" + name + "/pose");
     ASSERT_GE(poses.size(), 20u) << name;
     EXPECT_EQ(poses.back()["data"]["child_frame_id"], name);
     EXPECT_NEAR(poses.back()["log_time"].get<double>() * 1e-9, 0.2, 0.011) << name;
@@ -284,12 +260,13 @@ TEST(RunRecordingTest, AKilledRunLeavesARecordingThatReadsToItsLastWholeChunk) {
   const testing::RunResult r = testing::UnimouseRun(
       "--scenario micromouse --link inproc:" + kFirmware, "record_killed", "timeout -s KILL 3 ");
   ASSERT_EQ(r.outcome.exit_code, 128 + 9) << r.outcome.output;
-  const json recording = ReadRecording(OutDir("record_killed") + "/run.mcap", /*cut_ok=*/true);
+  const json recording =
+      testing::ReadRecording(OutDir("record_killed") + "/run.mcap", /*cut_ok=*/true);
   ASSERT_TRUE(recording.is_object());
   EXPECT_FALSE(recording["complete"].get<bool>());
   // every 10 ms from 0 (sim time, within its rounding to nanoseconds), at least a second of
   // them: a chunk is written out every second
-  const auto poses = OnTopic(recording, "/robot/pose");
+  const auto poses = testing::OnTopic(recording, "/robot/pose");
   ASSERT_GE(poses.size(), 100u);
   for (size_t k = 0; k < poses.size(); ++k) {
     ASSERT_NEAR(poses[k]["log_time"].get<double>(), static_cast<double>(k) * 10e6, 1e3) << k;

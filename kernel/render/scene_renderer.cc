@@ -156,14 +156,10 @@ void SceneRenderer::AddBeams() {
   for (const BeamSpec& b : kernel_.model().beams) {
     mjvGeom* g = NewGeom();
     if (g == nullptr) return;
-    const mjtNum* from = data_->site_xpos + 3 * b.site;
-    const mjtNum* r = data_->site_xmat + 9 * b.site;  // column 0: the beam's direction
-    const double reading = signals[static_cast<size_t>(b.length_signal)];
-    const bool hit = reading < b.range_max_m;
-    const double length = std::clamp(reading, 0.0, b.range_max_m);
-    mjv_initGeom(g, mjGEOM_CAPSULE, nullptr, nullptr, nullptr, hit ? kHit : kMiss);
-    mjv_makeConnector(g, mjGEOM_CAPSULE, kBeamRadius_m, from[0], from[1], from[2],
-                      from[0] + length * r[0], from[1] + length * r[3], from[2] + length * r[6]);
+    const BeamLine line = BeamLineOf(b, *data_, signals);
+    mjv_initGeom(g, mjGEOM_CAPSULE, nullptr, nullptr, nullptr, line.hit ? kHit : kMiss);
+    mjv_makeConnector(g, mjGEOM_CAPSULE, kBeamRadius_m, line.from_m[0], line.from_m[1],
+                      line.from_m[2], line.to_m[0], line.to_m[1], line.to_m[2]);
     g->category = mjCAT_DECOR;
     g->emission = 0.8f;
   }

@@ -72,6 +72,24 @@ std::string SceneUpdateSchema() {
   const json cube = {
       {"type", "object"},
       {"properties", {{"pose", pose}, {"size", json::parse(kVector3Schema)}, {"color", color}}}};
+  const json line = {{"type", "object"},
+                     {"properties",
+                      {{"type", {{"enum", {0, 1, 2}}}},  // line strip, loop, list
+                       {"pose", pose},
+                       {"thickness", {{"type", "number"}, {"minimum", 0}}},
+                       {"scale_invisible", {{"type", "boolean"}}},
+                       {"points", {{"type", "array"}, {"items", json::parse(kVector3Schema)}}},
+                       {"color", color},
+                       {"colors", {{"type", "array"}, {"items", color}}},
+                       {"indices", {{"type", "array"}, {"items", {{"type", "integer"}}}}}}}};
+  const json text = {{"type", "object"},
+                     {"properties",
+                      {{"pose", pose},
+                       {"billboard", {{"type", "boolean"}}},
+                       {"font_size", {{"type", "number"}}},
+                       {"scale_invisible", {{"type", "boolean"}}},
+                       {"color", color},
+                       {"text", {{"type", "string"}}}}}};
   const json entity = {
       {"type", "object"},
       {"properties",
@@ -88,7 +106,7 @@ std::string SceneUpdateSchema() {
         {"cubes", {{"type", "array"}, {"items", cube}}}}}};
   return json{
       {"title", "foxglove.SceneUpdate"},
-      {"description", "the scenery: a maze's walls and posts, a scenario's boxes"},
+      {"description", "a 3D scene: the scenery, the ToF beams or what the firmware believes"},
       {"type", "object"},
       {"properties",
        {{"deletions", {{"type", "array"}}}, {"entities", {{"type", "array"}, {"items", entity}}}}}}
@@ -212,6 +230,132 @@ json Timestamp(uint64_t time_ns) {
   return {{"sec", time_ns / 1'000'000'000}, {"nsec", time_ns % 1'000'000'000}};
 }
 
+json Color(double r, double g, double b, double a) {
+  return {{"r", r}, {"g", g}, {"b", b}, {"a", a}};
+}
+
+json Vector(double x, double y, double z) { return {{"x", x}, {"y", y}, {"z", z}}; }
+
+json IdentityPose() {
+  return {{"position", Vector(0, 0, 0)}, {"orientation", {{"x", 0}, {"y", 0}, {"z", 0}, {"w", 1}}}};
+}
+
+// one entity of a SceneUpdate in the world frame, with every primitive list Foxglove's schema
+// has (empty where unused)
+json Entity(const std::string& id, uint64_t time_ns, json metadata, json cubes, json lines,
+            json texts) {
+  return {{"timestamp", Timestamp(time_ns)},
+          {"frame_id", "world"},
+          {"id", id},
+          {"lifetime", Timestamp(0)},  // until replaced
+          {"frame_locked", false},
+          {"metadata", std::move(metadata)},
+          {"arrows", json::array()},
+          {"cubes", std::move(cubes)},
+          {"spheres", json::array()},
+          {"cylinders", json::array()},
+          {"lines", std::move(lines)},
+          {"triangles", json::array()},
+          {"texts", std::move(texts)},
+          {"models", json::array()}};
+}
+
+// what the firmware believes as Foxglove draws it: its walls as blue strips on the walls' tops,
+// visited cells as small tiles, cell colours as floor tiles, texts as labels, its path as a line
+json BeliefsScene(const FirmwareBeliefs& beliefs, const MazeDimensions& dims, uint64_t time_ns) {
+  auto centre = [&](int x, int y) { return CellCentre({x, y}, Heading::kNorth, dims); };
+  auto box = [](double x, double y, double z, double sx, double sy, double sz, json color) {
+    return json{{"pose",
+                 {{"position", Vector(x, y, z)},
+                  {"orientation", {{"x", 0}, {"y", 0}, {"z", 0}, {"w", 1}}}}},
+                {"size", Vector(sx, sy, sz)},
+                {"color", std::move(color)}};
+  };
+  json cubes = json::array(), lines = json::array(), texts = json::array();
+  for (const auto& [cell, w] : beliefs.walls) {
+    const Pose2D c = centre(cell.first, cell.second);
+    for (int side = 0; side < 4; ++side) {  // north, east, south, west
+      const uint8_t bit = static_cast<uint8_t>(1 << side);
+      if (!(w.known & bit) || !(w.walls & bit)) continue;
+      const bool north_south = side == 0 || side == 2;
+      const double dx = side == 1 ? 0.5 : side == 3 ? -0.5 : 0;
+      const double dy = side == 0 ? 0.5 : side == 2 ? -0.5 : 0;
+      cubes.push_back(box(c.x_m + dims.cell_m * dx, c.y_m + dims.cell_m * dy,
+                          dims.wall_height_m + 0.003, north_south ? dims.cell_m : 0.008,
+                          north_south ? 0.008 : dims.cell_m, 0.004, Color(0.2, 0.5, 1, 1)));
+    }
+  }
+  std::set<std::pair<int, int>> seen;
+  for (const Cell& v : beliefs.visited) {
+    if (!seen.insert({v.x, v.y}).second) continue;
+    const Pose2D c = centre(v.x, v.y);
+    cubes.push_back(box(c.x_m, c.y_m, 0.001, dims.cell_m / 3, dims.cell_m / 3, 0.001,
+                        Color(0.3, 0.75, 0.75, 0.8)));
+  }
+  for (const auto& [cell, letter] : beliefs.colours) {
+    const std::optional<Rgb8> rgb = CellColourOf(letter);
+    if (!rgb) continue;
+    const Pose2D c = centre(cell.first, cell.second);
+    const double side_m = dims.cell_m - dims.wall_thickness_m;
+    cubes.push_back(box(c.x_m, c.y_m, 0.0005, side_m, side_m, 0.0008,
+                        Color(rgb->r / 255.0, rgb->g / 255.0, rgb->b / 255.0, 1)));
+  }
+  for (const auto& [cell, text] : beliefs.texts) {
+    const Pose2D c = centre(cell.first, cell.second);
+    texts.push_back({{"pose",
+                      {{"position", Vector(c.x_m, c.y_m, 0.01)},
+                       {"orientation", {{"x", 0}, {"y", 0}, {"z", 0}, {"w", 1}}}}},
+                     {"billboard", true},
+                     {"font_size", 12},
+                     {"scale_invisible", true},
+                     {"color", Color(1, 1, 1, 1)},
+                     {"text", text}});
+  }
+  if (beliefs.path.size() > 1) {
+    json points = json::array();
+    for (const Cell& p : beliefs.path) {
+      const Pose2D c = centre(p.x, p.y);
+      points.push_back(Vector(c.x_m, c.y_m, 0.004));
+    }
+    lines.push_back({{"type", 0},
+                     {"pose", IdentityPose()},
+                     {"thickness", dims.cell_m / 15},
+                     {"scale_invisible", false},
+                     {"points", points},
+                     {"color", Color(0.95, 0.8, 0.1, 1)},
+                     {"colors", json::array()},
+                     {"indices", json::array()}});
+  }
+  return {
+      {"deletions", json::array()},
+      {"entities", json::array({Entity("beliefs", time_ns, json::array(), cubes, lines, texts)})}};
+}
+
+// the ToF beams, each a segment from its sensor, green on a hit and red on a miss as drawn
+json BeamsScene(const Kernel& kernel, uint64_t time_ns) {
+  const mjData& d = kernel.state().data();
+  json points = json::array(), colors = json::array();
+  for (const BeamSpec& beam : kernel.model().beams) {
+    const BeamLine line = BeamLineOf(beam, d, kernel.state().signals());
+    const json color = line.hit ? Color(0.1, 0.95, 0.2, 1) : Color(0.95, 0.15, 0.1, 1);
+    for (const auto& p : {line.from_m, line.to_m}) {
+      points.push_back(Vector(p[0], p[1], p[2]));
+      colors.push_back(color);
+    }
+  }
+  const json list = {{"type", 2},  // a list of segments
+                     {"pose", IdentityPose()},
+                     {"thickness", 0.004},
+                     {"scale_invisible", false},
+                     {"points", points},
+                     {"color", Color(1, 1, 1, 1)},
+                     {"colors", colors},
+                     {"indices", json::array()}};
+  return {{"deletions", json::array()},
+          {"entities", json::array({Entity("beams", time_ns, json::array(), json::array(),
+                                           json::array({list}), json::array())})}};
+}
+
 // the scenery (a maze's walls and posts, a scenario's boxes) as cubes in the world frame; with a
 // maze, its dimensions ride along as the entity's metadata, for a player to place cells
 json SceneryUpdate(const World& world) {
@@ -246,13 +390,7 @@ json SceneryUpdate(const World& world) {
     add("wall_thickness_m", json(dims.wall_thickness_m).dump());
     add("wall_height_m", json(dims.wall_height_m).dump());
   }
-  json entity = {{"timestamp", Timestamp(0)}, {"frame_id", "world"},
-                 {"id", "scenery"},           {"lifetime", Timestamp(0)},  // for ever
-                 {"frame_locked", false},     {"metadata", metadata},
-                 {"arrows", json::array()},   {"cubes", cubes},
-                 {"spheres", json::array()},  {"cylinders", json::array()},
-                 {"lines", json::array()},    {"triangles", json::array()},
-                 {"texts", json::array()},    {"models", json::array()}};
+  const json entity = Entity("scenery", 0, metadata, cubes, json::array(), json::array());
   return {{"deletions", json::array()}, {"entities", json::array({entity})}};
 }
 
@@ -299,10 +437,19 @@ RunRecording::RunRecording(const std::string& path, RecordLevel level) : level_(
 RunRecording::~RunRecording() = default;
 
 void RunRecording::OpenRobotChannels(const Kernel& kernel) {
-  const uint16_t scenery = writer_->AddChannel(
-      writer_->AddSchema("foxglove.SceneUpdate", "jsonschema", SceneUpdateSchema()), "/scenery",
-      "json");
+  const uint16_t scene_schema =
+      writer_->AddSchema("foxglove.SceneUpdate", "jsonschema", SceneUpdateSchema());
+  const uint16_t scenery = writer_->AddChannel(scene_schema, "/scenery", "json");
   writer_->Write(scenery, 0, SceneryUpdate(kernel.world()).dump());
+  if (!kernel.model().beams.empty()) {
+    beams_channel_ = writer_->AddChannel(scene_schema, "/beams", "json");
+    beam_every_steps_ =
+        std::max<int64_t>(1, std::llround(kBeamRecordPeriod_s / kernel.timestep_s()));
+  }
+  if (const Maze* maze = kernel.world().maze()) {
+    maze_dimensions_ = maze->dimensions();
+    beliefs_scene_channel_ = writer_->AddChannel(scene_schema, "/beliefs/scene", "json");
+  }
   const int robots = kernel.robot_count();
   for (int i = 0; i < robots; ++i) {
     const std::string& name = kernel.robot_name(i);
@@ -324,6 +471,10 @@ void RunRecording::OpenRobotChannels(const Kernel& kernel) {
 bool RunRecording::Sample(const Kernel& kernel) {
   if (sample_every_steps_ == 0) OpenRobotChannels(kernel);
   const State& state = kernel.state();
+  if (beam_every_steps_ > 0 && state.step() % beam_every_steps_ == 0) {
+    const uint64_t time_ns = Nanoseconds(state.data().time);
+    writer_->Write(beams_channel_, time_ns, BeamsScene(kernel, time_ns).dump());
+  }
   if (state.step() % sample_every_steps_ != 0) return false;
   const mjData& d = state.data();
   const uint64_t time_ns = Nanoseconds(d.time);
@@ -391,6 +542,11 @@ void RunRecording::Beliefs(double time_s, const std::string& robot,
                         {"texts", texts}};
   writer_->Write(beliefs_channel_, time_ns,
                  message.dump(-1, ' ', false, json::error_handler_t::replace));
+  if (maze_dimensions_) {
+    writer_->Write(beliefs_scene_channel_, time_ns,
+                   BeliefsScene(beliefs, *maze_dimensions_, time_ns)
+                       .dump(-1, ' ', false, json::error_handler_t::replace));
+  }
 }
 
 void RunRecording::Hud(double time_s, const std::vector<std::string>& lines) {

@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -142,6 +143,43 @@ TEST(RunRecordingTest, TheMainJobsPosesAreItsTracesAtTheSameTimes) {
   for (size_t i = 1; i < hud.size(); ++i) {
     ASSERT_NE(hud[i]["data"]["lines"], hud[i - 1]["data"]["lines"]) << i;
   }
+
+  // the last beliefs drawn for a 3D panel: a blue strip for each wall side the firmware knows
+  // to be there, a tile for each visited cell
+  const json last = json::parse(ReadTextFile(out + "/firmware_beliefs.json"));
+  size_t strips = 0;
+  for (const json& w : last["walls"]) {
+    strips += std::popcount(static_cast<unsigned>(w[2].get<int>() & w[3].get<int>()));
+  }
+  const auto scenes = testing::OnTopic(recording, "/beliefs/scene");
+  ASSERT_EQ(scenes.size(), beliefs.size());
+  const json& drawn = scenes.back()["data"]["entities"][0];
+  EXPECT_EQ(drawn["cubes"].size(), strips + beliefs.back()["data"]["visited"].size());
+  EXPECT_EQ(drawn["lines"].size(), last["path"].size() > 1 ? 1u : 0u);
+
+  // the three ToF beams every 30 ms, each starting at the robot's front corners, 7.7 cm from the
+  // axle's middle where the trace has the robot
+  EXPECT_EQ(SchemaOf(recording, "/beams"), "foxglove.SceneUpdate");
+  const auto beams = testing::OnTopic(recording, "/beams");
+  ASSERT_GT(beams.size(), 1000u);
+  std::map<uint64_t, const std::map<std::string, double>*> row_at;
+  for (const auto& row : trace) row_at[Nanoseconds(row.at("time_s"))] = &row;
+  size_t checked = 0;
+  for (size_t k = 0; k < beams.size(); ++k) {
+    ASSERT_NEAR(beams[k]["log_time"].get<double>(), static_cast<double>(k) * 30e6, 1e3) << k;
+    const json& points = beams[k]["data"]["entities"][0]["lines"][0]["points"];
+    ASSERT_EQ(points.size(), 6u) << k;
+    const auto row = row_at.find(beams[k]["log_time"].get<uint64_t>());
+    if (row == row_at.end()) continue;
+    for (size_t p = 0; p < 6; p += 2) {
+      ASSERT_LT(std::hypot(points[p]["x"].get<double>() - row->second->at("x_m"),
+                           points[p]["y"].get<double>() - row->second->at("y_m")),
+                0.085)
+          << k;
+    }
+    ++checked;
+  }
+  EXPECT_GT(checked, beams.size() / 4);
 }
 
 TEST(RunRecordingTest, ContactsAndTheMomentAMouseIsLostAreEventsAsTheResultListsThem) {

@@ -6,6 +6,7 @@
 #ifndef UNIMOUSE_CORE_MODEL_H_
 #define UNIMOUSE_CORE_MODEL_H_
 
+#include <array>
 #include <memory>
 #include <string>
 #include <vector>
@@ -36,6 +37,15 @@ struct BeamSpec {
   int length_signal = -1;
   double range_max_m = 0;  ///< a length this long means no target
 };
+
+/// A beam as drawn: from its site to as far as its signal says, in the world frame, and whether
+/// it hit something (a reading short of the range).
+struct BeamLine {
+  std::array<double, 3> from_m{}, to_m{};
+  bool hit = false;
+};
+/// Returns a beam's line in the state `d` (its sites placed by kinematics) with `signals`.
+BeamLine BeamLineOf(const BeamSpec& beam, const mjData& d, const std::vector<double>& signals);
 
 /// A component that reads a signal before its writer runs, in YAML order: within a phase it sees
 /// the value the writer left on the previous tick.

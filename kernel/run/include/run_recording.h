@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -33,6 +34,9 @@ RecordLevel ParseRecordLevel(const std::string& text);
 
 /// Seconds between two samples of poses and signals at kLight.
 inline constexpr double kLightRecordPeriod_s = 0.01;
+
+/// Seconds between two records of the ToF beams: a ToF sensor's period, at both levels.
+inline constexpr double kBeamRecordPeriod_s = 0.03;
 
 /// The version of what a recording holds (its channels and their messages), in its metadata
 /// `unimouse.recording`: a player refuses a recording of a later one.
@@ -89,6 +93,10 @@ class RunRecording {
   uint16_t beliefs_channel_ = 0;
   uint16_t hud_channel_ = 0;
   uint16_t values_channel_ = 0;
+  uint16_t beams_channel_ = 0;
+  uint16_t beliefs_scene_channel_ = 0;
+  std::optional<MazeDimensions> maze_dimensions_;  // with a maze, where its cells are
+  int64_t beam_every_steps_ = 0;                   // 0: the robots have no beams
   std::vector<uint16_t> pose_channels_;
   std::vector<std::string> frame_names_;  // as JSON strings
   std::vector<std::string> signal_keys_;  // "name": of each signal, as JSON

@@ -87,6 +87,13 @@ json JobRows(const std::vector<std::string>& job_dirs, const std::string& out_di
     if (!row["scores"].is_object()) row["scores"] = json::object();
     row["dir"] = relative;
     row["pictures"] = pictures;
+    // the job's replay page, where its job.json names one in its directory that is there
+    const json page = job.contains("replay_page") ? job["replay_page"] : json(nullptr);
+    const fs::path name = page.is_string() ? fs::path(page.get<std::string>()) : fs::path();
+    row["replay_page"] = !name.empty() && !name.has_parent_path() && name != ".." &&
+                                 IsRegularFile((dir / name).string())
+                             ? json((fs::path(relative) / name).generic_string())
+                             : json(nullptr);
     // what the job graded: each input file with its SHA-256
     row["inputs"] = job.contains("command") && job["command"].contains("inputs")
                         ? job["command"]["inputs"]
@@ -208,7 +215,7 @@ void WriteResults(const std::string& out_dir, const json& rows, const std::strin
   std::ostringstream csv;
   csv << "submission,scenario,maze,seed,status,reason";
   for (const auto& name : score_names) csv << "," << Csv("score." + name);
-  csv << ",sim_time_s,wall_time_s,exit_code,dir\n";
+  csv << ",sim_time_s,wall_time_s,exit_code,dir,replay_page\n";
   for (const auto& row : rows) {
     csv << Csv(Text(row["submission"])) << "," << Csv(Text(row["scenario"])) << ","
         << Csv(Text(row["maze"])) << "," << Text(row["seed"]) << "," << Csv(Text(row["status"]))
@@ -217,7 +224,8 @@ void WriteResults(const std::string& out_dir, const json& rows, const std::strin
       csv << "," << (row["scores"].contains(name) ? Number(row["scores"][name], "%.10g") : "");
     }
     csv << "," << Number(row["sim_time_s"], "%.3f") << "," << Number(row["wall_time_s"], "%.3f")
-        << "," << Text(row["exit_code"]) << "," << Csv(Text(row["dir"])) << "\n";
+        << "," << Text(row["exit_code"]) << "," << Csv(Text(row["dir"])) << ","
+        << Csv(Text(row["replay_page"])) << "\n";
   }
   WriteTextFile((out / "results.csv").string(), csv.str());
 

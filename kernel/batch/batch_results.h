@@ -18,8 +18,8 @@ inline const std::vector<std::string> kStatuses = {
     "passed", "failed", "firmware_error", "script_error", "bad_input", "timeout", "crashed"};
 
 /// Returns the rows of results.json for these job directories (each holding a job.json):
-/// sorted by id, `dir` and `pictures` relative to out_dir. Throws InputError when two
-/// directories hold the same job.
+/// sorted by id, `dir`, `pictures` and `replay_page` (null when the job has none) relative to
+/// out_dir. Throws InputError when two directories hold the same job.
 nlohmann::json JobRows(const std::vector<std::string>& job_dirs, const std::string& out_dir);
 
 /// Returns every directory under `root` (itself included) that holds a job.json, sorted.

@@ -9,6 +9,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <csignal>
@@ -302,63 +303,55 @@ bool JobIsDone(const Manifest& manifest, const Job& job, const std::string& batc
          record["command"] == JobCommand(manifest, job, batch_out);
 }
 
-int RunJob(const Manifest& manifest, const Job& job, const std::string& batch_out,
-           const std::string& program, const std::string& version) {
-  const Submission& sub = manifest.submissions[static_cast<size_t>(job.submission)];
-  const JobLimits& limits = sub.limits;
-  const fs::path dir = fs::absolute(JobDirectory(batch_out, job));
-  fs::create_directories(dir);
-  fs::remove(dir / "job.json");
-  fs::remove(dir / "result.json");
+namespace {
 
-  // bubblewrap: the file system read-only but for the job's directory, no network, its own
-  // process ids (everything in it ends with it)
-  std::vector<std::string> argv;
-  const std::string bwrap = limits.sandbox == "none" ? "" : FindProgram("bwrap");
-  UNIMOUSE_THROW_UNLESS(
-      limits.sandbox != "bwrap" || !bwrap.empty(),
-      "submission '" + sub.name + "': sandbox: bwrap, but bwrap is not installed");
-  if (!bwrap.empty()) {
-    argv = {bwrap,
-            "--ro-bind",
-            "/",
-            "/",
-            "--dev",
-            "/dev",
-            "--dev-bind-try",
-            "/dev/dri",
-            "/dev/dri",
-            "--proc",
-            "/proc",
-            "--bind",
-            dir.string(),
-            dir.string(),
-            "--unshare-net",
-            "--unshare-pid",
-            "--unshare-ipc",
-            "--die-with-parent",
-            "--new-session",
-            "--"};
-  }
-  argv.push_back(program);
-  const nlohmann::json command = JobCommand(manifest, job, batch_out);
-  for (const auto& a : command["run"]) argv.push_back(a.get<std::string>());
+// what the job's wait for one of its processes saw
+struct Waited {
+  ProcessEnd end;
+  bool interrupted = false;  // SIGINT or SIGTERM came: the process was stopped
+  double wall_s = 0;
+};
 
-  struct sigaction action = {};
-  action.sa_handler = OnStop;
-  sigemptyset(&action.sa_mask);
-  sigaction(SIGINT, &action, nullptr);
-  sigaction(SIGTERM, &action, nullptr);
-  ::prctl(PR_SET_CHILD_SUBREAPER, 1);
+// the argv in front of a program that runs it in bubblewrap: the file system read-only but for
+// the job's directory, no network, its own process ids (everything in it ends with it)
+std::vector<std::string> SandboxArgv(const std::string& bwrap, const fs::path& dir) {
+  if (bwrap.empty()) return {};
+  return {bwrap,
+          "--ro-bind",
+          "/",
+          "/",
+          "--dev",
+          "/dev",
+          "--dev-bind-try",
+          "/dev/dri",
+          "/dev/dri",
+          "--proc",
+          "/proc",
+          "--bind",
+          dir.string(),
+          dir.string(),
+          "--unshare-net",
+          "--unshare-pid",
+          "--unshare-ipc",
+          "--die-with-parent",
+          "--new-session",
+          "--"};
+}
+
+// runs argv in a process group of its own under the limits, its output into log_file, killed at
+// wall_time_s; whatever it left behind is ended before this returns
+Waited RunLimited(const std::vector<std::string>& argv, const JobLimits& limits, double wall_time_s,
+                  const std::string& log_file, bool sandboxed, const std::string& job_id) {
   const auto start = std::chrono::steady_clock::now();
   const pid_t child = ::fork();
-  UNIMOUSE_THROW_UNLESS(child >= 0, "cannot start a process for job " + job.id);
-  if (child == 0) LimitAndExec(argv, limits, (dir / "run.log").string());
+  UNIMOUSE_THROW_UNLESS(child >= 0, "cannot start a process for job " + job_id);
+  if (child == 0) LimitAndExec(argv, limits, log_file);
   ::setpgid(child, child);
 
-  ProcessEnd end;
+  Waited waited;
+  ProcessEnd& end = waited.end;
   int status = 0;
-  const auto limit = std::chrono::duration<double>(limits.wall_time_s);
+  const auto limit = std::chrono::duration<double>(wall_time_s);
   std::optional<std::chrono::steady_clock::time_point> asked;  // when a stop was asked for
   while (::waitpid(child, &status, WNOHANG) == 0) {
     const auto now = std::chrono::steady_clock::now();
@@ -374,19 +367,91 @@ int RunJob(const Manifest& manifest, const Job& job, const std::string& batch_ou
     if (asked && now - *asked > std::chrono::seconds(2)) ::kill(-child, SIGKILL);
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
   }
-  const double wall_s =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  waited.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   ::kill(-child, SIGKILL);
   EndOrphans();
-  if (asked) return kExitRuntimeFault;
+  waited.interrupted = asked.has_value();
 
   if (WIFSIGNALED(status)) end.signal = WTERMSIG(status);
   if (WIFEXITED(status)) end.exit_code = WEXITSTATUS(status);
   // bubblewrap reports its program's fatal signal N as exit code 128 + N
-  if (!bwrap.empty() && end.exit_code > 128 && end.exit_code < 128 + NSIG) {
+  if (sandboxed && end.exit_code > 128 && end.exit_code < 128 + NSIG) {
     end.signal = end.exit_code - 128;
     end.exit_code = -1;
   }
+  return waited;
+}
+
+// why a replay wrote no page, or "" when it wrote one
+std::string ReplayFailure(const Waited& replay, double wall_time_s) {
+  const ProcessEnd& end = replay.end;
+  if (end.timed_out) {
+    return "still running after the replay's wall-time limit of " + Seconds(wall_time_s) + " s";
+  }
+  if (end.signal != 0) return "killed by " + SignalName(end.signal);
+  if (end.exit_code != kExitPassed) {
+    return "ended with exit code " + std::to_string(end.exit_code) + " (see replay.log)";
+  }
+  return "";
+}
+
+}  // namespace
+
+int RunJob(const Manifest& manifest, const Job& job, const std::string& batch_out,
+           const std::string& program, const std::string& version) {
+  const Submission& sub = manifest.submissions[static_cast<size_t>(job.submission)];
+  const JobLimits& limits = sub.limits;
+  const fs::path dir = fs::absolute(JobDirectory(batch_out, job));
+  fs::create_directories(dir);
+  // an earlier run's files would pass for this one's
+  for (const char* file : {"job.json", "result.json", "run.mcap", kReplayPage, "replay.log"}) {
+    fs::remove(dir / file);
+  }
+
+  const std::string bwrap = limits.sandbox == "none" ? "" : FindProgram("bwrap");
+  UNIMOUSE_THROW_UNLESS(
+      limits.sandbox != "bwrap" || !bwrap.empty(),
+      "submission '" + sub.name + "': sandbox: bwrap, but bwrap is not installed");
+  const std::vector<std::string> sandbox = SandboxArgv(bwrap, dir);
+  std::vector<std::string> argv = sandbox;
+  argv.push_back(program);
+  const nlohmann::json command = JobCommand(manifest, job, batch_out);
+  for (const auto& a : command["run"]) argv.push_back(a.get<std::string>());
+
+  struct sigaction action = {};
+  action.sa_handler = OnStop;
+  sigemptyset(&action.sa_mask);
+  sigaction(SIGINT, &action, nullptr);
+  sigaction(SIGTERM, &action, nullptr);
+  ::prctl(PR_SET_CHILD_SUBREAPER, 1);
+  const Waited run = RunLimited(argv, limits, limits.wall_time_s, (dir / "run.log").string(),
+                                !bwrap.empty(), job.id);
+  if (run.interrupted) return kExitRuntimeFault;
+  const ProcessEnd& end = run.end;
+  const double wall_s = run.wall_s;
+
+  // the run's page, from its recording however the run ended, by the same program in the same
+  // sandbox and limits; its failure is only noted, never the job's
+  nlohmann::json replay_page = nullptr, replay_error = nullptr;
+  if (PathExists(dir / "run.mcap")) {
+    const double replay_limit_s = std::min(limits.wall_time_s, kReplayWallTime_s);
+    std::vector<std::string> replay = sandbox;
+    for (const std::string& a : {program, std::string("replay"), dir.string(),
+                                 std::string("--html"), (dir / kReplayPage).string()}) {
+      replay.push_back(a);
+    }
+    const Waited made = RunLimited(replay, limits, replay_limit_s, (dir / "replay.log").string(),
+                                   !bwrap.empty(), job.id);
+    if (made.interrupted) return kExitRuntimeFault;
+    const std::string failure = ReplayFailure(made, replay_limit_s);
+    if (failure.empty() && PathExists(dir / kReplayPage)) {
+      replay_page = kReplayPage;
+    } else {
+      fs::remove(dir / kReplayPage);
+      replay_error = failure.empty() ? "wrote no page (see replay.log)" : failure;
+    }
+  }
+
   const nlohmann::json result = ReadResult(dir / "result.json");
   JobOutcome outcome = ClassifyJob(end, result, limits);
   // the manifest's paths are made absolute for the run; the teacher wrote them relative to it
@@ -411,6 +476,8 @@ int RunJob(const Manifest& manifest, const Job& job, const std::string& batch_ou
        Get<nlohmann::json>(result, P(IsMmsResult(result) ? "/contest_time_s" : "/sim_time_s"),
                            nullptr)},
       {"wall_time_s", wall_s},
+      {"replay_page", replay_page},
+      {"replay_error", replay_error},
       {"sandbox", bwrap.empty() ? "none" : "bwrap"},
       {"manifest", manifest.file},
       {"unimouse_version", version},

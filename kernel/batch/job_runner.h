@@ -3,7 +3,8 @@
 // its own, under the job's limits (wall and CPU time, memory, file size, no core dumps) and,
 // where bubblewrap is installed, with a read-only file system but for its job directory and no
 // network. This process is the subreaper of whatever the run starts, so that nothing a
-// submission forks outlives the job. The ending is classified and written to job.json.
+// submission forks outlives the job. The ending is classified and written to job.json. When
+// the run left a recording (run.mcap), the job then writes the run's replay page beside it.
 #ifndef UNIMOUSE_BATCH_JOB_RUNNER_H_
 #define UNIMOUSE_BATCH_JOB_RUNNER_H_
 
@@ -14,6 +15,12 @@
 #include "manifest.h"
 
 namespace unimouse::batch {
+
+/// The job's replay page, in its directory: `unimouse replay DIR --html DIR/replay.html`.
+inline constexpr char kReplayPage[] = "replay.html";
+
+/// The wall-time limit of writing the replay page, unless the job's own limit is lower.
+inline constexpr double kReplayWallTime_s = 120;
 
 /// What the job saw of its run process.
 struct ProcessEnd {
@@ -59,7 +66,9 @@ bool JobIsDone(const Manifest& manifest, const Job& job, const std::string& batc
 
 /// Runs one job and writes its job.json; returns 0 when it passed, 1 otherwise, 3 when it was
 /// interrupted (SIGINT, SIGTERM: the run is stopped and no job.json is written). `program` is
-/// the unimouse executable that runs `run`.
+/// the unimouse executable that runs `run`, and `replay` for the page of the run's recording
+/// (under the same sandbox and limits); job.json names the page (`replay_page`), or says why
+/// there is none (`replay_error`), which does not change the job's status.
 int RunJob(const Manifest& manifest, const Job& job, const std::string& batch_out,
            const std::string& program, const std::string& version);
 

@@ -260,6 +260,11 @@ std::string PicturesCell(const json& job) {
     }
     out += "</details>";
   }
+  // the run played again, a page of its own beside the job's other files
+  const std::string replay = Shown(Field(job, "replay_page"));
+  if (!replay.empty()) {
+    out += "<a class=\"replay\" href=\"" + XmlEscaped(PathAddress(replay)) + "\">replay</a> ";
+  }
   const std::string dir = Shown(Field(job, "dir"));
   if (!dir.empty()) out += "<a href=\"" + XmlEscaped(PathAddress(dir)) + "/\">job folder</a>";
   return out + "</td>";

@@ -473,6 +473,71 @@ mazes: [japan2018, japan2019]
   }
 }
 
+// docs/batch.md "Replay pages": a job whose run left a recording has that run's page, which the
+// results name and the report links by its path relative to the batch's folder
+TEST(BatchCommandTest, EachRecordedJobHasItsReplayPageWhichTheResultsNameAndTheReportLinks) {
+  const std::string dir = FreshDirectory("batch_replay");
+  const std::string manifest = WriteFile(dir, "class.yaml",
+                                         std::string(R"(
+submissions:
+  - name: good
+    controller: )") + kSource + R"(/tests/batch/walking_mouse.lua
+  - name: lost
+    controller: )" + kSource + R"(/tests/scenarios/wandering_mouse.lua
+  - {name: flood, mms: )" + UNIMOUSE_MMS_FLOODFILL +
+                                             R"(}
+scenarios:
+  - scenario: micromouse
+    set: {contest_s: 3, max_runs: 1}
+mazes: [japan2018]
+)");
+  const std::string out = dir + "/out";
+  const Outcome run = Unimouse("batch run " + manifest + " -j 2 --out " + out);
+  ASSERT_EQ(run.exit_code, 1) << run.output;  // lost fails
+  const json results = Results(out);
+  ASSERT_EQ(results["jobs"].size(), 3u) << results.dump(1);
+  const std::string report = ReadTextFile(out + "/report.html");
+  const std::string csv = ReadTextFile(out + "/results.csv");
+  EXPECT_NE(csv.find(",dir,replay_page\n"), std::string::npos) << csv;
+  for (const auto& job : results["jobs"]) {
+    const std::string job_dir = job["dir"];
+    if (job["submission"] == "flood") {
+      // `unimouse mms` without --physical records nothing: no page, no link
+      EXPECT_FALSE(fs::exists(out + "/" + job_dir + "/run.mcap"));
+      EXPECT_FALSE(fs::exists(out + "/" + job_dir + "/replay.html"));
+      EXPECT_TRUE(job["replay_page"].is_null()) << job.dump();
+      EXPECT_NE(csv.find("," + job_dir + ",\n"), std::string::npos) << csv;
+      continue;
+    }
+    // passed or failed, the run's own page: the same as replay makes of its folder by hand
+    EXPECT_EQ(job["replay_page"], job_dir + "/replay.html") << job.dump();
+    const std::string page = out + "/" + job_dir + "/replay.html";
+    ASSERT_TRUE(fs::exists(page)) << job.dump();
+    const std::string by_hand = dir + "/" + job["submission"].get<std::string>() + ".html";
+    const Outcome replay = Unimouse("replay " + out + "/" + job_dir + " --html " + by_hand);
+    ASSERT_EQ(replay.exit_code, 0) << replay.output;
+    EXPECT_TRUE(ReadTextFile(page) == ReadTextFile(by_hand)) << page;
+    EXPECT_NE(csv.find("," + job_dir + "," + job_dir + "/replay.html\n"), std::string::npos) << csv;
+    EXPECT_NE(report.find("<a class=\"replay\" href=\"" + job_dir + "/replay.html\">replay</a>"),
+              std::string::npos)
+        << job_dir;
+  }
+  size_t links = 0;
+  for (size_t at = report.find(">replay</a>"); at != std::string::npos;
+       at = report.find(">replay</a>", at + 1)) {
+    ++links;
+  }
+  EXPECT_EQ(links, 2u);
+
+  // a resumed batch keeps each job and its page
+  const std::string good_page = out + "/jobs/good/micromouse/japan2018/seed-1/replay.html";
+  const auto written = fs::last_write_time(good_page);
+  const Outcome again = Unimouse("batch run " + manifest + " -j 2 --out " + out);
+  EXPECT_NE(again.output.find("3 jobs, 0 to run"), std::string::npos) << again.output;
+  EXPECT_EQ(fs::last_write_time(good_page), written);
+  EXPECT_EQ(Results(out)["jobs"], results["jobs"]);
+}
+
 TEST(BatchCommandTest, TheSlurmArrayScriptRunsTheLinesOfThePlan) {
   const std::string dir = FreshDirectory("batch_slurm");
   const std::string manifest = WriteFile(dir, "class.yaml", ClassManifest());

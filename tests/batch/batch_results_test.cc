@@ -108,20 +108,43 @@ TEST_F(BatchResultsTest, TheSummaryAggregatesEveryScoreAndRanksByTheDeclaredOne)
   EXPECT_DOUBLE_EQ(amy["laps"]["worst"].get<double>(), 1.0);
 }
 
+// a page is named only when its job.json names one and it is in the job's directory
+TEST_F(BatchResultsTest, ARowNamesTheJobsReplayPageOnlyWhenItIsThere) {
+  json with_page = Record("amy/micromouse/japan2018/seed-1", "passed", json::object(), 1);
+  with_page["replay_page"] = "replay.html";
+  const std::string amy = Job(with_page);
+  std::ofstream(amy + "/replay.html") << "<!DOCTYPE html>";
+  json gone = Record("bo/micromouse/japan2018/seed-1", "passed", json::object(), 1);
+  gone["replay_page"] = "replay.html";  // named, but not written
+  json outside = Record("cy/micromouse/japan2018/seed-1", "passed", json::object(), 1);
+  outside["replay_page"] = "../../../../../results.json";
+  std::ofstream(out_ + "/results.json") << "{}";
+  const json none = Record("dee/micromouse/japan2018/seed-1", "passed", json::object(), 1);
+  const json rows = JobRows({amy, Job(gone), Job(outside), Job(none)}, out_);
+  ASSERT_EQ(rows.size(), 4u);
+  EXPECT_EQ(rows[0]["replay_page"], "jobs/amy/micromouse/japan2018/seed-1/replay.html");
+  EXPECT_TRUE(rows[1]["replay_page"].is_null()) << rows[1];
+  EXPECT_TRUE(rows[2]["replay_page"].is_null()) << rows[2];
+  EXPECT_TRUE(rows[3]["replay_page"].is_null()) << rows[3];
+}
+
 TEST_F(BatchResultsTest, TheFilesSayTheSameAsTheRows) {
-  const json rows =
-      JobRows({Job(Record("amy/micromouse/japan2018/seed-1", "passed",
-                          {{"best_run_s", 1.4}, {"runs", 1}}, 1.5)),
-               Job(Record("bo/micromouse/japan2018/seed-1", "failed", {{"runs", 0}}, 4))},
-              out_);
+  json with_page =
+      Record("amy/micromouse/japan2018/seed-1", "passed", {{"best_run_s", 1.4}, {"runs", 1}}, 1.5);
+  with_page["replay_page"] = "replay.html";
+  const std::string amy = Job(with_page);
+  std::ofstream(amy + "/replay.html") << "<!DOCTYPE html>";
+  const json rows = JobRows(
+      {amy, Job(Record("bo/micromouse/japan2018/seed-1", "failed", {{"runs", 0}}, 4))}, out_);
   WriteResults(out_, rows, "/m.yaml", "9.9.9");
   EXPECT_EQ(ReadTextFile(out_ + "/results.csv"),
             "submission,scenario,maze,seed,status,reason,score.best_run_s,score.runs,sim_time_s,"
-            "wall_time_s,exit_code,dir\n"
+            "wall_time_s,exit_code,dir,replay_page\n"
             "amy,micromouse,japan2018,1,passed,ok,1.4,1,1.500,0.500,0,"
-            "jobs/amy/micromouse/japan2018/seed-1\n"
+            "jobs/amy/micromouse/japan2018/seed-1,jobs/amy/micromouse/japan2018/seed-1/"
+            "replay.html\n"
             "bo,micromouse,japan2018,1,failed,\"went \"\"wrong\"\", twice\",,0,4.000,0.500,1,"
-            "jobs/bo/micromouse/japan2018/seed-1\n");
+            "jobs/bo/micromouse/japan2018/seed-1,\n");
   EXPECT_EQ(ReadTextFile(out_ + "/summary.csv"),
             "submission,jobs,passed,failed,firmware_error,script_error,bad_input,timeout,crashed,"
             "best_job,best_run_s,mean_path_cost\n"

@@ -1,15 +1,26 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // How a job's ending becomes its status: what the job saw of the run process, the run's exit
-// code and its result.json.
+// code and its result.json; and how its replay page is made without touching that status.
 #include "job_runner.h"
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <csignal>
+#include <filesystem>
+#include <fstream>
+
+#include "manifest.h"
+#include "run_program.h"
+#include "text_file.h"
+#include "unimouse/errors.h"
 
 namespace unimouse::batch {
 namespace {
 
+namespace fs = std::filesystem;
 using json = nlohmann::json;
 
 ProcessEnd Exited(int code) { return {false, code, 0}; }
@@ -88,6 +99,99 @@ TEST(ClassifyJobTest, WhatTheJobSawWinsOverAnyResult) {
 TEST(ClassifyJobTest, SignalsAreNamedAsInC) {
   EXPECT_EQ(SignalName(SIGSEGV), "SIGSEGV");
   EXPECT_EQ(SignalName(SIGXCPU), "SIGXCPU");
+}
+
+// A job run by RunJob with a stand-in for unimouse: a shell script whose `run` passes and
+// leaves a recording or none, and whose `replay` does what the test says.
+class JobReplayTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = testing::FreshDirectory("job_replay");
+    manifest_ = dir_ + "/class.yaml";
+    std::ofstream(manifest_) << "submissions:\n  - name: amy\n    controller: " UNIMOUSE_SOURCE_DIR
+                                "/tests/batch/walking_mouse.lua\n"
+                                "scenarios: [micromouse]\n"
+                                "mazes: [japan2018]\n"
+                                "limits: {wall_time_s: 2, sandbox: none}\n";
+  }
+
+  // runs the one job with a program whose `run` leaves a run.mcap when asked and whose
+  // `replay` runs this shell text; returns RunJob's exit code and the job's job.json
+  json Job(bool recording, const std::string& replay, int* exit_code = nullptr) {
+    const std::string program = dir_ + "/unimouse";
+    // run: `run --out DIR ...`; replay: `replay DIR --html PAGE`
+    std::ofstream(program) << "#!/bin/sh\n"
+                              "if [ \"$1\" = run ]; then\n"
+                              "  echo '{\"exit_code\": 0, \"scenario\": {\"reason\": \"ok\"}}' "
+                              "> \"$3/result.json\"\n"
+                           << (recording ? "  echo recorded > \"$3/run.mcap\"\n" : "")
+                           << "  exit 0\nfi\n"
+                           << replay << "\n";
+    ::chmod(program.c_str(), 0755);
+    const Manifest m = LoadManifest(manifest_);
+    // in a child: RunJob makes its process the subreaper of the run and catches SIGTERM
+    const pid_t pid = ::fork();
+    if (pid == 0) {
+      int code = 100;
+      try {
+        code = RunJob(m, m.jobs.front(), dir_ + "/out", program, "9.9.9");
+      } catch (...) {
+      }
+      ::_exit(code);
+    }
+    int status = 0;
+    ::waitpid(pid, &status, 0);
+    if (exit_code != nullptr) *exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    return json::parse(ReadTextFile(JobDir() + "/job.json"));
+  }
+
+  std::string JobDir() { return dir_ + "/out/jobs/amy/micromouse/japan2018/seed-1"; }
+
+  std::string dir_, manifest_;
+};
+
+TEST_F(JobReplayTest, ARecordingBecomesTheJobsReplayPageNamedInItsRecord) {
+  int exit_code = -1;
+  const json job =
+      Job(true, "[ \"$1 $2 $3\" = \"replay $(dirname \"$4\") --html\" ] && echo page > \"$4\"",
+          &exit_code);
+  EXPECT_EQ(exit_code, kExitPassed);
+  EXPECT_EQ(job["status"], "passed") << job;
+  EXPECT_EQ(job["replay_page"], "replay.html") << job;
+  EXPECT_TRUE(job["replay_error"].is_null()) << job;
+  EXPECT_EQ(ReadTextFile(JobDir() + "/replay.html"), "page\n");
+}
+
+TEST_F(JobReplayTest, AReplayThatFailsIsNotedAndLeavesTheJobsStatus) {
+  int exit_code = -1;
+  json job = Job(true, "echo half > \"$4\"; echo 'not a recording' >&2; exit 2", &exit_code);
+  EXPECT_EQ(exit_code, kExitPassed);
+  EXPECT_EQ(job["status"], "passed") << job;
+  EXPECT_TRUE(job["replay_page"].is_null()) << job;
+  EXPECT_EQ(job["replay_error"], "ended with exit code 2 (see replay.log)") << job;
+  EXPECT_FALSE(fs::exists(JobDir() + "/replay.html"));
+  EXPECT_EQ(ReadTextFile(JobDir() + "/replay.log"), "not a recording\n");
+
+  // one that never ends is stopped at the job's wall-time limit, here under the replay's own
+  job = Job(true, "exec sleep 60", &exit_code);
+  EXPECT_EQ(exit_code, kExitPassed);
+  EXPECT_EQ(job["status"], "passed") << job;
+  EXPECT_TRUE(job["replay_page"].is_null()) << job;
+  EXPECT_EQ(job["replay_error"], "still running after the replay's wall-time limit of 2 s") << job;
+  EXPECT_LT(job["wall_time_s"].get<double>(), 2);  // the run's time alone
+}
+
+TEST_F(JobReplayTest, ARunWithoutARecordingHasNoPageNotEvenAnEarlierOne) {
+  // an earlier run's recording and page in the job's directory
+  fs::create_directories(JobDir());
+  std::ofstream(JobDir() + "/run.mcap") << "earlier";
+  std::ofstream(JobDir() + "/replay.html") << "earlier";
+  const json job = Job(false, "echo page > \"$4\"");
+  EXPECT_EQ(job["status"], "passed") << job;
+  EXPECT_TRUE(job["replay_page"].is_null()) << job;
+  EXPECT_TRUE(job["replay_error"].is_null()) << job;
+  EXPECT_FALSE(fs::exists(JobDir() + "/replay.html"));
+  EXPECT_FALSE(fs::exists(JobDir() + "/replay.log"));
 }
 
 }  // namespace

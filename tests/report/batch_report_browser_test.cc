@@ -20,14 +20,16 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 
 // one job per status, in id order; their wall times sort one way as numbers and another as text,
-// and one has none
+// and one has none; two have a replay page, one of them in a folder whose name is markup
 const json kResults = json::parse(R"({
   "unimouse_version": "0.9.0", "manifest": "class.yaml",
   "jobs": [
-    {"id": "a/seed-1", "submission": "a", "seed": 1, "status": "passed", "wall_time_s": 9.5},
+    {"id": "a/seed-1", "submission": "a", "seed": 1, "status": "passed", "wall_time_s": 9.5,
+     "dir": "jobs/a/seed-1", "replay_page": "jobs/a/seed-1/replay.html"},
     {"id": "b/seed-1", "submission": "b", "seed": 1, "status": "failed", "wall_time_s": 100,
      "reason": "</td></tr></table><script>document.title='owned'</script><img src=x onerror=\"document.title='owned'\">"},
-    {"id": "c/seed-1", "submission": "c", "seed": 1, "status": "firmware_error", "wall_time_s": 2},
+    {"id": "c/seed-1", "submission": "c", "seed": 1, "status": "firmware_error", "wall_time_s": 2,
+     "replay_page": "jobs/c\"><b>x</b>/replay.html"},
     {"id": "d/seed-1", "submission": "d", "seed": 1, "status": "script_error", "wall_time_s": null},
     {"id": "e/seed-1", "submission": "e", "seed": 1, "status": "bad_input", "wall_time_s": 10.25},
     {"id": "f/seed-1", "submission": "f", "seed": 1, "status": "timeout", "wall_time_s": 30},
@@ -149,6 +151,57 @@ TEST_F(BatchReportBrowserTest, FitsAWindow1280PixelsWideWhateverItsColumns) {
   const size_t at = chromium.output.find(marker);
   ASSERT_NE(at, std::string::npos) << chromium.output;
   EXPECT_LE(std::stoi(chromium.output.substr(at + marker.size())), 1280) << chromium.output;
+}
+
+// the job row of this id as the DOM has it, from its <tr> to its </tr>
+std::string Row(const std::string& dom, const std::string& id) {
+  const size_t start = dom.find("data-job=\"" + id + "\"");
+  if (start == std::string::npos) return "";
+  return dom.substr(start, dom.find("</tr>", start) - start);
+}
+
+TEST_F(BatchReportBrowserTest, LinksAJobsReplayPageByItsRelativePathAndNothingWithoutOne) {
+  const std::string dom = RenderedDom("");
+  EXPECT_NE(Row(dom, "a/seed-1")
+                .find("<a class=\"replay\" href=\"jobs/a/seed-1/replay.html\">replay</a>"),
+            std::string::npos)
+      << Row(dom, "a/seed-1");
+  // a folder's name is an address, never markup
+  EXPECT_NE(Row(dom, "c/seed-1")
+                .find("<a class=\"replay\" href=\"jobs/c%22%3E%3Cb%3Ex%3C/b%3E/replay.html\">"
+                      "replay</a>"),
+            std::string::npos)
+      << Row(dom, "c/seed-1");
+  EXPECT_EQ(dom.find("<b>x</b>"), std::string::npos);
+  for (const char* id : {"b/seed-1", "d/seed-1", "e/seed-1", "f/seed-1", "g/seed-1"}) {
+    ASSERT_FALSE(Row(dom, id).empty()) << id;
+    EXPECT_EQ(Row(dom, id).find(">replay</a>"), std::string::npos) << Row(dom, id);
+  }
+}
+
+// the page's Content-Security-Policy lets a click on the link open the replay page: a page
+// beside it holds the report in a frame, clicks the link and reads the title of what it shows
+TEST_F(BatchReportBrowserTest, AClickOnAReplayLinkOpensThatPage) {
+  fs::create_directories(dir_ / "jobs/a/seed-1");
+  std::ofstream(dir_ / "jobs/a/seed-1/replay.html")
+      << "<!DOCTYPE html><html><head><title>the replay of a</title></head></html>";
+  std::ofstream(dir_ / "click.html")
+      << "<!DOCTYPE html><html><body><iframe id=\"page\" src=\"report.html\"></iframe><script>"
+         "document.getElementById('page').onload = function () {"
+         "  var d = this.contentDocument;"
+         "  var link = d.querySelector('tr[data-job=\"a/seed-1\"] a.replay');"
+         "  if (link) { link.click(); return; }"
+         "  document.body.setAttribute('data-shown', d.title);"
+         "};</script></body></html>";
+  const fs::path profile = dir_ / "chromium-profile";
+  const testing::Outcome chromium = testing::Shell(
+      "XDG_CONFIG_HOME=" + profile.string() + " XDG_CACHE_HOME=" + profile.string() + " " +
+      chromium_ +
+      " --headless --no-sandbox --disable-gpu --no-first-run --allow-file-access-from-files "
+      "--virtual-time-budget=5000 --user-data-dir=" +
+      profile.string() + " --dump-dom 'file://" + (dir_ / "click.html").string() + "' 2>/dev/null");
+  EXPECT_NE(chromium.output.find("data-shown=\"the replay of a\""), std::string::npos)
+      << chromium.output;
 }
 
 TEST_F(BatchReportBrowserTest, HidesTheJobsOfOtherStatusesWhenFiltered) {

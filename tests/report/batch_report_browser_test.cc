@@ -193,13 +193,9 @@ TEST_F(BatchReportBrowserTest, AClickOnAReplayLinkOpensThatPage) {
          "  if (link) { link.click(); return; }"
          "  document.body.setAttribute('data-shown', d.title);"
          "};</script></body></html>";
-  const fs::path profile = dir_ / "chromium-profile";
-  const testing::Outcome chromium = testing::Shell(
-      "XDG_CONFIG_HOME=" + profile.string() + " XDG_CACHE_HOME=" + profile.string() + " " +
-      chromium_ +
-      " --headless --no-sandbox --disable-gpu --no-first-run --allow-file-access-from-files "
-      "--virtual-time-budget=5000 --user-data-dir=" +
-      profile.string() + " --dump-dom 'file://" + (dir_ / "click.html").string() + "' 2>/dev/null");
+  const testing::Outcome chromium =
+      chromium_->Run("--allow-file-access-from-files --virtual-time-budget=5000 --dump-dom",
+                     "file://" + (dir_ / "click.html").string());
   EXPECT_NE(chromium.output.find("data-shown=\"the replay of a\""), std::string::npos)
       << chromium.output;
 }

@@ -342,7 +342,8 @@ TEST(ScenarioEventTest, BadArgumentsAreOneScriptErrorAtTheScenariosLine) {
                       misuse + "\n  sim.pass('went on')\nend }\n");
     const ScenarioRun r = Scenario("--scenario " + path);
     EXPECT_EQ(r.outcome.exit_code, 3) << misuse << "\n" << r.outcome.output;
-    EXPECT_EQ(r.result.value("error", ""), path + ":3: " + message) << misuse;
+    // the message names the stage the script was in
+    EXPECT_EQ(r.result.value("error", ""), path + ":3: " + message + " (in run)") << misuse;
     EXPECT_EQ(RecordedEvents(ScenarioOut()).size(), 0u) << misuse;
   }
   // a kind of 32 is a word still

@@ -7,7 +7,9 @@
 -- the contest clock, its time, its path cost (left out when the robot skipped a cell) and the
 -- wall contacts during it. A firmware that restarts (reset, watchdog, replug) is treated as the
 -- rules treat a mouse its handler touched: the current run ends without a time, the mouse is put
--- back in the start cell, and the contest clock runs on.
+-- back in the start cell, and the contest clock runs on. Each moment the rules act on is an event
+-- of the run's recording (sim.event): run_start, wall_contact, goal, back_at_start, restart,
+-- contest_end.
 return sim.scenario {
   name = "micromouse",
   params = {
@@ -55,10 +57,10 @@ return sim.scenario {
       if restarted then
         restarted, restarts = false, restarts + 1
         if run_from then
-          print(string.format("the firmware restarted: run %d ends without a time, the mouse goes " ..
-                              "back to the start", #runs + 1))
+          sim.event("restart", string.format("the firmware restarted: run %d ends without a " ..
+                                             "time, the mouse goes back to the start", #runs + 1))
         else
-          print("the firmware restarted: the mouse goes back to the start")
+          sim.event("restart", "the firmware restarted: the mouse goes back to the start")
         end
         -- back in the start cell, the next departure is a new run
         run_from, may_start = nil, false
@@ -69,6 +71,8 @@ return sim.scenario {
       if touch and not touching then
         contacts = contacts + 1
         if run_from then run_contacts = run_contacts + 1 end
+        sim.event("wall_contact", string.format("wall contact %d%s", contacts,
+                                                run_from and ", in run " .. #runs + 1 or ""))
       end
       touching = touch
 
@@ -76,9 +80,11 @@ return sim.scenario {
         if not at_start(cell) then
           contest_from, run_from, run_contacts = now, now, 0
           cells = { start }
-          print("the contest starts: run 1")
+          sim.event("run_start", "the contest starts: run 1")
         elseif now >= p.start_within_s then
-          sim.fail(string.format("never left the start cell in %g s", p.start_within_s))
+          local reason = string.format("never left the start cell in %g s", p.start_within_s)
+          sim.event("contest_end", reason)
+          sim.fail(reason)
           return
         end
       elseif run_from and sim.maze_is_goal(cell.x, cell.y) then
@@ -86,17 +92,22 @@ return sim.scenario {
         cells[#cells + 1] = cell
         local cost = path_cost(cells)
         if not best_s or runs[#runs] < best_s then best_s, best_cost = runs[#runs], cost end
-        print(string.format("run %d: %.3f s, path cost %s", #runs, runs[#runs], cost or "unknown"))
+        sim.event("goal", string.format("run %d: %.3f s, path cost %s", #runs, runs[#runs],
+                                        cost or "unknown"))
         sim.record_add("runs", { run = #runs, start_s = run_from - contest_from, time_s = runs[#runs],
                                  path_cost = cost, wall_contacts = run_contacts })
         run_from = nil
         if p.max_runs > 0 and #runs >= p.max_runs then break end
       elseif not run_from and at_start(cell) then
+        if not may_start then
+          sim.event("back_at_start", string.format("back in the start cell: run %d may start",
+                                                   #runs + 1))
+        end
         may_start = true
       elseif not run_from and may_start and not at_start(cell) then
         run_from, may_start, run_contacts = now, false, 0
         cells = { start }
-        print(string.format("run %d starts", #runs + 1))
+        sim.event("run_start", string.format("run %d starts", #runs + 1))
       end
       if run_from and cells then
         local last = cells[#cells]
@@ -133,13 +144,16 @@ return sim.scenario {
     if best_s then sim.score_set("best_run_s", best_s) end
     if best_cost then sim.score_set("best_run_path_cost", best_cost) end
     local tail = ended_mid_run and string.format("; the time ran out during run %d", #runs + 1) or ""
+    local verdict
     if #runs > 0 then
-      sim.pass(string.format("%d run%s, best %.3f s (path cost %s), %.1f s used, %d wall contact%s%s",
-                             #runs, #runs == 1 and "" or "s", best_s, best_cost or "unknown", used_s,
-                             contacts, contacts == 1 and "" or "s", tail))
+      verdict = string.format("%d run%s, best %.3f s (path cost %s), %.1f s used, %d wall contact%s%s",
+                              #runs, #runs == 1 and "" or "s", best_s, best_cost or "unknown",
+                              used_s, contacts, contacts == 1 and "" or "s", tail)
     else
-      sim.fail(string.format("no run reached the goal in %.1f s (%d wall contact%s)%s", used_s,
-                             contacts, contacts == 1 and "" or "s", tail))
+      verdict = string.format("no run reached the goal in %.1f s (%d wall contact%s)%s", used_s,
+                              contacts, contacts == 1 and "" or "s", tail)
     end
+    sim.event("contest_end", verdict)
+    if #runs > 0 then sim.pass(verdict) else sim.fail(verdict) end
   end,
 }

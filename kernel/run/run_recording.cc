@@ -135,7 +135,8 @@ std::string EventSchema() {
               {"required", {"timestamp", "kind", "robot", "text", "data"}},
               {"properties",
                {{"timestamp", json::parse(kTimeSchema)},
-                {"kind", {{"enum", {"contact", "lost"}}}},
+                // the run's own kinds, contact and lost, and a scenario's (sim.event)
+                {"kind", {{"type", "string"}, {"pattern", "^[a-z0-9_]{1,32}$"}}},
                 {"robot", {{"type", "string"}}},
                 {"text", {{"type", "string"}}},
                 {"data", {{"type", "object"}}}}}}

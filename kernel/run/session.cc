@@ -441,6 +441,9 @@ void Session::Assemble() {
           return pictures_->Save(file, camera, width, height);
         });
     scenario_->SetOutputDirectory(o.out_dir);
+    scenario_->SetEventSink([this](const ScenarioEvent& e) {
+      Record([&](RunRecording& r) { r.Event(e.time_s, e.kind, e.robot, e.text, "{}"); });
+    });
     for (const auto& kind : o.snapshot_on) {
       scenario_->SnapshotOn(kind, o.pictures.camera, o.pictures.width, o.pictures.height);
     }
@@ -691,6 +694,13 @@ RunRecord Session::Finish(std::optional<int64_t> view_frames) {
     if (scenario_ && fault_.empty() && interrupted_.empty()) scenario_->Finish();
   } catch (const RuntimeFault& e) {
     fault_ = e.what();
+  }
+  // the count of the events sim.event left out, as the kernel counts the lines it held back
+  if (scenario_ && scenario_->events_not_kept() > 0) {
+    kernel_->Log(UNIMOUSE_LOG_INFO, "scenario",
+                 "sim.event: " + std::to_string(scenario_->events_not_kept()) +
+                     " events after the first " + std::to_string(kMaxScenarioEvents) +
+                     " were counted, not recorded");
   }
   pictures_->Finish();
   kernel_->Finish();

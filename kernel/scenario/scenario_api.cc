@@ -413,6 +413,48 @@ struct ScenarioApi {
     return 1;
   }
 
+  // a moment of the run for its recording's /events, and a line of its log as print writes one.
+  // The kind is a word, so that a player or a test can pick events by it; "contact" and "lost"
+  // stay the run's own. A bound, so that a script in a loop cannot flood the recording.
+  static int Event(LuaCall& call) {
+    Kernel& k = RunningKernel(call);
+    const std::string kind = call.CheckString(1);
+    const bool word = !kind.empty() && kind.size() <= kMaxScenarioEventKind_bytes &&
+                      std::all_of(kind.begin(), kind.end(), [](char c) {
+                        return (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_';
+                      });
+    if (!word) {
+      call.Fail("sim.event: kind '" + kind.substr(0, 64) +
+                "' is not a word of lowercase letters, digits and _ (at most " +
+                std::to_string(kMaxScenarioEventKind_bytes) + ")");
+    }
+    if (kind == "contact" || kind == "lost") {
+      call.Fail("sim.event: kind '" + kind + "' is the run's own; give another");
+    }
+    const std::string_view text = call.CheckText(2);
+    Scenario& s = Self(call);
+    std::string robot;
+    if (!call.IsNoneOrNil(3)) robot = s.robot_names_[static_cast<size_t>(RobotIndex(call, 3))];
+    if (s.events_kept_ == kMaxScenarioEvents) {
+      if (s.events_not_kept_++ == 0) {
+        k.Log(UNIMOUSE_LOG_WARNING, "scenario",
+              "sim.event: more than " + std::to_string(kMaxScenarioEvents) +
+                  " events in a run: later ones are counted, not recorded");
+      }
+      return 0;
+    }
+    ++s.events_kept_;
+    // cut as the log cuts a message, copying no more of a long text than is kept
+    std::string kept(text.substr(0, kMaxScenarioEventText_bytes));
+    if (text.size() > kMaxScenarioEventText_bytes) {
+      kept += "... (" + std::to_string(text.size()) + " bytes in all)";
+    }
+    const ScenarioEvent event{k.state().data().time, kind, std::move(robot), std::move(kept)};
+    k.Log(UNIMOUSE_LOG_INFO, "scenario", event.text);
+    if (s.event_sink_) s.event_sink_(event);
+    return 0;
+  }
+
   static int Decide(const LuaCall& call, const char* status) {
     Scenario& s = Self(call);
     if (s.finished()) return 0;
@@ -824,6 +866,9 @@ constexpr ApiEntry kApi[] = {
     {"signal_set", ScenarioApi::SignalSet, 1, "signal_set(name, value)",
      "writes a robot signal: drives the robot, injects a fault"},
     {"hud_set", ScenarioApi::HudSet, 1, "hud_set(line, text)", "a line of on-screen text, 1-16"},
+    {"event", ScenarioApi::Event, 5, "event(kind, text, robot?)",
+     "marks a moment of the run (a run starts, the goal, a penalty) on the recording's /events "
+     "and in the log; kind a word of a-z, 0-9 and _"},
     {"snapshot_save", ScenarioApi::SnapshotSave, 2,
      "snapshot_save(file, {camera?, width?, height?}) -> ok, reason?",
      "a PNG of the scene now, in the run's output directory; cameras top, chase, free"},

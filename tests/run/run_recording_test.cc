@@ -2,15 +2,18 @@
 // A run's recording, run.mcap, read by the tests' own MCAP reader (tests/support/mcap_reader.py,
 // written from the specification, sharing nothing with the writer, which also checks every
 // message against its channel's JSON Schema): the main job's poses are the trace's at the same
-// times, its channels carry Foxglove's schema names, the files the run read are attached byte
+// times, its contest's goals are the result's runs at their times, its channels carry Foxglove's
+// schema names, the files the run read are attached byte
 // for byte, a crashed or killed run leaves a readable recording, and `--record` turns it off or
 // asks for every step.
 #include "run_recording.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -180,6 +183,60 @@ TEST(RunRecordingTest, TheMainJobsPosesAreItsTracesAtTheSameTimes) {
     ++checked;
   }
   EXPECT_GT(checked, beams.size() / 4);
+
+  // the contest's moments (sim.event in scenarios/micromouse.lua): a goal for each run that
+  // result.json lists, in order, each at the time the result gives it (the run's start on the
+  // contest clock plus its time) from the contest's start, the first run_start
+  std::vector<std::pair<uint64_t, json>> goals, starts;
+  for (const json& m : testing::OnTopic(recording, "/events")) {
+    if (m["data"]["kind"] == "goal") goals.emplace_back(m["log_time"], m["data"]);
+    if (m["data"]["kind"] == "run_start") starts.emplace_back(m["log_time"], m["data"]);
+  }
+  const json& runs = run.result["scenario"]["records"]["runs"];
+  ASSERT_GT(runs.size(), 0u);
+  ASSERT_EQ(runs.size(), run.result["scenario"]["scores"]["runs"].get<size_t>());
+  ASSERT_EQ(goals.size(), runs.size());
+  ASSERT_GE(starts.size(), runs.size());
+  // the trace places each moment: the robot's cell at its rows just before and at or after it
+  const auto cells_around = [&](uint64_t time_ns) {
+    const auto cell = [](const std::map<std::string, double>& row) {
+      return Cell{static_cast<int>(std::floor(row.at("x_m") / 0.18)),
+                  static_cast<int>(std::floor(row.at("y_m") / 0.18))};
+    };
+    size_t after = 0;
+    while (after < trace.size() && Nanoseconds(trace[after].at("time_s")) < time_ns) ++after;
+    EXPECT_GT(after, 0u);
+    EXPECT_LT(after, trace.size());
+    after = std::clamp<size_t>(after, 1, trace.size() - 1);
+    return std::pair{cell(trace[after - 1]), cell(trace[after])};
+  };
+  const auto is_goal = [&](Cell c) {
+    return std::find(maze.goals().begin(), maze.goals().end(), c) != maze.goals().end();
+  };
+  // the contest starts as the robot's centre leaves the start cell
+  const uint64_t contest_ns = starts[0].first;
+  const auto [before_start, after_start] = cells_around(contest_ns);
+  EXPECT_EQ(before_start, maze.start());
+  EXPECT_NE(after_start, maze.start());
+  uint64_t last_ns = contest_ns;
+  for (size_t i = 0; i < runs.size(); ++i) {
+    const double at_s =
+        runs[i]["start_s"].get<double>() + runs[i]["time_s"].get<double>() + contest_ns * 1e-9;
+    EXPECT_NEAR(goals[i].first * 1e-9, at_s, 0.0005) << "run " << i + 1;
+    EXPECT_GT(goals[i].first, last_ns) << "run " << i + 1;
+    last_ns = goals[i].first;
+    // a run that skipped a cell has no path cost
+    const std::string cost =
+        runs[i].contains("path_cost") ? std::to_string(runs[i]["path_cost"].get<int>()) : "unknown";
+    char text[96];
+    std::snprintf(text, sizeof(text), "run %zu: %.3f s, path cost %s", i + 1,
+                  runs[i]["time_s"].get<double>(), cost.c_str());
+    EXPECT_EQ(goals[i].second["text"], text);
+    // the goal is the moment the robot's centre enters a goal cell
+    const auto [before, after] = cells_around(goals[i].first);
+    EXPECT_FALSE(is_goal(before)) << "run " << i + 1;
+    EXPECT_TRUE(is_goal(after)) << "run " << i + 1;
+  }
 }
 
 TEST(RunRecordingTest, ContactsAndTheMomentAMouseIsLostAreEventsAsTheResultListsThem) {
@@ -196,7 +253,9 @@ TEST(RunRecordingTest, ContactsAndTheMomentAMouseIsLostAreEventsAsTheResultLists
   EXPECT_EQ(SchemaOf(recording, "/events"), "unimouse.Event");
   std::vector<json> contacts, lost;
   for (const json& m : testing::OnTopic(recording, "/events")) {
-    (m["data"]["kind"] == "contact" ? contacts : lost).push_back(m["data"]);
+    // the run's own kinds; the contest's events (sim.event) are another test's
+    if (m["data"]["kind"] == "contact") contacts.push_back(m["data"]);
+    if (m["data"]["kind"] == "lost") lost.push_back(m["data"]);
   }
   // every contact of result.json, with the same facts, at its time
   const json& listed = run.result["contacts"];

@@ -2,7 +2,7 @@
 // Scenarios as users run them: the speed-control challenge passes a correct controller and
 // fails wrong ones with the right reason; the sandbox holds; script errors and bad parameters
 // give their location and exit code; the same seed gives the same result; what a scenario
-// reports keeps its Lua types.
+// reports keeps its Lua types; the moments it marks (sim.event) reach the recording and the log.
 #include "scenario.h"
 
 #include <gtest/gtest.h>
@@ -10,6 +10,10 @@
 #include <cstdio>
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "run_program.h"
 #include "text_file.h"
@@ -241,6 +245,138 @@ TEST(MicromouseScenarioTest, TheFirmwareCanEndTheContestByLoggingALine) {
       << r.result["scenario"]["reason"];
 }
 
+// the output directory of Scenario(...) in the test that runs
+std::string ScenarioOut() {
+  return (std::filesystem::temp_directory_path() /
+          ("unimouse_scenario_" +
+           std::string(::testing::UnitTest::GetInstance()->current_test_info()->name())))
+      .string();
+}
+
+// the /events of a run's recording, each with its time, as the tests' own MCAP reader
+// (tests/support/mcap_reader.py) reads them, checking each against its channel's schema
+std::vector<std::pair<double, nlohmann::json>> RecordedEvents(const std::string& out) {
+  const std::string complaint = out + "/reader.err";
+  const testing::Outcome o = testing::Shell(
+      std::string(UNIMOUSE_PYTHON3) + " " UNIMOUSE_SOURCE_DIR "/tests/support/mcap_reader.py '" +
+      out + "/run.mcap' 2>'" + complaint + "'");
+  EXPECT_EQ(o.exit_code, 0) << ReadTextFile(complaint);
+  std::vector<std::pair<double, nlohmann::json>> events;
+  if (o.exit_code != 0) return events;
+  const nlohmann::json recording = nlohmann::json::parse(o.output);
+  int channel = -1;
+  for (const nlohmann::json& c : recording["channels"]) {
+    if (c["topic"] == "/events") channel = c["id"];
+  }
+  for (const nlohmann::json& m : recording["messages"]) {
+    if (m["channel_id"] == channel) {
+      events.emplace_back(m["log_time"].get<double>() * 1e-9, m["data"]);
+    }
+  }
+  return events;
+}
+
+// the lines log.txt has from the scenario, each with its time
+std::vector<std::pair<double, std::string>> ScenarioLogLines(const std::string& out) {
+  std::vector<std::pair<double, std::string>> lines;
+  std::istringstream log(ReadTextFile(out + "/log.txt"));
+  for (std::string line; std::getline(log, line);) {
+    const size_t tab = line.find('\t');
+    if (tab == std::string::npos || line.compare(tab, 10, "\tscenario\t") != 0) continue;
+    lines.emplace_back(std::stod(line.substr(0, tab)), line.substr(tab + 10));
+  }
+  return lines;
+}
+
+TEST(ScenarioEventTest, MarkedMomentsReachTheRecordingAndTheLogInOrderAtTheirTimes) {
+  const ScenarioRun r = Scenario("--scenario " + kTests + "events.lua");
+  ASSERT_EQ(r.outcome.exit_code, 0) << r.outcome.output;
+  // the times are the script's waits; a text is cut at 500 bytes, saying how long it was
+  const std::string robot = r.result["robots"][0]["name"];
+  const struct {
+    double time_s;
+    std::string kind, robot, text;
+  } marked[] = {{0.25, "first", "", "a quarter of a second in"},
+                {0.25, "first", "", "at the same moment"},
+                {0.75, "about_robot_1", robot, "three quarters of a second in"},
+                {1.0, "long", "", std::string(500, 'x') + "... (1500 bytes in all)"}};
+  const auto events = RecordedEvents(ScenarioOut());
+  ASSERT_EQ(events.size(), std::size(marked));
+  for (size_t i = 0; i < events.size(); ++i) {
+    const nlohmann::json& e = events[i].second;
+    EXPECT_NEAR(events[i].first, marked[i].time_s, 1e-6) << i;
+    EXPECT_EQ(e["kind"], marked[i].kind) << i;
+    EXPECT_EQ(e["robot"], marked[i].robot) << i;
+    EXPECT_EQ(e["text"], marked[i].text) << i;
+    EXPECT_EQ(e["data"], nlohmann::json::object()) << i;
+  }
+  // and each a line of the log at the same time, as print writes one, before the verdict
+  const auto lines = ScenarioLogLines(ScenarioOut());
+  ASSERT_EQ(lines.size(), std::size(marked) + 1);
+  for (size_t i = 0; i < std::size(marked); ++i) {
+    EXPECT_NEAR(lines[i].first, events[i].first, 1e-6) << i;
+    EXPECT_EQ(lines[i].second, marked[i].text) << i;
+  }
+  EXPECT_EQ(lines.back().second, "passed: marked");
+}
+
+TEST(ScenarioEventTest, BadArgumentsAreOneScriptErrorAtTheScenariosLine) {
+  const std::string path =
+      (std::filesystem::temp_directory_path() / "unimouse_bad_event.lua").string();
+  const std::string not_a_word = "' is not a word of lowercase letters, digits and _ (at most 32)";
+  const std::pair<std::string, std::string> misuses[] = {
+      {"sim.event('Goal', 'x')", "sim.event: kind 'Goal" + not_a_word},
+      {"sim.event('', 'x')", "sim.event: kind '" + not_a_word},
+      {"sim.event('run start', 'x')", "sim.event: kind 'run start" + not_a_word},
+      {"sim.event(string.rep('a', 33), 'x')",
+       "sim.event: kind '" + std::string(33, 'a') + not_a_word},
+      {"sim.event('contact', 'x')", "sim.event: kind 'contact' is the run's own; give another"},
+      {"sim.event('goal')", "bad argument #2 to 'sim.event' (string expected, got no value)"},
+      {"sim.event('goal', {})", "bad argument #2 to 'sim.event' (string expected, got table)"},
+      {"sim.event('goal', 'x', 'nobody')", "no robot named 'nobody' (the run has: unimouse)"},
+  };
+  for (const auto& [misuse, message] : misuses) {
+    WriteTextFile(path,
+                  "return sim.scenario { name = 'bad_event', run = function()\n"
+                  "  sim.wait(0.01)\n  " +
+                      misuse + "\n  sim.pass('went on')\nend }\n");
+    const ScenarioRun r = Scenario("--scenario " + path);
+    EXPECT_EQ(r.outcome.exit_code, 3) << misuse << "\n" << r.outcome.output;
+    // the message names the stage the script was in
+    EXPECT_EQ(r.result.value("error", ""), path + ":3: " + message + " (in run)") << misuse;
+    EXPECT_EQ(RecordedEvents(ScenarioOut()).size(), 0u) << misuse;
+  }
+  // a kind of 32 is a word still
+  WriteTextFile(path, "return sim.scenario { name = 'event32', run = function()\n  sim.event('" +
+                          std::string(32, 'a') + "', 'x')\n  sim.pass('marked')\nend }\n");
+  EXPECT_EQ(Scenario("--scenario " + path).outcome.exit_code, 0);
+  EXPECT_EQ(RecordedEvents(ScenarioOut()).size(), 1u);
+}
+
+TEST(ScenarioEventTest, ARunKeeps10000EventsAndCountsTheRest) {
+  // 4 events, then 10,000 more in two ticks: the last 4 are left out of the recording and the log
+  const ScenarioRun r = Scenario("--scenario " + kTests + "events.lua --set flood=10000");
+  ASSERT_EQ(r.outcome.exit_code, 0) << r.outcome.output;
+  const auto events = RecordedEvents(ScenarioOut());
+  ASSERT_EQ(events.size(), 10'000u);
+  EXPECT_EQ(events.back().second["text"], "flood 9996");
+  EXPECT_NEAR(events.back().first, 1.5, 1e-6);
+  const std::string warning =
+      "sim.event: more than 10000 events in a run: later ones are counted, not recorded";
+  int warned = 0;
+  for (const nlohmann::json& w : r.result["warnings"]) warned += w == "scenario: " + warning;
+  EXPECT_EQ(warned, 1) << r.result["warnings"];
+  const auto lines = ScenarioLogLines(ScenarioOut());
+  int floods = 0;
+  for (const auto& [time_s, text] : lines) floods += text.rfind("flood ", 0) == 0;
+  EXPECT_EQ(floods, 10'000 - 4);
+  ASSERT_GE(lines.size(), 3u);
+  EXPECT_EQ(lines[lines.size() - 3].second, "warning: " + warning);
+  EXPECT_EQ(lines[lines.size() - 2].second, "passed: marked");
+  EXPECT_EQ(lines.back().second,
+            "sim.event: 4 events after the first 10000 were counted, not recorded");
+}
+
 TEST(ScenarioEventTest, FirmwareLogLinesArriveAsEvents) {
   const ScenarioRun r = Scenario("--scenario " + kTests + "firmware_hello.lua --link native:" +
                                  std::string(UNIMOUSE_TEST_FIRMWARE));
@@ -358,7 +494,7 @@ TEST(ScenarioApiTest, EveryListedFunctionExistsInTheSandbox) {
               listing.substr(begin, end - begin) + "')\n";
     ++count;
   }
-  EXPECT_EQ(count, 32);
+  EXPECT_EQ(count, 33);
   const std::string path =
       (std::filesystem::temp_directory_path() / "unimouse_api_complete.lua").string();
   WriteTextFile(path, "return sim.scenario { name = 'api_complete', run = function()\n" + checks +

@@ -63,8 +63,9 @@ class RunRecording {
   /// Records the latest of each value a robot's firmware reported (call it when one changed).
   void FirmwareValues(double time_s, const std::string& robot,
                       const std::map<std::string, double>& values);
-  /// Records an event at `time_s` on /events, for a replay to jump to: its kind ("contact",
-  /// "lost"), the robot it happened to ("" none), a sentence, and its facts as a JSON object.
+  /// Records an event at `time_s` on /events, for a replay to jump to: its kind (the run's own
+  /// "contact" and "lost", or a scenario's word), the robot it happened to ("" none), a sentence,
+  /// and its facts as a JSON object.
   void Event(double time_s, const std::string& kind, const std::string& robot,
              const std::string& text, const std::string& data_json);
   /// Records a line of the run's log (a UNIMOUSE_LOG_* level) at `time_s`.

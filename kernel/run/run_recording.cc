@@ -231,48 +231,84 @@ json Timestamp(uint64_t time_ns) {
   return {{"sec", time_ns / 1'000'000'000}, {"nsec", time_ns % 1'000'000'000}};
 }
 
-json Color(double r, double g, double b, double a) {
-  return {{"r", r}, {"g", g}, {"b", b}, {"a", a}};
+// Scenes, beliefs and beams are written by hand, not through a JSON library: the firmware's
+// beliefs are written whole each time they change, hundreds of cubes each time, and building them
+// as JSON objects cost a run half its time again
+
+// Foxglove's colours as JSON
+constexpr const char* kWallColour = R"({"r":0.93,"g":0.93,"b":0.9,"a":1})";
+constexpr const char* kPostColour = R"({"r":0.85,"g":0.15,"b":0.1,"a":1})";
+constexpr const char* kObstacleColour = R"({"r":0.55,"g":0.55,"b":0.6,"a":1})";
+constexpr const char* kBelievedWallColour = R"({"r":0.2,"g":0.5,"b":1,"a":1})";
+constexpr const char* kVisitedColour = R"({"r":0.3,"g":0.75,"b":0.75,"a":0.8})";
+constexpr const char* kPathColour = R"({"r":0.95,"g":0.8,"b":0.1,"a":1})";
+constexpr const char* kLabelColour = R"({"r":1,"g":1,"b":1,"a":1})";
+constexpr const char* kHitColour = R"({"r":0.1,"g":0.95,"b":0.2,"a":1})";
+constexpr const char* kMissColour = R"({"r":0.95,"g":0.15,"b":0.1,"a":1})";
+
+void AppendVector(std::string& out, double x, double y, double z) {
+  out += "{\"x\":";
+  AppendNumber(out, x);
+  out += ",\"y\":";
+  AppendNumber(out, y);
+  out += ",\"z\":";
+  AppendNumber(out, z);
+  out += '}';
 }
 
-json Vector(double x, double y, double z) { return {{"x", x}, {"y", y}, {"z", z}}; }
-
-json IdentityPose() {
-  return {{"position", Vector(0, 0, 0)}, {"orientation", {{"x", 0}, {"y", 0}, {"z", 0}, {"w", 1}}}};
+// a pose at a point, turned by `yaw_rad` about z
+void AppendPose(std::string& out, double x, double y, double z, double yaw_rad = 0) {
+  out += "{\"position\":";
+  AppendVector(out, x, y, z);
+  out += ",\"orientation\":{\"x\":0,\"y\":0,\"z\":";
+  AppendNumber(out, std::sin(yaw_rad / 2));
+  out += ",\"w\":";
+  AppendNumber(out, std::cos(yaw_rad / 2));
+  out += "}}";
 }
 
-// one entity of a SceneUpdate in the world frame, with every primitive list Foxglove's schema
-// has (empty where unused)
-json Entity(const std::string& id, uint64_t time_ns, json metadata, json cubes, json lines,
-            json texts) {
-  return {{"timestamp", Timestamp(time_ns)},
-          {"frame_id", "world"},
-          {"id", id},
-          {"lifetime", Timestamp(0)},  // until replaced
-          {"frame_locked", false},
-          {"metadata", std::move(metadata)},
-          {"arrows", json::array()},
-          {"cubes", std::move(cubes)},
-          {"spheres", json::array()},
-          {"cylinders", json::array()},
-          {"lines", std::move(lines)},
-          {"triangles", json::array()},
-          {"texts", std::move(texts)},
-          {"models", json::array()}};
+// a cube of the given full sizes at a point, after a comma unless it is the list's first
+void AppendCube(std::string& out, double x, double y, double z, double size_x, double size_y,
+                double size_z, const char* colour, double yaw_rad = 0) {
+  if (out.back() != '[') out += ',';
+  out += "{\"pose\":";
+  AppendPose(out, x, y, z, yaw_rad);
+  out += ",\"size\":";
+  AppendVector(out, size_x, size_y, size_z);
+  out += ",\"color\":";
+  out += colour;
+  out += '}';
+}
+
+// a SceneUpdate of one entity in the world frame, with every primitive list Foxglove's schema
+// has: `metadata`, `cubes`, `lines` and `texts` are JSON arrays
+std::string SceneUpdate(const char* id, uint64_t time_ns, const std::string& metadata,
+                        const std::string& cubes, const std::string& lines,
+                        const std::string& texts) {
+  std::string out = "{\"deletions\":[],\"entities\":[{\"timestamp\":";
+  AppendTimestamp(out, time_ns);
+  out += ",\"frame_id\":\"world\",\"id\":\"";
+  out += id;
+  // lifetime 0: until replaced
+  out += "\",\"lifetime\":{\"sec\":0,\"nsec\":0},\"frame_locked\":false,\"metadata\":" + metadata +
+         ",\"arrows\":[],\"cubes\":" + cubes +
+         ",\"spheres\":[],\"cylinders\":[],\"lines\":" + lines +
+         ",\"triangles\":[],\"texts\":" + texts + ",\"models\":[]}]}";
+  return out;
+}
+
+std::string HexColour(const Rgb8& rgb) {
+  char hex[8];
+  std::snprintf(hex, sizeof(hex), "#%02x%02x%02x", rgb.r, rgb.g, rgb.b);
+  return hex;
 }
 
 // what the firmware believes as Foxglove draws it: its walls as blue strips on the walls' tops,
 // visited cells as small tiles, cell colours as floor tiles, texts as labels, its path as a line
-json BeliefsScene(const FirmwareBeliefs& beliefs, const MazeDimensions& dims, uint64_t time_ns) {
+std::string BeliefsScene(const FirmwareBeliefs& beliefs, const MazeDimensions& dims,
+                         uint64_t time_ns) {
   auto centre = [&](int x, int y) { return CellCentre({x, y}, Heading::kNorth, dims); };
-  auto box = [](double x, double y, double z, double sx, double sy, double sz, json color) {
-    return json{{"pose",
-                 {{"position", Vector(x, y, z)},
-                  {"orientation", {{"x", 0}, {"y", 0}, {"z", 0}, {"w", 1}}}}},
-                {"size", Vector(sx, sy, sz)},
-                {"color", std::move(color)}};
-  };
-  json cubes = json::array(), lines = json::array(), texts = json::array();
+  std::string cubes = "[", lines = "[", texts = "[";
   for (const auto& [cell, w] : beliefs.walls) {
     const Pose2D c = centre(cell.first, cell.second);
     for (int side = 0; side < 4; ++side) {  // north, east, south, west
@@ -281,103 +317,86 @@ json BeliefsScene(const FirmwareBeliefs& beliefs, const MazeDimensions& dims, ui
       const bool north_south = side == 0 || side == 2;
       const double dx = side == 1 ? 0.5 : side == 3 ? -0.5 : 0;
       const double dy = side == 0 ? 0.5 : side == 2 ? -0.5 : 0;
-      cubes.push_back(box(c.x_m + dims.cell_m * dx, c.y_m + dims.cell_m * dy,
-                          dims.wall_height_m + 0.003, north_south ? dims.cell_m : 0.008,
-                          north_south ? 0.008 : dims.cell_m, 0.004, Color(0.2, 0.5, 1, 1)));
+      AppendCube(cubes, c.x_m + dims.cell_m * dx, c.y_m + dims.cell_m * dy,
+                 dims.wall_height_m + 0.003, north_south ? dims.cell_m : 0.008,
+                 north_south ? 0.008 : dims.cell_m, 0.004, kBelievedWallColour);
     }
   }
   std::set<std::pair<int, int>> seen;
   for (const Cell& v : beliefs.visited) {
     if (!seen.insert({v.x, v.y}).second) continue;
     const Pose2D c = centre(v.x, v.y);
-    cubes.push_back(box(c.x_m, c.y_m, 0.001, dims.cell_m / 3, dims.cell_m / 3, 0.001,
-                        Color(0.3, 0.75, 0.75, 0.8)));
+    AppendCube(cubes, c.x_m, c.y_m, 0.001, dims.cell_m / 3, dims.cell_m / 3, 0.001, kVisitedColour);
   }
   for (const auto& [cell, letter] : beliefs.colours) {
     const std::optional<Rgb8> rgb = CellColourOf(letter);
     if (!rgb) continue;
+    char colour[64];
+    std::snprintf(colour, sizeof(colour), R"({"r":%.4g,"g":%.4g,"b":%.4g,"a":1})", rgb->r / 255.0,
+                  rgb->g / 255.0, rgb->b / 255.0);
     const Pose2D c = centre(cell.first, cell.second);
     const double side_m = dims.cell_m - dims.wall_thickness_m;
-    cubes.push_back(box(c.x_m, c.y_m, 0.0005, side_m, side_m, 0.0008,
-                        Color(rgb->r / 255.0, rgb->g / 255.0, rgb->b / 255.0, 1)));
+    AppendCube(cubes, c.x_m, c.y_m, 0.0005, side_m, side_m, 0.0008, colour);
   }
   for (const auto& [cell, text] : beliefs.texts) {
     const Pose2D c = centre(cell.first, cell.second);
-    texts.push_back({{"pose",
-                      {{"position", Vector(c.x_m, c.y_m, 0.01)},
-                       {"orientation", {{"x", 0}, {"y", 0}, {"z", 0}, {"w", 1}}}}},
-                     {"billboard", true},
-                     {"font_size", 12},
-                     {"scale_invisible", true},
-                     {"color", Color(1, 1, 1, 1)},
-                     {"text", text}});
+    if (texts.back() != '[') texts += ',';
+    texts += "{\"pose\":";
+    AppendPose(texts, c.x_m, c.y_m, 0.01);
+    texts += ",\"billboard\":true,\"font_size\":12,\"scale_invisible\":true,\"color\":";
+    texts += kLabelColour;
+    texts += ",\"text\":" + JsonText(text) + "}";
   }
   if (beliefs.path.size() > 1) {
-    json points = json::array();
-    for (const Cell& p : beliefs.path) {
-      const Pose2D c = centre(p.x, p.y);
-      points.push_back(Vector(c.x_m, c.y_m, 0.004));
+    lines += "{\"type\":0,\"pose\":";  // a line strip through the cells' centres
+    AppendPose(lines, 0, 0, 0);
+    lines += ",\"thickness\":";
+    AppendNumber(lines, dims.cell_m / 15);
+    lines += ",\"scale_invisible\":false,\"points\":[";
+    for (size_t i = 0; i < beliefs.path.size(); ++i) {
+      if (i > 0) lines += ',';
+      const Pose2D c = centre(beliefs.path[i].x, beliefs.path[i].y);
+      AppendVector(lines, c.x_m, c.y_m, 0.004);
     }
-    lines.push_back({{"type", 0},
-                     {"pose", IdentityPose()},
-                     {"thickness", dims.cell_m / 15},
-                     {"scale_invisible", false},
-                     {"points", points},
-                     {"color", Color(0.95, 0.8, 0.1, 1)},
-                     {"colors", json::array()},
-                     {"indices", json::array()}});
+    lines += "],\"color\":";
+    lines += kPathColour;
+    lines += ",\"colors\":[],\"indices\":[]}";
   }
-  return {
-      {"deletions", json::array()},
-      {"entities", json::array({Entity("beliefs", time_ns, json::array(), cubes, lines, texts)})}};
+  return SceneUpdate("beliefs", time_ns, "[]", cubes + "]", lines + "]", texts + "]");
 }
 
 // the ToF beams, each a segment from its sensor, green on a hit and red on a miss as drawn
-json BeamsScene(const Kernel& kernel, uint64_t time_ns) {
+std::string BeamsScene(const Kernel& kernel, uint64_t time_ns) {
   const mjData& d = kernel.state().data();
-  json points = json::array(), colors = json::array();
+  std::string points, colours;
   for (const BeamSpec& beam : kernel.model().beams) {
     const BeamLine line = BeamLineOf(beam, d, kernel.state().signals());
-    const json color = line.hit ? Color(0.1, 0.95, 0.2, 1) : Color(0.95, 0.15, 0.1, 1);
     for (const auto& p : {line.from_m, line.to_m}) {
-      points.push_back(Vector(p[0], p[1], p[2]));
-      colors.push_back(color);
+      if (!points.empty()) {
+        points += ',';
+        colours += ',';
+      }
+      AppendVector(points, p[0], p[1], p[2]);
+      colours += line.hit ? kHitColour : kMissColour;
     }
   }
-  const json list = {{"type", 2},  // a list of segments
-                     {"pose", IdentityPose()},
-                     {"thickness", 0.004},
-                     {"scale_invisible", false},
-                     {"points", points},
-                     {"color", Color(1, 1, 1, 1)},
-                     {"colors", colors},
-                     {"indices", json::array()}};
-  return {{"deletions", json::array()},
-          {"entities", json::array({Entity("beams", time_ns, json::array(), json::array(),
-                                           json::array({list}), json::array())})}};
+  std::string list = "[{\"type\":2,\"pose\":";  // a list of segments
+  AppendPose(list, 0, 0, 0);
+  list += ",\"thickness\":0.004,\"scale_invisible\":false,\"points\":[" + points +
+          "],\"color\":" + kLabelColour + ",\"colors\":[" + colours + "],\"indices\":[]}]";
+  return SceneUpdate("beams", time_ns, "[]", "[]", list, "[]");
 }
 
 // the scenery (a maze's walls and posts, a scenario's boxes) as cubes in the world frame; with a
 // maze, its dimensions ride along as the entity's metadata, for a player to place cells
-json SceneryUpdate(const World& world) {
-  const json wall_color = {{"r", 0.93}, {"g", 0.93}, {"b", 0.9}, {"a", 1.0}};
-  const json post_color = {{"r", 0.85}, {"g", 0.15}, {"b", 0.1}, {"a", 1.0}};
-  const json obstacle_color = {{"r", 0.55}, {"g", 0.55}, {"b", 0.6}, {"a", 1.0}};
-  json cubes = json::array();
+std::string SceneryUpdate(const World& world) {
+  std::string cubes = "[";
   for (const StaticBox& box : world.scenery()) {
-    const json& color = box.kind == StaticBox::Kind::kPost   ? post_color
-                        : box.kind == StaticBox::Kind::kWall ? wall_color
-                                                             : obstacle_color;
-    cubes.push_back(
-        {{"pose",
-          {{"position", {{"x", box.center_m[0]}, {"y", box.center_m[1]}, {"z", box.center_m[2]}}},
-           {"orientation",
-            {{"x", 0},
-             {"y", 0},
-             {"z", std::sin(box.yaw_rad / 2)},
-             {"w", std::cos(box.yaw_rad / 2)}}}}},
-         {"size", {{"x", 2 * box.half_m[0]}, {"y", 2 * box.half_m[1]}, {"z", 2 * box.half_m[2]}}},
-         {"color", color}});
+    const char* colour = box.kind == StaticBox::Kind::kPost   ? kPostColour
+                         : box.kind == StaticBox::Kind::kWall ? kWallColour
+                                                              : kObstacleColour;
+    AppendCube(cubes, box.center_m[0], box.center_m[1], box.center_m[2], 2 * box.half_m[0],
+               2 * box.half_m[1], 2 * box.half_m[2], colour, box.yaw_rad);
   }
   json metadata = json::array();
   if (const Maze* maze = world.maze()) {
@@ -391,8 +410,7 @@ json SceneryUpdate(const World& world) {
     add("wall_thickness_m", json(dims.wall_thickness_m).dump());
     add("wall_height_m", json(dims.wall_height_m).dump());
   }
-  const json entity = Entity("scenery", 0, metadata, cubes, json::array(), json::array());
-  return {{"deletions", json::array()}, {"entities", json::array({entity})}};
+  return SceneUpdate("scenery", 0, metadata.dump(), cubes + "]", "[]", "[]");
 }
 
 // Foxglove's levels: 2 info, 3 warning, 4 error
@@ -441,7 +459,7 @@ void RunRecording::OpenRobotChannels(const Kernel& kernel) {
   const uint16_t scene_schema =
       writer_->AddSchema("foxglove.SceneUpdate", "jsonschema", SceneUpdateSchema());
   const uint16_t scenery = writer_->AddChannel(scene_schema, "/scenery", "json");
-  writer_->Write(scenery, 0, SceneryUpdate(kernel.world()).dump());
+  writer_->Write(scenery, 0, SceneryUpdate(kernel.world()));
   if (!kernel.model().beams.empty()) {
     beams_channel_ = writer_->AddChannel(scene_schema, "/beams", "json");
     beam_every_steps_ =
@@ -474,7 +492,7 @@ bool RunRecording::Sample(const Kernel& kernel) {
   const State& state = kernel.state();
   if (beam_every_steps_ > 0 && state.step() % beam_every_steps_ == 0) {
     const uint64_t time_ns = Nanoseconds(state.data().time);
-    writer_->Write(beams_channel_, time_ns, BeamsScene(kernel, time_ns).dump());
+    writer_->Write(beams_channel_, time_ns, BeamsScene(kernel, time_ns));
   }
   if (state.step() % sample_every_steps_ != 0) return false;
   const mjData& d = state.data();
@@ -515,38 +533,48 @@ bool RunRecording::Sample(const Kernel& kernel) {
 void RunRecording::Beliefs(double time_s, const std::string& robot,
                            const FirmwareBeliefs& beliefs) {
   const uint64_t time_ns = Nanoseconds(time_s);
-  json walls = json::array(), visited = json::array(), path = json::array(),
-       colours = json::array(), texts = json::array();
+  // each entry [x, y, ...], after a comma unless it is the list's first
+  std::string m = "{\"timestamp\":";
+  auto entry = [&m](int x, int y) {
+    if (m.back() != '[') m += ',';
+    m += '[' + std::to_string(x) + ',' + std::to_string(y);
+  };
+  AppendTimestamp(m, time_ns);
+  m += ",\"robot\":" + JsonText(robot) + ",\"walls\":[";
   for (const auto& [cell, w] : beliefs.walls) {
-    walls.push_back({cell.first, cell.second, w.walls, w.known});
+    entry(cell.first, cell.second);
+    m += ',' + std::to_string(w.walls) + ',' + std::to_string(w.known) + ']';
   }
   // each cell once, in the order first visited: a snapshot stays as small as the maze
+  m += "],\"visited\":[";
   std::set<std::pair<int, int>> seen;
   for (const Cell& c : beliefs.visited) {
-    if (seen.insert({c.x, c.y}).second) visited.push_back({c.x, c.y});
+    if (!seen.insert({c.x, c.y}).second) continue;
+    entry(c.x, c.y);
+    m += ']';
   }
-  for (const Cell& c : beliefs.path) path.push_back({c.x, c.y});
+  m += "],\"path\":[";
+  for (const Cell& c : beliefs.path) {
+    entry(c.x, c.y);
+    m += ']';
+  }
+  m += "],\"colours\":[";
   for (const auto& [cell, letter] : beliefs.colours) {
     if (const std::optional<Rgb8> rgb = CellColourOf(letter)) {
-      char hex[8];
-      std::snprintf(hex, sizeof(hex), "#%02x%02x%02x", rgb->r, rgb->g, rgb->b);
-      colours.push_back({cell.first, cell.second, hex});
+      entry(cell.first, cell.second);
+      m += ",\"" + HexColour(*rgb) + "\"]";
     }
   }
-  for (const auto& [cell, text] : beliefs.texts) texts.push_back({cell.first, cell.second, text});
-  const json message = {{"timestamp", Timestamp(time_ns)},
-                        {"robot", robot},
-                        {"walls", walls},
-                        {"visited", visited},
-                        {"path", path},
-                        {"colours", colours},
-                        {"texts", texts}};
-  writer_->Write(beliefs_channel_, time_ns,
-                 message.dump(-1, ' ', false, json::error_handler_t::replace));
+  m += "],\"texts\":[";
+  for (const auto& [cell, text] : beliefs.texts) {
+    entry(cell.first, cell.second);
+    m += ',' + JsonText(text) + ']';
+  }
+  m += "]}";
+  writer_->Write(beliefs_channel_, time_ns, m);
   if (maze_dimensions_) {
     writer_->Write(beliefs_scene_channel_, time_ns,
-                   BeliefsScene(beliefs, *maze_dimensions_, time_ns)
-                       .dump(-1, ' ', false, json::error_handler_t::replace));
+                   BeliefsScene(beliefs, *maze_dimensions_, time_ns));
   }
 }
 

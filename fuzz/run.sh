@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: GPL-3.0-or-later
 # Builds the libFuzzer targets with clang in build-fuzz/ and runs each for SECONDS (default 60),
-# seeded from the bundled mazes, robots, scenarios and AVR images and from hand-made hostile
+# seeded from the bundled mazes, robots, scenarios, AVR images and a recording and from hand-made hostile
 # cases. Exits non-zero at the first finding; the input that caused it is left in
 # build-fuzz/findings/.
 #
@@ -14,7 +14,8 @@ build=build-fuzz
 cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ -DUNIMOUSE_FUZZ=ON \
   -DUNIMOUSE_BUILD_TESTS=OFF -DUNIMOUSE_BUILD_BENCH=OFF > /dev/null
-targets=(fuzz_maze fuzz_robot fuzz_frames fuzz_scenario fuzz_manifest fuzz_mms fuzz_link_set)
+targets=(fuzz_maze fuzz_robot fuzz_frames fuzz_scenario fuzz_manifest fuzz_mms fuzz_link_set
+  fuzz_recording)
 # the AVR image loader where the emulated board is built (simavr, libelf), seeded from the
 # bundled examples where the AVR toolchain builds them
 known=$(ninja -C "$build" -t targets all)
@@ -30,7 +31,8 @@ cmake --build "$build" -j2 --target "${targets[@]}"
 # seeds: the bundled files, and a few frames of every kind the firmware sends
 seeds=$build/seeds
 rm -rf "$seeds"
-mkdir -p "$seeds"/{maze,robot,scenario,frames,manifest,mms,link_set,avr_image} "$build/findings"
+mkdir -p "$seeds"/{maze,robot,scenario,frames,manifest,mms,link_set,avr_image,recording} \
+  "$build/findings"
 cp mazes/*.txt tests/data/broken_mazes/*.{txt,num,maz} "$seeds/maze/"
 cp robots/*.yaml "$seeds/robot/"
 # a list that holds an alias of itself, and values nested deeper than the bound
@@ -55,6 +57,9 @@ printf 'moveForward -1\nmoveForward 99999999999999999999\nsetWall 255 -3 q\nsetT
 # --link-set values (the first byte chooses the transport), good and bad
 printf '\x00failsafe_s=0.2\nextensions=false\nprofile=unimousesim-0.1' > "$seeds/link_set/good"
 printf '\x03mcu=atmega328p\nf_cpu_hz=1e99\n=x\nnoequals\nsend=[[[' > "$seeds/link_set/bad"
+# recordings: a short run's, whole and cut short (tests/data/short_run.mcap)
+cp tests/data/short_run.mcap "$seeds/recording/"
+head -c 3000 tests/data/short_run.mcap > "$seeds/recording/cut.mcap"
 # AVR images: the bundled examples, and the test image whose .mmcu section names its part
 cp "$build"/avr/*.elf "$seeds/avr_image/" 2> /dev/null || true
 if command -v avr-gcc > /dev/null; then

@@ -73,12 +73,7 @@ class Reader {
  public:
   Reader(const std::string& path, McapVisitor& visitor) : path_(path), visitor_(visitor) {}
 
-  McapReadOutcome Read() {
-    std::ifstream in(path_, std::ios::binary);
-    if (!in) throw InputError(path_ + ": cannot open the recording: " + std::strerror(errno));
-    std::ostringstream content;
-    content << in.rdbuf();
-    const std::string file = content.str();
+  McapReadOutcome Read(std::string_view file) {
     if (file.empty()) throw InputError(path_ + ": the file is empty, not an MCAP recording");
     if (file.size() < 8 || file.compare(0, 5, kMagicStart) != 0 ||
         file.compare(6, 2, "\r\n") != 0) {
@@ -89,7 +84,7 @@ class Reader {
                        ", newer than the version 0 this unimouse reads");
     }
     McapReadOutcome outcome;
-    std::string_view rest = std::string_view(file).substr(8);
+    std::string_view rest = file.substr(8);
     uint64_t offset = 8;
     bool first = true;
     while (true) {
@@ -221,7 +216,16 @@ class Reader {
 }  // namespace
 
 McapReadOutcome ReadMcap(const std::string& path, McapVisitor& visitor) {
-  return Reader(path, visitor).Read();
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path + ": cannot open the recording: " + std::strerror(errno));
+  std::ostringstream content;
+  content << in.rdbuf();
+  return Reader(path, visitor).Read(content.str());
+}
+
+McapReadOutcome ReadMcapBytes(std::string_view bytes, const std::string& name,
+                              McapVisitor& visitor) {
+  return Reader(name, visitor).Read(bytes);
 }
 
 }  // namespace unimouse

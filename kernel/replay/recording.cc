@@ -61,6 +61,8 @@ class RecordingReader : public McapVisitor {
       Take(channel_id, topic->second, t, m);
     } catch (const json::exception&) {
       // a message missing a field is skipped, like a damaged one
+    } catch (const std::logic_error&) {
+      // so is a number that does not read as one (std::stod)
     }
   }
 
@@ -196,21 +198,10 @@ Pose2D PoseAt(const RecordedRobot& robot, double t_s) {
           std::remainder(a.value.yaw_rad + f * turn, 2 * M_PI)};
 }
 
-Recording ReadRecording(const std::string& path) {
-  namespace fs = std::filesystem;
-  Recording out;
-  out.path = path;
-  std::error_code error;
-  if (fs::is_directory(path, error)) {
-    out.path = (fs::path(path) / "run.mcap").string();
-    if (!fs::exists(out.path, error)) {
-      throw InputError(path + ": no run.mcap in this folder (was the run made with --record off?)");
-    }
-  } else if (!fs::exists(path, error)) {
-    throw InputError(path + ": no such file or folder");
-  }
-  RecordingReader reader(out);
-  const McapReadOutcome outcome = ReadMcap(out.path, reader);
+namespace {
+
+// what every recording needs, checked once it is read
+void Finish(Recording& out, const RecordingReader& reader, const McapReadOutcome& outcome) {
   if (!reader.is_unimouse()) {
     throw InputError(out.path +
                      ": an MCAP file that unimouse did not record (no unimouse.recording"
@@ -227,6 +218,33 @@ Recording ReadRecording(const std::string& path) {
     }
   }
   if (out.robots.empty()) throw InputError(out.path + ": the recording holds no robot's pose");
+}
+
+}  // namespace
+
+Recording ParseRecording(std::string_view bytes, const std::string& name) {
+  Recording out;
+  out.path = name;
+  RecordingReader reader(out);
+  Finish(out, reader, ReadMcapBytes(bytes, name, reader));
+  return out;
+}
+
+Recording ReadRecording(const std::string& path) {
+  namespace fs = std::filesystem;
+  Recording out;
+  out.path = path;
+  std::error_code error;
+  if (fs::is_directory(path, error)) {
+    out.path = (fs::path(path) / "run.mcap").string();
+    if (!fs::exists(out.path, error)) {
+      throw InputError(path + ": no run.mcap in this folder (was the run made with --record off?)");
+    }
+  } else if (!fs::exists(path, error)) {
+    throw InputError(path + ": no such file or folder");
+  }
+  RecordingReader reader(out);
+  Finish(out, reader, ReadMcap(out.path, reader));
   return out;
 }
 

@@ -372,3 +372,39 @@ TEST_F(ReplayCommandTest, TheWindowShowsTheRobotWhereTheRecordingPutsItAndTheHud
 
 }  // namespace
 }  // namespace unimouse
+
+namespace unimouse {
+namespace {
+
+// the fuzz target's seed (tests/data/short_run.mcap, 0.3 s of the contest) reads the same from
+// its bytes as from its file, and every prefix of it is a recording cut short, a whole one (cut
+// in its summary) or one sentence, never a crash
+TEST(ReplayRecordingTest, ARecordingReadsTheSameFromItsBytesAndAnyPrefixIsReadOrRefused) {
+  const std::string path = UNIMOUSE_SOURCE_DIR "/tests/data/short_run.mcap";
+  const Recording file = ReadRecording(path);
+  const std::string bytes = ReadTextFile(path);
+  const Recording parsed = ParseRecording(bytes, path);
+  ASSERT_EQ(parsed.robots.size(), 1u);
+  ASSERT_EQ(parsed.robots[0].poses.size(), file.robots[0].poses.size());
+  EXPECT_EQ(parsed.robots[0].poses.size(), 31u);  // 0.3 s at 100 Hz, and time 0
+  EXPECT_EQ(parsed.attachments, file.attachments);
+  size_t read = 0;
+  for (size_t n = 0; n < bytes.size(); n += 97) {
+    try {
+      // said to be cut short, or everything there (the file ends in its summary, after its
+      // data): never less than the whole without saying so
+      const Recording cut = ParseRecording(std::string_view(bytes).substr(0, n), path);
+      if (cut.cut_short.empty()) {
+        EXPECT_EQ(cut.robots[0].poses.size(), 31u) << n;
+        EXPECT_EQ(cut.attachments, file.attachments) << n;
+      }
+      ++read;
+    } catch (const InputError& e) {
+      EXPECT_EQ(std::string(e.what()).rfind(path + ": ", 0), 0u) << e.what();
+    }
+  }
+  EXPECT_GT(read, 0u);
+}
+
+}  // namespace
+}  // namespace unimouse

@@ -56,12 +56,15 @@ struct McapReadOutcome {
 
 /// Most bytes of one record (a chunk before or after decompression, an attachment): a larger
 /// length is taken for a damaged file.
-inline constexpr uint64_t kMaxMcapRecord_bytes = uint64_t{1} << 30;
+inline constexpr uint64_t kMaxMcapRecord_bytes = uint64_t{1} << 28;
 
 /// Reads the file at `path`, handing every record to `visitor`. Throws InputError
 /// "path: reason" for a file that cannot be opened, is empty, is not MCAP, or is of a major
 /// version newer than 0; a file damaged or cut short after its Header is read up to the damage.
 McapReadOutcome ReadMcap(const std::string& path, McapVisitor& visitor);
+/// The same for a file's bytes, named `name` in what it throws.
+McapReadOutcome ReadMcapBytes(std::string_view bytes, const std::string& name,
+                              McapVisitor& visitor);
 
 }  // namespace unimouse
 

@@ -9,6 +9,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "firmware_beliefs.h"
@@ -83,6 +84,8 @@ Pose2D PoseAt(const RecordedRobot& robot, double t_s);
 /// newer recording format, or not a unimouse recording; a recording cut short is read up to its
 /// last whole record, saying so in `cut_short`.
 Recording ReadRecording(const std::string& path);
+/// The same for a recording's bytes, named `name` (fuzzing, tests).
+Recording ParseRecording(std::string_view bytes, const std::string& name);
 
 template <typename T>
 int Recording::Latest(const std::vector<Timed<T>>& entries, double t_s) {

@@ -64,8 +64,8 @@ void AddReplayCommand(CommandLine& cli) {
   replay->add_option("--html", options->html,
                      "write the replay as one offline HTML page here instead of opening a window");
   replay->add_option("--signal", options->signals,
-                     "a signal the page plots (repeat for more; default: the motors, encoders and "
-                     "ToF sensors)");
+                     "a signal the page plots or the window's HUD shows (repeat for more; the "
+                     "page's default: the motors, encoders and ToF sensors)");
   replay->add_option("--at", options->at_s, "start at this time, in seconds")
       ->check(CLI::NonNegativeNumber);
   replay
@@ -133,6 +133,8 @@ int ReplayCommand(const ReplayOptions& o) {
   view.speed = o.speed;
   view.max_frames = o.view_frames;
   view.out_dir = o.out_dir.empty() ? fs::path(main.path).parent_path().string() : o.out_dir;
+  view.signals = o.signals;
+  (void)scene.Hud(o.signals);  // a signal the recording has not is said before a window opens
   if (view.out_dir.empty()) view.out_dir = ".";
   ShowReplay(scene, view);
   return kExitPassed;

@@ -224,7 +224,7 @@ class ReplayWindow {
     draw.beliefs = beliefs_;
     draw.firmware = &scene_.beliefs();
     draw.clock = false;  // the corner says the time, above the timeline
-    if (hud_) draw.hud = scene_.Hud();
+    if (hud_) draw.hud = scene_.Hud(options_.signals);
     mjr_setBuffer(mjFB_WINDOW, &renderer_->context());
     renderer_->Draw(viewport, camera_, draw);
     DrawTimeline(width);

@@ -6,6 +6,7 @@
 #define UNIMOUSE_APP_REPLAY_VIEWER_H_
 
 #include <string>
+#include <vector>
 
 #include "replay_scene.h"
 
@@ -21,6 +22,7 @@ struct ReplayViewOptions {
   double speed = 1;     ///< one of kReplaySpeeds
   int max_frames = 0;   ///< > 0: close after that many frames, saving the last as replay.png
   std::string out_dir;  ///< where screenshots go
+  std::vector<std::string> signals;  ///< recorded signals the HUD shows at the cursor
 };
 
 /// Shows the scene until the window is closed or Q is pressed; throws InputError (exit code 2)

@@ -1,6 +1,9 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "firmware_beliefs.h"
 
+#include <cstdio>
+#include <string_view>
+
 namespace unimouse {
 namespace {
 
@@ -10,6 +13,19 @@ bool InAnyMaze(int x, int y) {
 }
 
 }  // namespace
+
+std::string HexColour(const Rgb8& rgb) {
+  char hex[8];
+  std::snprintf(hex, sizeof(hex), "#%02x%02x%02x", rgb.r, rgb.g, rgb.b);
+  return hex;
+}
+
+std::optional<char> CellColourLetter(const std::string& hex) {
+  for (char letter : std::string_view("kbacgorwyBACGORYV")) {
+    if (HexColour(*CellColourOf(letter)) == hex) return letter;
+  }
+  return std::nullopt;
+}
 
 // the saturated colours full, the dark ones at half
 std::optional<Rgb8> CellColourOf(char letter) {

@@ -154,9 +154,7 @@ json ReplayPageData(const Recording& recording, const std::vector<RecordedRobot>
       walls.push_back({cell.first, cell.second, w.walls, w.known});
     for (const auto& [cell, letter] : b.value.colours) {
       if (const std::optional<Rgb8> rgb = CellColourOf(letter)) {
-        char hex[8];
-        std::snprintf(hex, sizeof(hex), "#%02x%02x%02x", rgb->r, rgb->g, rgb->b);
-        colours.push_back({cell.first, cell.second, hex});
+        colours.push_back({cell.first, cell.second, HexColour(*rgb)});
       }
     }
     for (const auto& [cell, text] : b.value.texts) texts.push_back({cell.first, cell.second, text});

@@ -23,17 +23,6 @@ double Number(const json& value) {
   return value.is_number() ? value.get<double>() : std::numeric_limits<double>::quiet_NaN();
 }
 
-// the letter mms gives a colour, back from its #rrggbb
-std::optional<char> ColourLetter(const std::string& hex) {
-  for (char letter : std::string("kbacgorwyBACGORYV")) {
-    const std::optional<Rgb8> rgb = CellColourOf(letter);
-    char text[8];
-    std::snprintf(text, sizeof(text), "#%02x%02x%02x", rgb->r, rgb->g, rgb->b);
-    if (hex == text) return letter;
-  }
-  return std::nullopt;
-}
-
 class RecordingReader : public McapVisitor {
  public:
   explicit RecordingReader(Recording& out) : out_(out) {}
@@ -132,7 +121,7 @@ class RecordingReader : public McapVisitor {
       for (const json& c : m.at("visited")) b.visited.push_back({c.at(0), c.at(1)});
       for (const json& c : m.at("path")) b.path.push_back({c.at(0), c.at(1)});
       for (const json& c : m.at("colours")) {
-        if (const auto letter = ColourLetter(c.at(2))) b.colours[{c.at(0), c.at(1)}] = *letter;
+        if (const auto letter = CellColourLetter(c.at(2))) b.colours[{c.at(0), c.at(1)}] = *letter;
       }
       for (const json& c : m.at("texts")) b.texts[{c.at(0), c.at(1)}] = c.at(2);
       out_.beliefs.push_back({t, std::move(b)});

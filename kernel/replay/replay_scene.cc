@@ -119,7 +119,7 @@ double ReplayScene::NextSample(double t_s, int direction) const {
   return next == poses.begin() ? t_s : std::prev(next)->t_s;
 }
 
-std::vector<std::string> ReplayScene::Hud() const {
+std::vector<std::string> ReplayScene::Hud(const std::vector<std::string>& signals) const {
   std::vector<std::string> lines;
   const int h = Recording::Latest(recording_.hud, time_s_);
   if (h >= 0) lines = recording_.hud[h].value;
@@ -133,6 +133,19 @@ std::vector<std::string> ReplayScene::Hud() const {
       line += " " + name + "=" + number;
     }
     lines.push_back(line);
+  }
+  const auto& times = recording_.signal_times_s;
+  const auto row = std::upper_bound(times.begin(), times.end(), time_s_) - times.begin() - 1;
+  for (const std::string& name : signals) {
+    const auto& names = recording_.signal_names;
+    const auto column = std::find(names.begin(), names.end(), name);
+    if (column == names.end())
+      throw InputError("--signal " + name + ": the recording has no such signal");
+    char value[32] = "-";
+    if (row >= 0)
+      std::snprintf(value, sizeof(value), "%g",
+                    recording_.signal_rows[row][column - names.begin()]);
+    lines.push_back(name + " = " + value);
   }
   return lines;
 }

@@ -297,12 +297,6 @@ std::string SceneUpdate(const char* id, uint64_t time_ns, const std::string& met
   return out;
 }
 
-std::string HexColour(const Rgb8& rgb) {
-  char hex[8];
-  std::snprintf(hex, sizeof(hex), "#%02x%02x%02x", rgb.r, rgb.g, rgb.b);
-  return hex;
-}
-
 // what the firmware believes as Foxglove draws it: its walls as blue strips on the walls' tops,
 // visited cells as small tiles, cell colours as floor tiles, texts as labels, its path as a line
 std::string BeliefsScene(const FirmwareBeliefs& beliefs, const MazeDimensions& dims,

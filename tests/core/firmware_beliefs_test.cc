@@ -67,3 +67,21 @@ TEST(FirmwareBeliefsTest, ColoursAndTextsAloneAreSomethingReported) {
 
 }  // namespace
 }  // namespace unimouse
+
+namespace unimouse {
+namespace {
+
+// a recording writes cell colours as #rrggbb and a replay reads the letters back
+TEST(CellColourTest, EveryLetterComesBackFromItsHexColourAndNoOtherColourDoes) {
+  for (char letter : std::string("kbacgorwyBACGORYV")) {
+    const std::string hex = HexColour(*CellColourOf(letter));
+    ASSERT_EQ(hex.size(), 7u);
+    EXPECT_EQ(CellColourLetter(hex), letter) << hex;
+  }
+  EXPECT_EQ(HexColour({255, 165, 0}), "#ffa500");
+  EXPECT_EQ(CellColourLetter("#123456"), std::nullopt);
+  EXPECT_EQ(CellColourLetter("red"), std::nullopt);
+}
+
+}  // namespace
+}  // namespace unimouse

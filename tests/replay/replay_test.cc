@@ -54,6 +54,25 @@ std::vector<TraceRow> ReadTrace(const std::string& file) {
   return rows;
 }
 
+// one column of trace.csv, by the row's time in milliseconds
+std::map<int64_t, double> ReadTraceColumn(const std::string& file, const std::string& name) {
+  std::ifstream in(file);
+  std::string line, cell;
+  std::getline(in, line);
+  std::istringstream header(line);
+  size_t column = 0;
+  while (std::getline(header, cell, ',') && cell != name) ++column;
+  std::map<int64_t, double> values;
+  while (std::getline(in, line)) {
+    std::istringstream cells(line);
+    std::vector<std::string> row;
+    while (std::getline(cells, cell, ',')) row.push_back(cell);
+    if (column < row.size())
+      values[std::llround(std::stod(row[0]) * 1000)] = std::stod(row[column]);
+  }
+  return values;
+}
+
 std::string OutDir(const std::string& name) { return (fs::temp_directory_path() / name).string(); }
 
 // the main job's first minute, recorded, once for the tests that only read it
@@ -329,15 +348,18 @@ std::optional<std::pair<double, double>> RobotInScreenshot(const std::string& pn
 TEST_F(ReplayCommandTest, TheWindowShowsTheRobotWhereTheRecordingPutsItAndTheHudOfThatTime) {
   if (!HaveXvfb()) GTEST_SKIP() << "xvfb-run is not installed (apt install xvfb xauth)";
   const std::vector<TraceRow> trace = ReadTrace(Main() + "/trace.csv");
+  const std::map<int64_t, double> left_voltage_v =
+      ReadTraceColumn(Main() + "/trace.csv", "left.voltage_v");
   const Recording r = ReadRecording(Main());
   for (const double t : {12.34, 47.5}) {
     SCOPED_TRACE("t = " + std::to_string(t));
     const std::string dir = testing::FreshDirectory("replay_window");
     char at[32];
     std::snprintf(at, sizeof(at), "%g", t);
-    const testing::Outcome o = testing::Unimouse(
-        "replay " + Main() + " --at " + at + " --paused --view-frames 2 --out " + dir,
-        "xvfb-run -a -s '-screen 0 1280x1024x24' ");
+    const testing::Outcome o =
+        testing::Unimouse("replay " + Main() + " --at " + at +
+                              " --paused --view-frames 2 --signal left.voltage_v --out " + dir,
+                          "xvfb-run -a -s '-screen 0 1280x1024x24' ");
     ASSERT_EQ(o.exit_code, 0) << o.output;
     char said[96];
     std::snprintf(said, sizeof(said), "  screenshot: %s/replay.png at %.3f s\n", dir.c_str(), t);
@@ -358,6 +380,12 @@ TEST_F(ReplayCommandTest, TheWindowShowsTheRobotWhereTheRecordingPutsItAndTheHud
         << o.output;
     const TraceRow& now = trace[static_cast<size_t>(std::llround(t / 0.01))];
     EXPECT_LT(std::hypot(est_x - now.x_m, est_y - now.y_m), 0.18) << o.output;
+
+    // a chosen signal at the cursor: the left motor's voltage in the trace's row then
+    const size_t voltage = o.output.find("    left.voltage_v = ");
+    ASSERT_NE(voltage, std::string::npos) << o.output;
+    EXPECT_NEAR(std::stod(o.output.substr(voltage + 21)), left_voltage_v.at(std::llround(t * 1000)),
+                1e-4);
 
     const auto shown = RobotInScreenshot(dir + "/replay.png");
     ASSERT_TRUE(shown.has_value());

@@ -32,6 +32,10 @@ struct Rgb8 {
 /// Returns the colour of one of mms's colour letters (k b a c g o r w y, the dark B A C G O R Y,
 /// and V dark violet; docs/mms.md has the table), or nothing for another character.
 std::optional<Rgb8> CellColourOf(char letter);
+/// Returns a colour as "#rrggbb".
+std::string HexColour(const Rgb8& rgb);
+/// Returns the colour letter whose colour (CellColourOf) is `hex`, "#rrggbb", or nothing.
+std::optional<char> CellColourLetter(const std::string& hex);
 
 struct FirmwareBeliefs {
   /// Side bits as in the protocol: north 1, east 2, south 4, west 8.

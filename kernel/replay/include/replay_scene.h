@@ -38,8 +38,10 @@ class ReplayScene {
   Kernel& kernel() { return *kernel_; }
   /// What the firmware believed at the time shown.
   const FirmwareBeliefs& beliefs() const { return beliefs_; }
-  /// The scenario's HUD lines at the time shown, then the firmware's values then (one line).
-  std::vector<std::string> Hud() const;
+  /// The scenario's HUD lines at the time shown, then the firmware's values then (one line), then
+  /// each of `signals` (recorded names) with its value then. Throws InputError naming a signal
+  /// the recording has not.
+  std::vector<std::string> Hud(const std::vector<std::string>& signals = {}) const;
   /// The times a player jumps between: events, and log lines at info level or above.
   const std::vector<double>& marks() const { return marks_; }
 

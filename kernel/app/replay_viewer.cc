@@ -21,18 +21,13 @@ namespace {
 // the timeline's strip along the bottom of the window, in pixels
 constexpr int kTimelineHeight = 24;
 
-const char* kHelpKeys =
-    "Space\nLeft Right\n+ - 0\n[ ]  PgUp PgDn\nHome End\nF\n1 2 3\nR\nB\nU\nS\nQ, Esc\nmouse";
-const char* kHelpActions =
-    "play, pause\na sample back, forward (pauses)\nfaster, slower, real time\n"
-    "previous, next event\nstart, end\nfollow the robot\ncamera: top, chase, free\nToF beams\n"
-    "firmware's walls\nHUD\nscreenshot\nquit\n"
-    "drag the timeline: scrub; drag: orbit (left), pan (right); wheel: zoom";
-
 class ReplayWindow {
  public:
-  ReplayWindow(ReplayScene& scene, const ReplayViewOptions& o)
-      : scene_(scene), options_(o), paused_(o.paused), speed_(o.speed), cursor_s_(o.start_s) {
+  ReplayWindow(ReplayScene& scene, const ReplayViewOptions& o) : scene_(scene), options_(o) {
+    timeline_ = {scene.end_s(), scene.sample_times(), scene.marks()};
+    controls_.cursor_s = o.start_s;
+    controls_.paused = o.paused;
+    controls_.speed = o.speed;
     window_ = OpenViewerWindow(o.title, "replay");
     glfwSetWindowUserPointer(window_, this);
     glfwSetKeyCallback(window_, [](GLFWwindow* w, int key, int, int action, int) {
@@ -54,7 +49,7 @@ class ReplayWindow {
       ReplayWindow* v = Of(w);
       v->renderer_->MoveCamera(mjMOUSE_ZOOM, 0, -0.05 * dy, &v->camera_);
     });
-    scene_.ShowAt(cursor_s_);
+    scene_.ShowAt(controls_.cursor_s);
     renderer_ = std::make_unique<SceneRenderer>(scene_.kernel(), mjFONTSCALE_150);
     int width = 0, height = 0;
     glfwGetFramebufferSize(window_, &width, &height);
@@ -74,17 +69,11 @@ class ReplayWindow {
   void Run() {
     using Clock = std::chrono::steady_clock;
     auto last = Clock::now();
-    while (!ViewerDisplayLost() && !glfwWindowShouldClose(window_) && !quit_) {
+    while (!ViewerDisplayLost() && !glfwWindowShouldClose(window_) && !controls_.quit) {
       const auto now = Clock::now();
-      if (!paused_ && !scrubbing_) {
-        cursor_s_ += std::chrono::duration<double>(now - last).count() * speed_;
-        if (cursor_s_ >= End()) {
-          cursor_s_ = End();
-          paused_ = true;  // at the end it waits, as a player does
-        }
-      }
+      if (!scrubbing_) controls_.Play(std::chrono::duration<double>(now - last).count(), timeline_);
       last = now;
-      scene_.ShowAt(cursor_s_);
+      scene_.ShowAt(controls_.cursor_s);
       Frame();
       glfwPollEvents();
       if (options_.max_frames > 0 && frames_ >= options_.max_frames) break;
@@ -96,89 +85,15 @@ class ReplayWindow {
     return static_cast<ReplayWindow*>(glfwGetWindowUserPointer(w));
   }
 
-  double End() const { return scene_.end_s(); }
-
   void Key(int key) {
-    const std::vector<double>& marks = scene_.marks();
-    const double* speed = std::find(std::begin(kReplaySpeeds), std::end(kReplaySpeeds), speed_);
-    switch (key) {
-      case GLFW_KEY_SPACE:
-        if (paused_ && cursor_s_ >= End()) cursor_s_ = 0;  // played to the end: from the start
-        paused_ = !paused_;
-        break;
-      case GLFW_KEY_LEFT:
-      case GLFW_KEY_RIGHT:
-        paused_ = true;
-        cursor_s_ = scene_.NextSample(cursor_s_, key == GLFW_KEY_RIGHT ? 1 : -1);
-        break;
-      case GLFW_KEY_EQUAL:
-      case GLFW_KEY_KP_ADD:
-        if (speed + 1 < std::end(kReplaySpeeds)) speed_ = speed[1];
-        break;
-      case GLFW_KEY_MINUS:
-      case GLFW_KEY_KP_SUBTRACT:
-        if (speed > std::begin(kReplaySpeeds) && speed != std::end(kReplaySpeeds))
-          speed_ = speed[-1];
-        break;
-      case GLFW_KEY_0:
-        speed_ = 1;
-        break;
-      case GLFW_KEY_RIGHT_BRACKET:
-      case GLFW_KEY_PAGE_DOWN: {
-        const auto next = std::upper_bound(marks.begin(), marks.end(), cursor_s_ + 1e-9);
-        if (next != marks.end()) cursor_s_ = *next;
-        paused_ = true;
-        break;
-      }
-      case GLFW_KEY_LEFT_BRACKET:
-      case GLFW_KEY_PAGE_UP: {
-        const auto next = std::lower_bound(marks.begin(), marks.end(), cursor_s_ - 1e-9);
-        if (next != marks.begin()) cursor_s_ = *std::prev(next);
-        paused_ = true;
-        break;
-      }
-      case GLFW_KEY_HOME:
-        cursor_s_ = 0;
-        break;
-      case GLFW_KEY_END:
-        cursor_s_ = End();
-        break;
-      case GLFW_KEY_F:
-        follow_ = !follow_;
-        break;
-      case GLFW_KEY_1:
-      case GLFW_KEY_2:
-      case GLFW_KEY_3: {
-        int width = 0, height = 0;
-        glfwGetFramebufferSize(window_, &width, &height);
-        camera_ = renderer_->Camera(kCameraNames[key - GLFW_KEY_1],
-                                    static_cast<double>(width) / std::max(height, 1));
-        break;
-      }
-      case GLFW_KEY_R:
-        beams_ = !beams_;
-        break;
-      case GLFW_KEY_B:
-        beliefs_ = !beliefs_;
-        break;
-      case GLFW_KEY_U:
-        hud_ = !hud_;
-        break;
-      case GLFW_KEY_H:
-      case GLFW_KEY_F1:
-        help_ = !help_;
-        break;
-      case GLFW_KEY_S:
-        screenshot_ = true;
-        break;
-      case GLFW_KEY_Q:
-      case GLFW_KEY_ESCAPE:
-        quit_ = true;
-        break;
-      default:
-        break;
+    controls_.Key(key, timeline_);
+    if (!controls_.preset.empty()) {
+      int width = 0, height = 0;
+      glfwGetFramebufferSize(window_, &width, &height);
+      camera_ =
+          renderer_->Camera(controls_.preset, static_cast<double>(width) / std::max(height, 1));
+      controls_.preset.clear();
     }
-    cursor_s_ = std::clamp(cursor_s_, 0.0, End());
   }
 
   bool OnTimeline(double y) const {
@@ -190,7 +105,7 @@ class ReplayWindow {
   void Scrub(double x) {
     int width = 0, height = 0;
     glfwGetWindowSize(window_, &width, &height);
-    cursor_s_ = std::clamp(x / std::max(width, 1), 0.0, 1.0) * End();
+    controls_.Scrub(x / std::max(width, 1), timeline_);
   }
 
   void Move(double x, double y) {
@@ -214,44 +129,45 @@ class ReplayWindow {
     int width = 0, height = 0;
     glfwGetFramebufferSize(window_, &width, &height);
     const mjrRect viewport{0, 0, width, height};
-    if (follow_) {
+    if (controls_.follow) {
       const Pose2D p = scene_.kernel().world().RobotPose(scene_.kernel().state().data(), 0);
       camera_.lookat[0] = p.x_m;
       camera_.lookat[1] = p.y_m;
     }
     DrawOptions draw;
-    draw.beams = beams_;
-    draw.beliefs = beliefs_;
+    draw.beams = controls_.beams;
+    draw.beliefs = controls_.beliefs;
     draw.firmware = &scene_.beliefs();
     draw.clock = false;  // the corner says the time, above the timeline
-    if (hud_) draw.hud = scene_.Hud(options_.signals);
+    if (controls_.hud) draw.hud = scene_.Hud(options_.signals);
     mjr_setBuffer(mjFB_WINDOW, &renderer_->context());
     renderer_->Draw(viewport, camera_, draw);
     DrawTimeline(width);
 
     char corner[160];
     std::snprintf(corner, sizeof(corner), "replay %.3f s of %.3f s\n%s%gx%s", scene_.time_s(),
-                  End(), paused_ ? "paused; " : "", speed_, help_ ? "" : "; H: help");
+                  timeline_.end_s, controls_.paused ? "paused; " : "", controls_.speed,
+                  controls_.help ? "" : "; H: help");
     mjr_overlay(mjFONT_NORMAL, mjGRID_BOTTOMRIGHT,
                 {0, kTimelineHeight, width, height - kTimelineHeight}, corner, nullptr,
                 &renderer_->context());
-    if (help_) {
-      mjr_overlay(mjFONT_NORMAL, mjGRID_TOPRIGHT, viewport, kHelpKeys, kHelpActions,
-                  &renderer_->context());
+    if (controls_.help) {
+      mjr_overlay(mjFONT_NORMAL, mjGRID_TOPRIGHT, viewport, ReplayControls::HelpKeys(),
+                  ReplayControls::HelpActions(), &renderer_->context());
     }
     ++frames_;
     const bool last = options_.max_frames > 0 && frames_ >= options_.max_frames;
-    if (screenshot_ || last) {
+    if (controls_.screenshot || last) {
       Screenshot(last ? "replay.png" : "replay_" + std::to_string(++screenshots_) + ".png", width,
                  height, draw.hud);
-      screenshot_ = false;
+      controls_.screenshot = false;
     }
     glfwSwapBuffers(window_);
   }
 
   // the run's length as a bar, the played part filled, a tick at every event, the cursor
   void DrawTimeline(int width) {
-    const double end = std::max(End(), 1e-9);
+    const double end = std::max(timeline_.end_s, 1e-9);
     mjr_rectangle({0, 0, width, kTimelineHeight}, 0.12f, 0.12f, 0.14f, 1);
     mjr_rectangle({0, 6, static_cast<int>(width * scene_.time_s() / end), kTimelineHeight - 12},
                   0.25f, 0.5f, 0.85f, 1);
@@ -277,10 +193,8 @@ class ReplayWindow {
   GLFWwindow* window_ = nullptr;
   std::unique_ptr<SceneRenderer> renderer_;
   mjvCamera camera_{};
-  bool paused_, follow_ = false, beams_ = true, beliefs_ = true, hud_ = true, help_ = false;
-  bool screenshot_ = false, quit_ = false;
-  double speed_;
-  double cursor_s_;
+  ReplayControls controls_;
+  ReplayTimeline timeline_;
   int frames_ = 0, screenshots_ = 0;
   bool left_down_ = false, right_down_ = false, scrubbing_ = false;
   double last_x_ = 0, last_y_ = 0;

@@ -8,12 +8,10 @@
 #include <string>
 #include <vector>
 
+#include "replay_controls.h"
 #include "replay_scene.h"
 
 namespace unimouse {
-
-/// The speeds a replay plays at, in sim seconds per wall second.
-inline constexpr double kReplaySpeeds[] = {0.1, 0.25, 0.5, 1, 2, 4, 8, 16};
 
 struct ReplayViewOptions {
   std::string title;

@@ -5,7 +5,6 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <iterator>
 
 #include "unimouse/errors.h"
 
@@ -79,6 +78,8 @@ ReplayScene::ReplayScene(const Recording& recording, std::vector<RecordedRobot> 
   }
   std::sort(marks_.begin(), marks_.end());
   marks_.erase(std::unique(marks_.begin(), marks_.end()), marks_.end());
+  for (const Timed<Pose2D>& pose : recording.robots.front().poses)
+    sample_times_.push_back(pose.t_s);
   ShowAt(0);
 }
 
@@ -104,19 +105,6 @@ void ReplayScene::ShowAt(double t_s) {
   }
   const int b = Recording::Latest(recording_.beliefs, t_s);
   beliefs_ = b >= 0 ? recording_.beliefs[b].value : FirmwareBeliefs{};
-}
-
-double ReplayScene::NextSample(double t_s, int direction) const {
-  const std::vector<Timed<Pose2D>>& poses = recording_.robots.front().poses;
-  // a sample within a nanosecond of t_s is t_s itself
-  if (direction > 0) {
-    const auto next = std::upper_bound(poses.begin(), poses.end(), t_s + 1e-9,
-                                       [](double t, const Timed<Pose2D>& p) { return t < p.t_s; });
-    return next == poses.end() ? t_s : next->t_s;
-  }
-  const auto next = std::lower_bound(poses.begin(), poses.end(), t_s - 1e-9,
-                                     [](const Timed<Pose2D>& p, double t) { return p.t_s < t; });
-  return next == poses.begin() ? t_s : std::prev(next)->t_s;
 }
 
 std::vector<std::string> ReplayScene::Hud(const std::vector<std::string>& signals) const {

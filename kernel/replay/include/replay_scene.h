@@ -31,9 +31,8 @@ class ReplayScene {
   double time_s() const { return time_s_; }
   /// The recording's last time.
   double end_s() const { return recording_.end_s; }
-  /// The time of the first robot's next sample after `t_s` (direction 1) or the last before it
-  /// (-1), or `t_s` when there is none.
-  double NextSample(double t_s, int direction) const;
+  /// The times of the first robot's samples.
+  const std::vector<double>& sample_times() const { return sample_times_; }
 
   Kernel& kernel() { return *kernel_; }
   /// What the firmware believed at the time shown.
@@ -52,6 +51,7 @@ class ReplayScene {
   std::vector<int> signal_column_;  // for each kernel signal, its column in the recording, or -1
   FirmwareBeliefs beliefs_;
   std::vector<double> marks_;
+  std::vector<double> sample_times_;
   double time_s_ = -1;
 };
 

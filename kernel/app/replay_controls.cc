@@ -69,40 +69,8 @@ bool ReplayControls::Key(int key, const ReplayTimeline& timeline) {
     case GLFW_KEY_END:
       cursor_s = timeline.end_s;
       return true;
-    case GLFW_KEY_F:
-      follow = !follow;
-      return true;
-    case GLFW_KEY_1:
-      preset = "top";
-      return true;
-    case GLFW_KEY_2:
-      preset = "chase";
-      return true;
-    case GLFW_KEY_3:
-      preset = "free";
-      return true;
-    case GLFW_KEY_R:
-      beams = !beams;
-      return true;
-    case GLFW_KEY_B:
-      beliefs = !beliefs;
-      return true;
-    case GLFW_KEY_U:
-      hud = !hud;
-      return true;
-    case GLFW_KEY_H:
-    case GLFW_KEY_F1:
-      help = !help;
-      return true;
-    case GLFW_KEY_S:
-      screenshot = true;
-      return true;
-    case GLFW_KEY_Q:
-    case GLFW_KEY_ESCAPE:
-      quit = true;
-      return true;
     default:
-      return false;
+      return DisplayKeys::Key(key);
   }
 }
 

@@ -1,11 +1,12 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // What the replay window's keys and timeline do to its cursor, apart from any window, so that
-// it can be tested without one (as viewer_controls.h does for the run's viewer).
+// it can be tested without one; the keys for what is shown are the run viewer's (DisplayKeys).
 #ifndef UNIMOUSE_APP_REPLAY_CONTROLS_H_
 #define UNIMOUSE_APP_REPLAY_CONTROLS_H_
 
-#include <string>
 #include <vector>
+
+#include "viewer_controls.h"
 
 namespace unimouse {
 
@@ -20,18 +21,10 @@ struct ReplayTimeline {
   std::vector<double> marks;
 };
 
-struct ReplayControls {
+struct ReplayControls : DisplayKeys {
   double cursor_s = 0;
   double speed = 1;  ///< one of kReplaySpeeds
   bool paused = false;
-  bool follow = false;
-  bool beams = true;
-  bool beliefs = true;
-  bool hud = true;
-  bool help = false;
-  std::string preset;  ///< a named camera just chosen, "" when none
-  bool screenshot = false;
-  bool quit = false;
 
   /// Applies a key press (a GLFW key code); returns false for a key that means nothing.
   bool Key(int key, const ReplayTimeline& timeline);

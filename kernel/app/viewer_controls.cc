@@ -7,34 +7,10 @@
 
 namespace unimouse {
 
-bool ViewerControls::Key(int key) {
+bool DisplayKeys::Key(int key) {
   switch (key) {
-    case GLFW_KEY_SPACE:
-      paused = !paused;
-      return true;
-    case GLFW_KEY_RIGHT:
-    case GLFW_KEY_N:
-      paused = true;
-      ++steps_wanted;
-      return true;
-    case GLFW_KEY_EQUAL:
-    case GLFW_KEY_KP_ADD:
-      speed = std::min(speed * 2, kMaxSpeed);
-      return true;
-    case GLFW_KEY_MINUS:
-    case GLFW_KEY_KP_SUBTRACT:
-      speed = std::max(speed / 2, kMinSpeed);
-      return true;
-    case GLFW_KEY_0:
-      speed = 1;
-      return true;
     case GLFW_KEY_F:
       follow = !follow;
-      return true;
-    case GLFW_KEY_TAB:
-      // the next robot of several, followed
-      follow = true;
-      ++followed;
       return true;
     case GLFW_KEY_1:
       preset = "top";
@@ -61,15 +37,46 @@ bool ViewerControls::Key(int key) {
     case GLFW_KEY_S:
       screenshot = true;
       return true;
-    case GLFW_KEY_BACKSPACE:
-      restart = true;
-      return true;
     case GLFW_KEY_Q:
     case GLFW_KEY_ESCAPE:
       quit = true;
       return true;
     default:
       return false;
+  }
+}
+
+bool ViewerControls::Key(int key) {
+  switch (key) {
+    case GLFW_KEY_SPACE:
+      paused = !paused;
+      return true;
+    case GLFW_KEY_RIGHT:
+    case GLFW_KEY_N:
+      paused = true;
+      ++steps_wanted;
+      return true;
+    case GLFW_KEY_EQUAL:
+    case GLFW_KEY_KP_ADD:
+      speed = std::min(speed * 2, kMaxSpeed);
+      return true;
+    case GLFW_KEY_MINUS:
+    case GLFW_KEY_KP_SUBTRACT:
+      speed = std::max(speed / 2, kMinSpeed);
+      return true;
+    case GLFW_KEY_0:
+      speed = 1;
+      return true;
+    case GLFW_KEY_TAB:
+      // the next robot of several, followed
+      follow = true;
+      ++followed;
+      return true;
+    case GLFW_KEY_BACKSPACE:
+      restart = true;
+      return true;
+    default:
+      return DisplayKeys::Key(key);
   }
 }
 

@@ -7,20 +7,27 @@
 
 namespace unimouse {
 
-struct ViewerControls {
-  bool paused = false;
-  int steps_wanted = 0;  ///< physics steps to take while paused
-  double speed = 1;      ///< sim seconds per wall second
-  bool follow = false;   ///< the camera's centre stays on the robot
-  int followed = 0;      ///< which robot it follows, counted on through the run's robots
+/// The keys both viewers share (the live run's and the replay's): what is shown and how.
+struct DisplayKeys {
+  bool follow = false;  ///< the camera's centre stays on the robot
   bool beams = true;
   bool beliefs = true;
   bool hud = true;
   bool help = false;
   std::string preset;  ///< a named camera just chosen, "" when none
   bool screenshot = false;
-  bool restart = false;
   bool quit = false;
+
+  /// Applies F, 1 2 3, R, B, U, H (F1), S, Q (Esc); returns false for another key.
+  bool Key(int key);
+};
+
+struct ViewerControls : DisplayKeys {
+  bool paused = false;
+  int steps_wanted = 0;  ///< physics steps to take while paused
+  double speed = 1;      ///< sim seconds per wall second
+  int followed = 0;      ///< which robot it follows, counted on through the run's robots
+  bool restart = false;
 
   static constexpr double kMinSpeed = 1.0 / 16;
   static constexpr double kMaxSpeed = 64;

@@ -94,11 +94,9 @@ void ReplayScene::ShowAt(double t_s) {
     kernel_->world().PlaceRobot(d, PoseAt(robot, t_s), static_cast<int>(i));
   }
   std::vector<double>& signals = kernel_->state().signals();
-  const int row = [&] {
-    const auto& times = recording_.signal_times_s;
-    const auto after = std::upper_bound(times.begin(), times.end(), t_s);
-    return static_cast<int>(after - times.begin()) - 1;
-  }();
+  const auto& times = recording_.signal_times_s;
+  signal_row_ = std::upper_bound(times.begin(), times.end(), t_s) - times.begin() - 1;
+  const ptrdiff_t row = signal_row_;
   for (size_t i = 0; i < signal_column_.size() && i < signals.size(); ++i) {
     signals[i] = row >= 0 && signal_column_[i] >= 0 ? recording_.signal_rows[row][signal_column_[i]]
                                                     : std::nan("");
@@ -122,8 +120,7 @@ std::vector<std::string> ReplayScene::Hud(const std::vector<std::string>& signal
     }
     lines.push_back(line);
   }
-  const auto& times = recording_.signal_times_s;
-  const auto row = std::upper_bound(times.begin(), times.end(), time_s_) - times.begin() - 1;
+  const ptrdiff_t row = signal_row_;
   for (const std::string& name : signals) {
     const auto& names = recording_.signal_names;
     const auto column = std::find(names.begin(), names.end(), name);

@@ -7,6 +7,7 @@
 #ifndef UNIMOUSE_REPLAY_REPLAY_SCENE_H_
 #define UNIMOUSE_REPLAY_REPLAY_SCENE_H_
 
+#include <cstddef>
 #include <memory>
 #include <string>
 #include <vector>
@@ -53,6 +54,7 @@ class ReplayScene {
   std::vector<double> marks_;
   std::vector<double> sample_times_;
   double time_s_ = -1;
+  ptrdiff_t signal_row_ = -1;  // the recording's last signal row at or before time_s_
 };
 
 }  // namespace unimouse

@@ -87,15 +87,15 @@ int RunOnce(const RunOptions& options, Viewer* viewer) {
   }
   std::unique_ptr<Session> session = Session::Open(o);
 
-  std::optional<int64_t> view_frames;
+  std::optional<ViewRecord> view;
   if (viewer != nullptr) {
     // the window steps the run at its own speed; closing it ends the run
     viewer->Show(*session);
-    view_frames = viewer->frames();
+    view = ViewRecord{viewer->frames(), viewer->FramesPerSecond()};
   } else {
     while (!session->Over()) session->Step();
   }
-  const RunRecord r = session->Finish(view_frames);
+  const RunRecord r = session->Finish(view);
 
   const std::string out_dir = options.session.out_dir;
   if (r.firmware_maze) {
@@ -116,6 +116,10 @@ int RunOnce(const RunOptions& options, Viewer* viewer) {
   const Pose2D& pose = r.robot().pose;
   std::printf("  robot at (%.3f, %.3f) m heading %.1f deg\n", pose.x_m, pose.y_m,
               pose.yaw_rad * 180 / std::numbers::pi);
+  if (r.view) {
+    std::printf("  viewer: %lld frames, %.1f a second\n", static_cast<long long>(r.view->frames),
+                r.view->frames_per_second);
+  }
   if (!r.pictures_unavailable.empty()) {
     std::printf("  no pictures: %s\n", r.pictures_unavailable.c_str());
   } else if (r.pictures_written > 0) {

@@ -49,17 +49,35 @@ GLFWwindow* OpenViewerWindow(const std::string& title, const std::string& option
     XSetIOErrorHandler(DisplayLost);
     XSetIOErrorExitHandler(display, DisplayLostExit, nullptr);
   }
-  glfwWindowHint(GLFW_SAMPLES, 4);
-  GLFWwindow* window = glfwCreateWindow(1200, 900, title.c_str(), nullptr, nullptr);
-  if (window == nullptr) {
-    throw InputError(option + " cannot open a window: " + last_glfw_error);
+  auto open = [&](int samples) {
+    glfwWindowHint(GLFW_VISIBLE, GLFW_FALSE);
+    glfwWindowHint(GLFW_SAMPLES, samples);
+    GLFWwindow* window = glfwCreateWindow(1200, 900, title.c_str(), nullptr, nullptr);
+    if (window == nullptr) {
+      throw InputError(option + " cannot open a window: " + last_glfw_error);
+    }
+    glfwMakeContextCurrent(window);
+    return window;
+  };
+  GLFWwindow* window = open(4);
+  // a software rasteriser shades every pixel four times over with 4x multisampling, which
+  // halves its frame rate (docs/performance.md): there the window draws without it
+  if (IsSoftwareRenderer(reinterpret_cast<const char*>(glGetString(GL_RENDERER)))) {
+    glfwMakeContextCurrent(nullptr);
+    glfwDestroyWindow(window);
+    window = open(0);
   }
-  glfwMakeContextCurrent(window);
   glfwSwapInterval(1);
+  glfwShowWindow(window);
   return window;
 }
 
 bool ViewerDisplayLost() { return display_lost; }
+
+double Viewer::FramesPerSecond() const {
+  const double span_s = std::chrono::duration<double>(last_drawn_ - first_drawn_).count();
+  return frames_ > 1 && span_s > 0 ? (frames_ - 1) / span_s : 0;
+}
 
 Viewer::Viewer(const std::string& title, std::string out_dir, int max_frames)
     : out_dir_(std::move(out_dir)), max_frames_(max_frames) {
@@ -168,7 +186,8 @@ std::string Viewer::State(Session& run) const {
 bool Viewer::Frame(Session& run, const std::string& state) {
   glfwMakeContextCurrent(window_);
   Draw(run, state);
-  ++frames_;
+  last_drawn_ = std::chrono::steady_clock::now();
+  if (frames_++ == 0) first_drawn_ = last_drawn_;
   const bool last_frame = max_frames_ > 0 && frames_ >= max_frames_;
   if (controls_.screenshot || last_frame) {
     SaveScreenshot(last_frame ? "view.png" : "view_" + std::to_string(++screenshots_) + ".png");

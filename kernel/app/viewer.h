@@ -21,7 +21,8 @@ namespace unimouse {
 
 class SceneRenderer;
 
-/// Opens a 1200 x 900 window with its OpenGL context current, for the viewers; throws
+/// Opens a 1200 x 900 window with its OpenGL context current, for the viewers (4x multisampling,
+/// none on a software renderer); throws
 /// InputError naming `option` (exit code 2) when there is no display. GLFW, once initialised,
 /// stays so until the process ends.
 GLFWwindow* OpenViewerWindow(const std::string& title, const std::string& option);
@@ -53,6 +54,8 @@ class Viewer {
   bool restart_requested() const { return controls_.restart; }
   /// Frames drawn since the window opened.
   int frames() const { return frames_; }
+  /// Frames drawn a second, from the first frame to the last; 0 before the second frame.
+  double FramesPerSecond() const;
 
  private:
   void OnMouseMove(double x, double y);
@@ -76,6 +79,7 @@ class Viewer {
   mjvCamera camera_{};
   // Watch: when the last frame was drawn, and the wall and sim time the pace counts from
   std::chrono::steady_clock::time_point last_frame_, pace_wall_;
+  std::chrono::steady_clock::time_point first_drawn_, last_drawn_;  // for the frame rate
   double pace_sim_s_ = 0;
   double pace_speed_ = 0;
   // the mouse

@@ -33,6 +33,15 @@ void CheckCameraName(const std::string& name) {
   throw InputError("unknown camera '" + name + "': top, chase or free");
 }
 
+bool IsSoftwareRenderer(const char* gl_renderer) {
+  if (gl_renderer == nullptr) return false;
+  const std::string name = gl_renderer;
+  for (const char* software : {"llvmpipe", "softpipe", "swrast", "SWR"}) {
+    if (name.find(software) != std::string::npos) return true;
+  }
+  return false;
+}
+
 SceneRenderer::SceneRenderer(const Kernel& kernel, int font_scale)
     : kernel_(kernel), font_scale_(font_scale) {
   mjv_defaultScene(&scene_);

@@ -133,7 +133,9 @@ nlohmann::json RunRecordJson(const RunRecord& record) {
   j["contacts_not_kept"] = r.contacts_not_kept;
   j["warnings"] = r.warnings;
   j["exit_code"] = r.exit_code;
-  if (r.view_frames) j["view"] = {{"frames", *r.view_frames}};
+  if (r.view) {
+    j["view"] = {{"frames", r.view->frames}, {"frames_per_second", r.view->frames_per_second}};
+  }
   return j;
 }
 

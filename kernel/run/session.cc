@@ -682,7 +682,7 @@ void Session::CloseRecording(const RunRecord& record, const nlohmann::json& resu
   recording_.reset();
 }
 
-RunRecord Session::Finish(std::optional<int64_t> view_frames) {
+RunRecord Session::Finish(std::optional<ViewRecord> view) {
   UNIMOUSE_DEMAND(!finished_);
   finished_ = true;
   progress_.reset();
@@ -771,7 +771,7 @@ RunRecord Session::Finish(std::optional<int64_t> view_frames) {
   r.contacts = kernel_->contacts().contacts();
   r.contacts_not_kept = kernel_->contacts().contacts_not_kept();
   r.warnings = warnings_;
-  r.view_frames = view_frames;
+  r.view = view;
   const nlohmann::json json = RunRecordJson(r);
   WriteResultRecord(options_.out_dir, json);
   CloseRecording(r, json);

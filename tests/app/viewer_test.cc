@@ -11,6 +11,7 @@
 
 #include "png_file.h"
 #include "run_program.h"
+#include "scene_renderer.h"
 #include "text_file.h"
 #include "viewer_controls.h"
 
@@ -71,6 +72,16 @@ TEST(ViewerControlsTest, KeysToggleWhatIsShown) {
   EXPECT_FALSE(c.Key(GLFW_KEY_Z));
 }
 
+TEST(ViewerTest, KnowsMesasSoftwareRasterisersByTheirRendererNames) {
+  EXPECT_TRUE(IsSoftwareRenderer("llvmpipe (LLVM 15.0.6, 256 bits)"));
+  EXPECT_TRUE(IsSoftwareRenderer("softpipe"));
+  EXPECT_TRUE(IsSoftwareRenderer("Software Rasterizer (swrast)"));
+  EXPECT_FALSE(IsSoftwareRenderer("Mesa Intel(R) UHD Graphics 620 (KBL GT2)"));
+  EXPECT_FALSE(IsSoftwareRenderer("NVIDIA GeForce RTX 3060/PCIe/SSE2"));
+  EXPECT_FALSE(IsSoftwareRenderer("AMD Radeon RX 6600 (navi23, LLVM 15.0.6, DRM 3.49)"));
+  EXPECT_FALSE(IsSoftwareRenderer(nullptr));
+}
+
 bool HaveXvfb() { return std::system("command -v xvfb-run > /dev/null 2>&1") == 0; }
 
 TEST(ViewerTest, OpensUnderXvfbDrawsFramesAndItsScreenshotShowsTheMaze) {
@@ -80,6 +91,11 @@ TEST(ViewerTest, OpensUnderXvfbDrawsFramesAndItsScreenshotShowsTheMaze) {
       "viewer_xvfb", "xvfb-run -a -s '-screen 0 1280x1024x24' ");
   ASSERT_EQ(r.outcome.exit_code, 0) << r.outcome.output;
   EXPECT_EQ(r.result["view"]["frames"], 30);
+  // the frames were drawn within the run: from the first to the last takes no longer than it
+  const double fps = r.result["view"]["frames_per_second"].get<double>();
+  ASSERT_GT(fps, 0);
+  EXPECT_LE(29 / fps, r.result["wall_time_s"].get<double>());
+  EXPECT_NE(r.outcome.output.find("  viewer: 30 frames, "), std::string::npos) << r.outcome.output;
   EXPECT_GT(r.result["sim_time_s"].get<double>(), 0);
   const std::string shot =
       (std::filesystem::temp_directory_path() / "viewer_xvfb/view.png").string();

@@ -17,7 +17,7 @@ namespace unimouse {
 /// The version of result.json's schema, major.minor. A new key, or a new value where the schema
 /// lists them, raises the minor: a reader of 1.0 reads every 1.x record. A key removed or
 /// renamed, or one whose type or meaning changes, raises the major.
-inline constexpr const char* kResultSchemaVersion = "1.5";
+inline constexpr const char* kResultSchemaVersion = "1.6";
 
 /// The version of unimouse that writes records, e.g. "0.1.0".
 const char* UnimouseVersion();

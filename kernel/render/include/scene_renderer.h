@@ -37,6 +37,10 @@ struct DrawOptions {
   const FirmwareBeliefs* firmware = nullptr;
 };
 
+/// Whether an OpenGL renderer's name (GL_RENDERER) is one of Mesa's software rasterisers, on
+/// which the viewers' windows draw without multisampling.
+bool IsSoftwareRenderer(const char* gl_renderer);
+
 /// An RGB picture, rows from the top.
 struct Image {
   int width = 0;

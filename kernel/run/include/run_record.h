@@ -55,6 +55,12 @@ struct ScenarioRunRecord {
   std::string traceback;  ///< of a script error; "" none
 };
 
+/// What a viewer's window showed of a run.
+struct ViewRecord {
+  int64_t frames = 0;            ///< frames drawn
+  double frames_per_second = 0;  ///< over the time from the first frame to the last
+};
+
 /// The record of one run.
 struct RunRecord {
   std::string status;  ///< "completed", "fault" or "interrupted"
@@ -83,8 +89,8 @@ struct RunRecord {
   std::optional<int64_t> restarts;  ///< all robots' firmware restarts, with a firmware only
   std::vector<Contact> contacts;    ///< every contact as it began, the first ContactWatch::kMaxKept
   int64_t contacts_not_kept = 0;    ///< contacts beyond those
-  std::vector<std::string> warnings;   ///< every warning logged, "component: text"
-  std::optional<int64_t> view_frames;  ///< frames a viewer drew of the run
+  std::vector<std::string> warnings;  ///< every warning logged, "component: text"
+  std::optional<ViewRecord> view;     ///< with a viewer only
 
   /// The first robot: the robot of a one-robot run.
   const RobotRecord& robot() const { return robots.front(); }

@@ -128,8 +128,8 @@ class Session {
   bool Over() const;
   /// Ends the run once: the scenario's finish, the last pictures, every component's finish, the
   /// maze as the firmware saw it; writes result.json atomically and returns its record.
-  /// `view_frames`: how many frames a viewer drew of the run, for the record.
-  RunRecord Finish(std::optional<int64_t> view_frames = std::nullopt);
+  /// `view`: what a viewer's window showed of the run, for the record.
+  RunRecord Finish(std::optional<ViewRecord> view = std::nullopt);
 
   Kernel& kernel() { return *kernel_; }
   /// The first robot's file.

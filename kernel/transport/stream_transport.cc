@@ -22,6 +22,7 @@ void StreamTransport::Adopt(int fd) {
   stream_.assign(fd);
   stream_.non_blocking(true);
   connected_ = true;
+  ++peers_;
 }
 
 void StreamTransport::CloseStream() {

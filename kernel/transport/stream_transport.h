@@ -29,6 +29,7 @@ class StreamTransport : public Transport {
   bool WaitReadable(std::chrono::milliseconds timeout) final;
   size_t Write(std::span<const uint8_t> bytes) final;
   bool Connected() const final { return connected_; }
+  uint64_t peers() const final { return peers_; }
 
  protected:
   StreamTransport() = default;
@@ -52,6 +53,7 @@ class StreamTransport : public Transport {
   asio::io_context io_;
   asio::posix::stream_descriptor stream_{io_};
   bool connected_ = false;
+  uint64_t peers_ = 0;
 };
 
 }  // namespace unimouse::link

@@ -387,8 +387,40 @@ void Link::Apply(const SenseContext& ctx, const FirmwareFrame& f, Heard& heard) 
   }
 }
 
+void Link::PeerCame(const SenseContext& ctx) const {
+  was_connected_ = true;
+  ctx.Log("firmware connected");
+  if (frames_ever_ > 0) {
+    ++reconnections_;
+    WithinRestarts(ctx, reconnections_, "the firmware's link came back");
+  }
+}
+
+void Link::PeerLost(const SenseContext& ctx, Heard& heard) const {
+  was_connected_ = false;
+  // a lost link always stops the motors, whatever the firmware said
+  bool commanded = false;
+  for (const Incoming& i : receive_) commanded = commanded || ctx.Read(i.signal) != 0;
+  ZeroReceived(ctx);
+  ctx.Log(commanded ? "firmware disconnected: motors stopped" : "firmware disconnected");
+  // a firmware that crashed or quit is the run's error, not a cable pulled out
+  if (const std::string failure = transport_->Failure(); !failure.empty()) {
+    ctx.Fail(failure + " at t=" + Seconds(ctx.time_s()) + " s");
+  }
+  decoder_.Reset();
+  // what the next firmware says of itself is its own, and lock-step waits for a firmware
+  // that is there: it comes back when the next one asks
+  ctx.state()[kRepeats] = 0;
+  ctx.state()[kLockstep] = 0;
+  ctx.SetFirmwarePaced(false);
+  heard.gone_or_restarted = true;
+  startup_codes_in_a_row_ = 0;
+  if (frames_ever_ > 0) next_frame_restarts_ = true;
+}
+
 void Link::Receive(const SenseContext& ctx, Heard& heard) const {
   inbox_.clear();
+  const uint64_t peers_before = transport_->peers();
   // a firmware that floods cannot keep the step reading forever
   if (read_this_step_ < kReadPerStep_bytes) {
     transport_->Read(inbox_, kReadPerStep_bytes - read_this_step_);
@@ -396,38 +428,17 @@ void Link::Receive(const SenseContext& ctx, Heard& heard) const {
   read_this_step_ += inbox_.size();
   received_bytes_ += inbox_.size();
   TakeText(ctx);
-  if (transport_->Connected() != was_connected_) {
-    was_connected_ = transport_->Connected();
-    if (was_connected_) {
-      ctx.Log("firmware connected");
-      if (frames_ever_ > 0) {
-        ++reconnections_;
-        WithinRestarts(ctx, reconnections_, "the firmware's link came back");
-      }
-    } else {
-      // a lost link always stops the motors, whatever the firmware said
-      bool commanded = false;
-      for (const Incoming& i : receive_) commanded = commanded || ctx.Read(i.signal) != 0;
-      ZeroReceived(ctx);
-      ctx.Log(commanded ? "firmware disconnected: motors stopped" : "firmware disconnected");
-      // a firmware that crashed or quit is the run's error, not a cable pulled out
-      if (const std::string failure = transport_->Failure(); !failure.empty()) {
-        ctx.Fail(failure + " at t=" + Seconds(ctx.time_s()) + " s");
-      }
-      decoder_.Reset();
-      // what the next firmware says of itself is its own, and lock-step waits for a firmware
-      // that is there: it comes back when the next one asks
-      ctx.state()[kRepeats] = 0;
-      ctx.state()[kLockstep] = 0;
-      ctx.SetFirmwarePaced(false);
-      heard.gone_or_restarted = true;
-      startup_codes_in_a_row_ = 0;
-      if (frames_ever_ > 0) next_frame_restarts_ = true;
-    }
+  // in the order it happened: a peer that came in this read came before its bytes, and one
+  // that went (even one that came and went within the read, a client that connects, sends and
+  // closes inside one step) went after them
+  if (transport_->peers() != peers_before || (transport_->Connected() && !was_connected_)) {
+    if (was_connected_) PeerLost(ctx, heard);
+    PeerCame(ctx);
   }
   std::vector<FirmwareFrame> frames;
   decoder_.Feed(inbox_, frames);
   for (const FirmwareFrame& f : frames) Apply(ctx, f, heard);
+  if (was_connected_ && !transport_->Connected()) PeerLost(ctx, heard);
   if (decoder_.text_lines() > 0 && !text_said_) {
     text_said_ = true;
     ctx.Log(

@@ -168,6 +168,9 @@ class Link final : public Component {
 
   // reads what the transport has, within this step's budget, and applies its frames
   void Receive(const SenseContext& ctx, Heard& heard) const;
+  // a peer that came or went: logged, counted, and the motors stopped when one goes
+  void PeerCame(const SenseContext& ctx) const;
+  void PeerLost(const SenseContext& ctx, Heard& heard) const;
   // before the run's clock starts: skips what comes before the firmware's start-up codes, then
   // reads them and the rest; false (after failing the run) when they do not come in time
   bool AwaitStartUp(const SenseContext& ctx, Heard& heard) const;

@@ -216,6 +216,34 @@ TEST_F(LinkRestartTest, ATcpClientThatDialsAgainCarriesOnTheSameRunAsARestart) {
   ::close(client);
 }
 
+TEST_F(LinkRestartTest, AClientThatConnectsSendsAndClosesWithinOneStepIsSeenComeAndGo) {
+  const int port = 43000 + ::getpid() % 20000;
+  Make("tcp:127.0.0.1:" + std::to_string(port), "");
+  const std::vector<uint8_t> go = {UNIMOUSE_ID_MOTOR_LEFT,  0x58, 0x02,
+                                   UNIMOUSE_ID_MOTOR_RIGHT, 0x58, 0x02};  // 600 each
+  int client = ConnectTo(port);
+  Write(client, kStartUp);
+  Write(client, go);
+  Step(5);
+  EXPECT_EQ(SignalValue(*kernel_, "left.command"), 600);
+  ::close(client);
+  Step(2);
+  // three visits, each over before the simulator's next read: it accepts the client, reads its
+  // frames and its end in one go
+  for (int i = 0; i < 3; ++i) {
+    client = ConnectTo(port);
+    Write(client, kStartUp);
+    Write(client, go);
+    ::close(client);
+    Step(1);
+    // the visit's command lasted no longer than the link it came on
+    EXPECT_EQ(SignalValue(*kernel_, "left.command"), 0) << "visit " << i;
+  }
+  EXPECT_EQ(restarts_, (std::vector<int>{1, 2, 3}));
+  EXPECT_EQ(Count("firmware connected"), 4);
+  EXPECT_EQ(Count("firmware disconnected: motors stopped"), 4);
+}
+
 TEST_F(LinkRestartTest, AClientThatKeepsDiallingEndsTheRunAfterMaxRestarts) {
   const int port = 42000 + ::getpid() % 20000;
   Make("tcp:127.0.0.1:" + std::to_string(port), ", max_restarts: 5");

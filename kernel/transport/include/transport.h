@@ -31,6 +31,10 @@ class Transport {
   virtual size_t Write(std::span<const uint8_t> bytes) = 0;
   /// Returns whether a peer is there to talk to.
   virtual bool Connected() const = 0;
+  /// Returns how many peers the transport has taken so far (TCP clients accepted, a pty or
+  /// port opened again), so that a peer that came and went within one Read is still seen;
+  /// 0 for a transport whose peer cannot come back.
+  virtual uint64_t peers() const { return 0; }
   /// Returns one line for the console: what it is and where to connect.
   virtual std::string Describe() const = 0;
   /// Returns the line's own rate in baud (10 bits a byte), or 0 when it has none.

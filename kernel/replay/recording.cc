@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <limits>
 #include <nlohmann/json.hpp>
+#include <set>
 
 #include "mcap_reader.h"
 #include "unimouse/errors.h"
@@ -22,6 +23,10 @@ double Seconds(uint64_t time_ns) { return static_cast<double>(time_ns) * 1e-9; }
 double Number(const json& value) {
   return value.is_number() ? value.get<double>() : std::numeric_limits<double>::quiet_NaN();
 }
+
+// the topics Take reads, besides the robots' poses
+const std::set<std::string, std::less<>> kTaken = {
+    "/signals", "/events", "/log", "/hud", "/firmware/values", "/beliefs", "/scenery"};
 
 class RecordingReader : public McapVisitor {
  public:
@@ -44,6 +49,9 @@ class RecordingReader : public McapVisitor {
     if (topic == topics_.end()) return;
     const double t = Seconds(log_time_ns);
     out_.end_s = std::max(out_.end_s, t);
+    // what a replay does not show (the beams, which it draws from the signals, and the beliefs'
+    // 3D scene, which it draws from /beliefs) is not parsed: it is most of a recording's JSON
+    if (robot_of_channel_.count(channel_id) == 0 && !kTaken.contains(topic->second)) return;
     const json m = json::parse(data, nullptr, false);
     if (m.is_discarded() || !m.is_object()) return;  // a damaged message is skipped
     try {

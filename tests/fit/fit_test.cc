@@ -175,7 +175,10 @@ TEST(FitTest, TheHalfSizeRobotGivesBackItsTorqueConstantsWithinFivePercent) {
   for (size_t i = 0; i < 4; ++i) {
     const FittedParameter& p = report.parameters[i];
     SCOPED_TRACE(p.ref.component + "." + p.ref.key);
-    // Kt to the acceptance bound; Ra only within 15 % on this robot (docs/calibrate.md, limits)
+    // Kt to the acceptance bound; Ra only within 15 %: its 8 ms time constant shows in a row or
+    // two after each step, where the 12-count encoders' rounding, not Ra, decides the fit's
+    // minimum (on the file's own log it sits near Ra x 1.1; with 120 counts per turn at 1.0:
+    // docs/calibrate.md, limits)
     EXPECT_LT(std::abs(p.value / truths[i] - 1), p.ref.key == "kt_nm_per_a" ? 0.05 : 0.15);
   }
   for (const ChannelFit& c : report.channels) EXPECT_GE(c.r2_after, 0.98) << c.channel;

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <map>
 #include <memory>
 
 #include "command_line.h"
@@ -38,6 +39,29 @@ Loaded Load(const FitOptions& o) {
 }
 
 std::string Name(const fit::ParameterRef& p) { return p.component + "." + p.key; }
+
+// the plots' file names: out_dir/<log's stem>-<channel>-<kind>.png, the stem numbered when two
+// logs share it
+class PlotNames {
+ public:
+  PlotNames(const std::string& out_dir, const std::vector<fit::SysidLog>& logs) : dir_(out_dir) {
+    std::map<std::string, int> seen;
+    for (const fit::SysidLog& log : logs) {
+      std::string stem = std::filesystem::path(log.file).stem().string();
+      const int n = ++seen[stem];
+      if (n > 1) stem += "-" + std::to_string(n);
+      stems_[log.file] = stem;
+    }
+  }
+  std::string operator()(const std::string& log, const std::string& channel,
+                         const char* kind) const {
+    return dir_ + "/" + stems_.at(log) + "-" + channel + "-" + kind + ".png";
+  }
+
+ private:
+  std::string dir_;
+  std::map<std::string, std::string> stems_;
+};
 
 }  // namespace
 
@@ -89,6 +113,12 @@ int FitCommand(const FitOptions& o) {
       o.out_dir + "/" + std::filesystem::path(l.robot_file).stem().string() + "-fitted.yaml";
   WriteTextFile(out, patched);
   std::printf("\nwrote %s\n", out.c_str());
+  const PlotNames plot_names(o.out_dir, l.logs);
+  for (const fit::ChannelFit& c : report.channels) {
+    const std::string plot = plot_names(c.log, c.channel, "fit");
+    fit::WritePlot(plot, fit::FitPlot(c));
+    std::printf("wrote %s\n", plot.c_str());
+  }
   return kExitPassed;
 }
 
@@ -96,13 +126,22 @@ int CompareCommand(const FitOptions& o) {
   const Loaded l = Load(o);
   PluginRegistry registry;
   registry.AddSearchPath(PluginSearchPath(o.plugin_path));
+  std::vector<std::pair<std::string, fit::ChannelComparison>> compared;
   for (const fit::SysidLog& log : l.logs) {
     std::printf("%s replayed on %s\n", log.file.c_str(), l.robot_file.c_str());
     std::printf("%-20s %10s %12s %12s %10s\n", "channel", "RMSE", "max error", "at time_s", "r2");
-    for (const fit::ChannelComparison& c : fit::CompareLog(l.robot, registry, log)) {
+    for (fit::ChannelComparison& c : fit::CompareLog(l.robot, registry, log)) {
       std::printf("%-20s %10.4g %12.4g %12.3f %10.4f\n", c.channel.c_str(), c.rmse, c.max_error,
                   c.max_error_time_s, c.r2);
+      compared.emplace_back(log.file, std::move(c));
     }
+  }
+  std::filesystem::create_directories(o.out_dir);
+  const PlotNames plot_names(o.out_dir, l.logs);
+  for (const auto& [log, c] : compared) {
+    const std::string plot = plot_names(log, c.channel, "compare");
+    fit::WritePlot(plot, fit::ComparePlot(log, c));
+    std::printf("wrote %s\n", plot.c_str());
   }
   return kExitPassed;
 }
@@ -114,7 +153,7 @@ void AddFitCommands(CommandLine& cli) {
   fit_cmd->add_option("robot", fit->robot, "robot YAML file, or the name of a bundled robot")
       ->required();
   fit_cmd->add_option("logs", fit->logs, "CSV logs of the sysid test pattern")->required();
-  fit_cmd->add_option("--out", fit->out_dir, "directory for the fitted robot file")
+  fit_cmd->add_option("--out", fit->out_dir, "directory for the fitted robot file and the plots")
       ->capture_default_str();
   cli.Add(fit_cmd, [&cli, fit] {
     fit->plugin_path = cli.plugin_path();
@@ -126,6 +165,9 @@ void AddFitCommands(CommandLine& cli) {
   compare_cmd->add_option("robot", compare->robot, "robot YAML file, or a bundled robot")
       ->required();
   compare_cmd->add_option("logs", compare->logs, "CSV logs of the sysid test pattern")->required();
+  compare->out_dir = "compare";
+  compare_cmd->add_option("--out", compare->out_dir, "directory for the plots")
+      ->capture_default_str();
   cli.Add(compare_cmd, [&cli, compare] {
     compare->plugin_path = cli.plugin_path();
     return CompareCommand(*compare);

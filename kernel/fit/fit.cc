@@ -4,6 +4,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <initializer_list>
 #include <unsupported/Eigen/LevenbergMarquardt>
 #include <unsupported/Eigen/NumericalDiff>
@@ -256,6 +257,9 @@ FitReport FitRobot(const RobotSpec& robot, const PluginRegistry& registry,
       }
     }
   }
+  // the file's own values, when they replay the logs better than every start found (a log of
+  // the very robot): the search then cannot end worse than the file
+  if (before.squaredNorm() < best) start = Eigen::VectorXd::Ones(n);
   x = start;
   lm.minimize(x);
   report.iterations = static_cast<int>(lm.iterations());
@@ -316,6 +320,10 @@ FitReport FitRobot(const RobotSpec& robot, const PluginRegistry& registry,
       cf.rmse_before = Rmse(d.measured.values[c], was.values[c]);
       cf.r2_after = RSquared(d.measured.values[c], now.values[c]);
       cf.rmse_after = Rmse(d.measured.values[c], now.values[c]);
+      cf.time_s.assign(d.log->time_s.begin() + 1, d.log->time_s.end());
+      cf.logged = d.measured.values[c];
+      cf.replayed_before = was.values[c];
+      cf.replayed_after = now.values[c];
       report.channels.push_back(cf);
     }
   }
@@ -341,9 +349,49 @@ std::vector<ChannelComparison> CompareLog(const RobotSpec& robot, const PluginRe
         cc.max_error_time_s = log.time_s[i + 1];
       }
     }
+    cc.time_s.assign(log.time_s.begin() + 1, log.time_s.end());
+    cc.logged = measured.values[c];
+    cc.replayed = replayed.values[c];
     out.push_back(cc);
   }
   return out;
+}
+
+namespace {
+
+std::vector<double> Difference(const std::vector<double>& a, const std::vector<double>& b) {
+  std::vector<double> d(a.size());
+  for (size_t i = 0; i < a.size(); ++i) d[i] = a[i] - b[i];
+  return d;
+}
+
+}  // namespace
+
+Plot FitPlot(const ChannelFit& c) {
+  Plot plot;
+  plot.title = std::filesystem::path(c.log).filename().string() + ": " + c.channel +
+               "; logged (black), replayed with the file's values " +
+               "(orange) and the fitted ones (blue)";
+  plot.time_s = c.time_s;
+  plot.panels.push_back({c.channel,
+                         {{c.logged, kLoggedColour},
+                          {c.replayed_before, kFileColour},
+                          {c.replayed_after, kFittedColour}}});
+  plot.panels.push_back({"residual: replayed - logged",
+                         {{Difference(c.replayed_before, c.logged), kFileColour},
+                          {Difference(c.replayed_after, c.logged), kFittedColour}}});
+  return plot;
+}
+
+Plot ComparePlot(const std::string& log, const ChannelComparison& c) {
+  Plot plot;
+  plot.title = std::filesystem::path(log).filename().string() + ": " + c.channel +
+               "; logged (black), simulated (blue)";
+  plot.time_s = c.time_s;
+  plot.panels.push_back({c.channel, {{c.logged, kLoggedColour}, {c.replayed, kFittedColour}}});
+  plot.panels.push_back(
+      {"residual: simulated - logged", {{Difference(c.replayed, c.logged), kFittedColour}}});
+  return plot;
 }
 
 }  // namespace unimouse::fit

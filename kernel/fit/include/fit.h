@@ -20,6 +20,7 @@
 
 #include "plugin_registry.h"
 #include "replay.h"
+#include "residual_plot.h"
 #include "robot_spec.h"
 #include "sysid_log.h"
 
@@ -49,6 +50,9 @@ struct ChannelFit {
   std::string channel;
   double r2_before = 0, rmse_before = 0;
   double r2_after = 0, rmse_after = 0;
+  /// The channel against time (the log's time at the end of each interval), as logged and as
+  /// replayed with the file's and with the fitted values, for the plots.
+  std::vector<double> time_s, logged, replayed_before, replayed_after;
 };
 
 struct FitReport {
@@ -77,9 +81,17 @@ struct ChannelComparison {
   std::string channel;
   double rmse = 0, max_error = 0, r2 = 0;
   double max_error_time_s = 0;
+  /// The channel against time, as logged and as replayed, for the plots.
+  std::vector<double> time_s, logged, replayed;
 };
 std::vector<ChannelComparison> CompareLog(const RobotSpec& robot, const PluginRegistry& registry,
                                           const SysidLog& log);
+
+/// The plots of a fit's channel: the log, the replay with the file's values and with the fitted
+/// ones above; below, the residuals (replayed minus logged) before and after the fit.
+Plot FitPlot(const ChannelFit& channel);
+/// The plot of a compared channel: the log and the replay above, the residual below.
+Plot ComparePlot(const std::string& log, const ChannelComparison& channel);
 
 }  // namespace unimouse::fit
 

@@ -75,8 +75,7 @@ GLFWwindow* OpenViewerWindow(const std::string& title, const std::string& option
 bool ViewerDisplayLost() { return display_lost; }
 
 double Viewer::FramesPerSecond() const {
-  const double span_s = std::chrono::duration<double>(last_drawn_ - first_drawn_).count();
-  return frames_ > 1 && span_s > 0 ? (frames_ - 1) / span_s : 0;
+  return FrameRate(run_frames_, std::chrono::duration<double>(last_drawn_ - first_drawn_).count());
 }
 
 Viewer::Viewer(const std::string& title, std::string out_dir, int max_frames)
@@ -187,7 +186,8 @@ bool Viewer::Frame(Session& run, const std::string& state) {
   glfwMakeContextCurrent(window_);
   Draw(run, state);
   last_drawn_ = std::chrono::steady_clock::now();
-  if (frames_++ == 0) first_drawn_ = last_drawn_;
+  ++frames_;
+  if (run_frames_++ == 0) first_drawn_ = last_drawn_;
   const bool last_frame = max_frames_ > 0 && frames_ >= max_frames_;
   if (controls_.screenshot || last_frame) {
     SaveScreenshot(last_frame ? "view.png" : "view_" + std::to_string(++screenshots_) + ".png");
@@ -208,6 +208,7 @@ void Viewer::Begin(Session& run) {
 }
 
 void Viewer::Show(Session& run) {
+  run_frames_ = 0;  // a run started again is a run of its own
   controls_.restart = false;
   Begin(run);
   using Clock = std::chrono::steady_clock;

@@ -52,9 +52,9 @@ class Viewer {
   void Linger(Session& session, const std::string& ending);
 
   bool restart_requested() const { return controls_.restart; }
-  /// Frames drawn since the window opened.
-  int frames() const { return frames_; }
-  /// Frames drawn a second, from the first frame to the last; 0 before the second frame.
+  /// Frames drawn of the run shown last (Show).
+  int frames() const { return run_frames_; }
+  /// Frames drawn a second of that run, from its first frame to its last.
   double FramesPerSecond() const;
 
  private:
@@ -72,7 +72,8 @@ class Viewer {
   GLFWwindow* window_ = nullptr;
   std::string out_dir_;
   int max_frames_ = 0;
-  int frames_ = 0;
+  int frames_ = 0;      // since the window opened
+  int run_frames_ = 0;  // of the run shown last
   int screenshots_ = 0;
   ViewerControls controls_;
   std::unique_ptr<SceneRenderer> renderer_;

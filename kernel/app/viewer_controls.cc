@@ -91,4 +91,8 @@ const char* ViewerControls::HelpActions() {
          "start the run again\nquit\ndrag: orbit (left), pan (right); wheel: zoom";
 }
 
+double FrameRate(int frames, double span_s) {
+  return frames > 1 && span_s > 0 ? (frames - 1) / span_s : 0;
+}
+
 }  // namespace unimouse

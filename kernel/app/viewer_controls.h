@@ -22,6 +22,10 @@ struct DisplayKeys {
   bool Key(int key);
 };
 
+/// Frames a second of `frames` drawn from the first to the last, `span_s` apart; 0 with fewer
+/// than two frames or no time between them.
+double FrameRate(int frames, double span_s);
+
 struct ViewerControls : DisplayKeys {
   bool paused = false;
   int steps_wanted = 0;  ///< physics steps to take while paused

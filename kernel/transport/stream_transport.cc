@@ -36,9 +36,13 @@ void StreamTransport::Settle(bool lost) {
 }
 
 void StreamTransport::Read(std::vector<uint8_t>& out, size_t max_bytes) {
+  const bool had_peer = connected_;
+  const uint64_t peers_before = peers_;
   if (max_bytes == 0 || (!connected_ && !Reconnect()) || !stream_.is_open()) return;
   uint8_t buffer[4096];
-  for (size_t total = 0; total < max_bytes;) {
+  size_t total = 0;
+  bool lost = false;
+  while (total < max_bytes) {
     boost::system::error_code ec;
     const size_t n =
         stream_.read_some(asio::buffer(buffer, std::min(sizeof(buffer), max_bytes - total)), ec);
@@ -46,11 +50,13 @@ void StreamTransport::Read(std::vector<uint8_t>& out, size_t max_bytes) {
     total += n;
     if (ec || n == 0) {
       // an end of file without an error is a peer gone too
-      Settle(Lost(ec) || (!ec && n == 0));
-      return;
+      lost = Lost(ec) || (!ec && n == 0);
+      break;
     }
   }
-  Settle(false);
+  // a stream that stays open for the next peer (a pty) has a new one when bytes come again
+  if (!had_peer && peers_ == peers_before && total > 0) ++peers_;
+  Settle(lost);
 }
 
 bool StreamTransport::WaitReadable(std::chrono::milliseconds timeout) {

@@ -140,6 +140,7 @@ void Link::Reset(const ResetContext& ctx) const {
   read_this_step_ = 0;
   received_bytes_ = 0;
   was_connected_ = false;
+  peers_seen_ = transport_ ? transport_->peers() : 0;  // none before Start
   begun_ = false;
   frames_ever_ = 0;
   startup_codes_in_a_row_ = 0;
@@ -387,6 +388,23 @@ void Link::Apply(const SenseContext& ctx, const FirmwareFrame& f, Heard& heard) 
   }
 }
 
+void Link::ApplyInOrder(const SenseContext& ctx, const std::vector<uint8_t>& bytes,
+                        Heard& heard) const {
+  // in the order it happened: a peer that came since the last look (in this read, or in a
+  // write's reconnection) came before its bytes, and one that went went after them, even one
+  // that came and went within one read (a client that connects, sends and closes inside a step)
+  const bool came = transport_->peers() != peers_seen_;
+  peers_seen_ = transport_->peers();
+  if (came || (transport_->Connected() && !was_connected_)) {
+    if (was_connected_) PeerLost(ctx, heard);
+    PeerCame(ctx);
+  }
+  std::vector<FirmwareFrame> frames;
+  decoder_.Feed(bytes, frames);
+  for (const FirmwareFrame& f : frames) Apply(ctx, f, heard);
+  if (was_connected_ && !transport_->Connected()) PeerLost(ctx, heard);
+}
+
 void Link::PeerCame(const SenseContext& ctx) const {
   was_connected_ = true;
   ctx.Log("firmware connected");
@@ -420,7 +438,6 @@ void Link::PeerLost(const SenseContext& ctx, Heard& heard) const {
 
 void Link::Receive(const SenseContext& ctx, Heard& heard) const {
   inbox_.clear();
-  const uint64_t peers_before = transport_->peers();
   // a firmware that floods cannot keep the step reading forever
   if (read_this_step_ < kReadPerStep_bytes) {
     transport_->Read(inbox_, kReadPerStep_bytes - read_this_step_);
@@ -428,17 +445,7 @@ void Link::Receive(const SenseContext& ctx, Heard& heard) const {
   read_this_step_ += inbox_.size();
   received_bytes_ += inbox_.size();
   TakeText(ctx);
-  // in the order it happened: a peer that came in this read came before its bytes, and one
-  // that went (even one that came and went within the read, a client that connects, sends and
-  // closes inside one step) went after them
-  if (transport_->peers() != peers_before || (transport_->Connected() && !was_connected_)) {
-    if (was_connected_) PeerLost(ctx, heard);
-    PeerCame(ctx);
-  }
-  std::vector<FirmwareFrame> frames;
-  decoder_.Feed(inbox_, frames);
-  for (const FirmwareFrame& f : frames) Apply(ctx, f, heard);
-  if (was_connected_ && !transport_->Connected()) PeerLost(ctx, heard);
+  ApplyInOrder(ctx, inbox_, heard);
   if (decoder_.text_lines() > 0 && !text_said_) {
     text_said_ = true;
     ctx.Log(
@@ -577,9 +584,7 @@ bool Link::AwaitStartUp(const SenseContext& ctx, Heard& heard) const {
                 std::chrono::duration<double>(std::chrono::steady_clock::now() - opened).count(),
                 static_cast<unsigned long long>(skipped_before_start_up_));
   ctx.Log(text);
-  std::vector<FirmwareFrame> frames;
-  decoder_.Feed(pending, frames);
-  for (const FirmwareFrame& f : frames) Apply(ctx, f, heard);
+  ApplyInOrder(ctx, pending, heard);
   return true;
 }
 

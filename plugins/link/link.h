@@ -168,6 +168,8 @@ class Link final : public Component {
 
   // reads what the transport has, within this step's budget, and applies its frames
   void Receive(const SenseContext& ctx, Heard& heard) const;
+  // applies bytes read, with the peers that came and went around them
+  void ApplyInOrder(const SenseContext& ctx, const std::vector<uint8_t>& bytes, Heard& heard) const;
   // a peer that came or went: logged, counted, and the motors stopped when one goes
   void PeerCame(const SenseContext& ctx) const;
   void PeerLost(const SenseContext& ctx, Heard& heard) const;
@@ -224,6 +226,7 @@ class Link final : public Component {
   mutable size_t read_this_step_ = 0;
   mutable uint64_t received_bytes_ = 0;  // since the last reset
   mutable bool was_connected_ = false;
+  mutable uint64_t peers_seen_ = 0;  // the transport's count of peers when last looked at
   // restarts: frames since the run began, whether this firmware sent its start-up codes, how
   // many of them just came in a row, whether the next frame is a new firmware's (the link came
   // back), and the counts

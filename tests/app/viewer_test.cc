@@ -72,6 +72,14 @@ TEST(ViewerControlsTest, KeysToggleWhatIsShown) {
   EXPECT_FALSE(c.Key(GLFW_KEY_Z));
 }
 
+TEST(ViewerControlsTest, TheFrameRateCountsTheGapsBetweenFrames) {
+  EXPECT_DOUBLE_EQ(FrameRate(31, 1.0), 30);  // 31 frames, 30 gaps, in one second
+  EXPECT_DOUBLE_EQ(FrameRate(2, 0.025), 40);
+  EXPECT_EQ(FrameRate(1, 0), 0);  // one frame has no rate
+  EXPECT_EQ(FrameRate(0, 0), 0);
+  EXPECT_EQ(FrameRate(5, 0), 0);  // no time between them: none measured
+}
+
 TEST(ViewerTest, KnowsMesasSoftwareRasterisersByTheirRendererNames) {
   EXPECT_TRUE(IsSoftwareRenderer("llvmpipe (LLVM 15.0.6, 256 bits)"));
   EXPECT_TRUE(IsSoftwareRenderer("softpipe"));

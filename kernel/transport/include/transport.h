@@ -31,9 +31,9 @@ class Transport {
   virtual size_t Write(std::span<const uint8_t> bytes) = 0;
   /// Returns whether a peer is there to talk to.
   virtual bool Connected() const = 0;
-  /// Returns how many peers the transport has taken so far (TCP clients accepted, a pty or
-  /// port opened again), so that a peer that came and went within one Read is still seen;
-  /// 0 for a transport whose peer cannot come back.
+  /// Returns how many peers the transport has had so far (TCP clients accepted, a port
+  /// plugged in again, a pty's other side speaking after it had none), so that a peer that
+  /// came and went within one Read is still seen; 0 for a transport that does not count them.
   virtual uint64_t peers() const { return 0; }
   /// Returns one line for the console: what it is and where to connect.
   virtual std::string Describe() const = 0;

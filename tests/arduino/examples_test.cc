@@ -109,7 +109,7 @@ TEST(ArduinoExamplesTest, MicromouseExploresJapan2018AndSpeedRunsThePathOfCost10
 // the racer on the main job's contest: the same optimal path as the micromouse example, driven
 // on velocity profiles and curves; its best run's time is the simulator's, from leaving the start
 // cell to entering the goal, and its wall contacts the simulator's count during that run
-TEST(ArduinoExamplesTest, RacerSpeedRunsJapan2018InUnder28SecondsWithoutTouchingAWall) {
+TEST(ArduinoExamplesTest, RacerSpeedRunsJapan2018InUnder26Point5SecondsWithoutTouchingAWall) {
   const std::string out =
       (std::filesystem::temp_directory_path() / "unimouse_example_racer").string();
   const ExampleRun r =
@@ -118,7 +118,7 @@ TEST(ArduinoExamplesTest, RacerSpeedRunsJapan2018InUnder28SecondsWithoutTouching
   const nlohmann::json& scenario = r.result["scenario"];
   EXPECT_EQ(scenario["status"], "passed") << scenario["reason"];
   const double best_s = scenario["scores"]["best_run_s"].get<double>();
-  EXPECT_LT(best_s, 27.5);  // 27.219 s when this was written
+  EXPECT_LT(best_s, 26.5);  // 25.995 s when this was written (27.219 s before the wall ends)
   EXPECT_EQ(scenario["scores"]["best_run_path_cost"], 108);
   // the best run among the records, and no wall touched during it
   int best_runs = 0;
@@ -130,8 +130,8 @@ TEST(ArduinoExamplesTest, RacerSpeedRunsJapan2018InUnder28SecondsWithoutTouching
   EXPECT_EQ(best_runs, 1) << scenario.dump();
   // nor in any other run, nor between runs
   EXPECT_EQ(scenario["scores"]["wall_contacts"], 0);
-  // the micromouse example's contest takes 442 s
-  EXPECT_LT(scenario["scores"]["time_used_s"].get<double>(), 260);
+  // the micromouse example's contest takes 442 s; this one 251.7 s
+  EXPECT_LT(scenario["scores"]["time_used_s"].get<double>(), 255);
   const std::string log = ReadTextFile(out + "/log.txt");
   EXPECT_NE(log.find("speed run 1: path cost 108"), std::string::npos) << log;
   // lock-step: the same contest again
@@ -141,12 +141,15 @@ TEST(ArduinoExamplesTest, RacerSpeedRunsJapan2018InUnder28SecondsWithoutTouching
   EXPECT_EQ(r.result["robot_pose"], again.result["robot_pose"]);
 }
 
-// the racer on classic mazes beyond the one it was designed on: two seeded draws of six from
-// the collection (Python's random.seed(30) and random.seed(31), random.sample of the sorted file
-// names). The first draw chose its speed run's acceleration (at 2.0 m/s^2 map-t1's touched a
-// wall); the second it had never run. Every contest passes, every best run is without a wall
-// contact, and every contest is, except one touch while exploring uknov2010f; the bounds are the
-// best runs when this was written, rounded up
+// the racer on classic mazes beyond the one it was designed on: three seeded draws from the
+// collection (Python's random.seed(30), random.seed(31) and random.seed(33), random.sample of the
+// sorted file names: six, six and eight). The first chose its speed run's acceleration (at 2.0
+// m/s^2 map-t1's touched a wall), the first two its curves' yaw acceleration (at 37 rad/s^2 a
+// best run on taiwan2015p touched a post); the third was never tuned on, only run to accept or
+// reject a choice (faster curves in staircases touched walls on three of it). Every contest passes
+// and every best run is without a wall contact; the contests marked false touch walls while
+// exploring or coming back, never in a speed run. The bounds are the best runs when this was
+// written, rounded up
 TEST(ArduinoExamplesTest, RacerWinsClassicContestsWithoutTouchingAWallInItsBestRun) {
   const std::string shared = testing::SharedMazesDir();
   if (shared.empty()) {
@@ -157,18 +160,26 @@ TEST(ArduinoExamplesTest, RacerWinsClassicContestsWithoutTouchingAWallInItsBestR
     double best_run_bound_s;
     bool no_contact_at_all;
   };
-  const Case cases[] = {{"minos19", 23.7, true},
-                        {"alljapan-008-1987-pre", 21.6, true},
-                        {"japan9p", 23.6, true},
-                        {"map-t1", 31.0, true},
-                        {"alljapan-016-1995-exp-fin", 21.2, true},
-                        {"taiwan2023cef", 35.2, true},
-                        {"AAMC22Maze", 17.1, true},
-                        {"uknov2010f", 19.8, false},
-                        {"c00d3f", 12.4, true},
-                        {"taiwan2015p", 14.6, true},
-                        {"empty", 4.6, true},
-                        {"alljapan-014-1993-exp-pre", 16.0, true}};
+  const Case cases[] = {{"minos19", 22.8, true},
+                        {"alljapan-008-1987-pre", 20.2, true},
+                        {"japan9p", 22.6, true},
+                        {"map-t1", 29.7, true},
+                        {"alljapan-016-1995-exp-fin", 20.4, true},
+                        {"taiwan2023cef", 34.6, true},
+                        {"AAMC22Maze", 16.4, true},
+                        {"uknov2010f", 19.2, false},
+                        {"c00d3f", 12.0, true},
+                        {"taiwan2015p", 14.1, true},
+                        {"empty", 4.5, true},
+                        {"alljapan-014-1993-exp-pre", 15.3, true},
+                        {"ijcp02", 13.9, true},
+                        {"kwu1", 19.4, false},
+                        {"minos01w", 12.8, true},
+                        {"uknov2017", 21.6, false},
+                        {"japan1999p", 20.2, true},
+                        {"wmmc-y1", 25.0, true},
+                        {"other-world85fin-1985", 34.6, true},
+                        {"ukoct2019", 29.9, false}};
   for (const Case& c : cases) {
     const ExampleRun r = RunExample("racer",
                                     std::string("micromouse --set end_on_log=done --maze ") +
@@ -203,7 +214,7 @@ TEST(ArduinoExamplesTest, RacerDrivesTheHalfSizeAndTheGyroRobotsWithoutTouchingA
   EXPECT_EQ(half.result["scenario"]["status"], "passed") << half.result["scenario"]["reason"];
   // the optimum of `unimouse maze solve`, as the micromouse example's test checks
   EXPECT_EQ(half.result["scenario"]["scores"]["best_run_path_cost"], 49);
-  EXPECT_LT(half.result["scenario"]["scores"]["best_run_s"].get<double>(), 14.0);  // 13.602 s
+  EXPECT_LT(half.result["scenario"]["scores"]["best_run_s"].get<double>(), 13.5);  // 13.055 s
   EXPECT_EQ(half.result["scenario"]["scores"]["wall_contacts"], 0);
 
   const ExampleRun gyro = RunExample(
@@ -215,7 +226,7 @@ TEST(ArduinoExamplesTest, RacerDrivesTheHalfSizeAndTheGyroRobotsWithoutTouchingA
   ASSERT_EQ(gyro.outcome.exit_code, 0) << gyro.outcome.output;
   EXPECT_EQ(gyro.result["scenario"]["status"], "passed") << gyro.result["scenario"]["reason"];
   EXPECT_EQ(gyro.result["scenario"]["scores"]["best_run_path_cost"], 108);
-  EXPECT_LT(gyro.result["scenario"]["scores"]["best_run_s"].get<double>(), 27.5);  // 27.110 s
+  EXPECT_LT(gyro.result["scenario"]["scores"]["best_run_s"].get<double>(), 26.5);  // 25.958 s
   EXPECT_EQ(gyro.result["scenario"]["scores"]["wall_contacts"], 0);
 }
 

@@ -17,9 +17,10 @@
 //  - Exploring never stops except to turn round or to finish: it decides what to do in a cell
 //    1.5 cm before entering it, on the walls its sensors saw while approaching.
 //  - The pose (eq. 3.29-3.31 from the encoders, the heading from the gyro when the robot sends
-//    it) is corrected by side walls (the distance from the corridor's centre line) and by a
-//    wall ahead (the distance along it). The tyres slip in proportion to the force they pass,
-//    which the estimate takes off the wheels' travel (kSlip, measured on this robot).
+//    it) is corrected by side walls (the distance from the corridor's centre line), by a wall
+//    ahead and, in the speed run, by the ends of side walls (the distance along it). The tyres slip
+//    in proportion to the force they pass, which the estimate takes off the wheels' travel (kSlip,
+//    measured on this robot).
 //
 // The limits come from robots/unimouse.yaml:
 //  - traction: the wheels' friction is 0.35 and they carry 0.147 of the robot's 0.157 kg (the
@@ -54,11 +55,12 @@ PathManager<kMaxSide, kMaxSide> paths(solver, 0, 0, Direction::North, 7, 7, 8, 8
 
 // the classic maze and robot (scaled by setupMaze() for a half-size maze)
 float kScale = 1;
-float kCell = 0.18f;         // m
-float kWallFace = 0.084f;    // m, from a corridor's centre line to a wall's face
-float kSensorAhead = 0.06f;  // m, the sensors ahead of the axle
-float kSensorSide = 0.048f;  // m, the side sensors off the centre line (yawed 45 degrees)
-float kWheelBase = 0.096f;   // m
+float kCell = 0.18f;             // m
+float kWallFace = 0.084f;        // m, from a corridor's centre line to a wall's face
+const float kPostHalf = 0.006f;  // m, half a post's side (classic; scaled with the cell)
+float kSensorAhead = 0.06f;      // m, the sensors ahead of the axle
+float kSensorSide = 0.048f;      // m, the side sensors off the centre line (yawed 45 degrees)
+float kWheelBase = 0.096f;       // m
 float kWheelRadius = 0.016f;
 const float kCountsPerTurn = 358.32f;
 float kAccel = 1.6f;            // m/s^2, along the path (traction, above), exploring
@@ -67,7 +69,7 @@ float kLateral = 1.8f;          // m/s^2, v^2 kappa in a curve
 float kTop = 1.0f;              // m/s, on long straights
 const float kYawAccel = 30;     // rad/s^2, entering and leaving a curve, exploring
 const float kSlip = 0.03f;      // s^2/m, the tyres' slip per m/s^2 (below)
-const float kYawAccelRun = 30;  // rad/s^2, the same in the speed run
+const float kYawAccelRun = 40;  // rad/s^2, the same in the speed run (curveSpeed)
 float kSearch = 0.40f;          // m/s, exploring straights
 float kSideWall = 0.10f;        // m, a 45-degree reading below this is a side wall
 float kFrontWall = 0.22f;       // m, a front reading below this while deciding: a wall ahead
@@ -157,7 +159,9 @@ float curvature(float s, float d) {
 
 // the speed at which a quarter turn of displacement d keeps to kLateral, and its ramps' yaw
 // acceleration (v^2 / (2 * ramp angle * r^2)) to kYawAccel: 30 rad/s^2 takes 0.1 N of a wheel's
-// 0.25 N of grip, for the robot's 3.3e-4 kg m^2 about the axle's middle (plate, wheels, caster)
+// 0.25 N of grip, for the robot's 3.3e-4 kg m^2 about the axle's middle (plate, wheels, caster).
+// In the speed run 40 rad/s^2 takes 0.14 N, and with the 0.14 N of 1.8 m/s^2 across a wheel
+// needs 0.2 N at the ramp's end; the speed run's curve is then held by kLateral alone
 float curveSpeed(float d, float yawAccel) {
   const float r = d / kTurnShape;
   return sqrtf(fminf(kLateral, yawAccel * 2 * kRampAngle * r) * r);
@@ -298,12 +302,47 @@ void updateEstimate(float dt) {
   estTheta = wrap(estTheta + dtheta);
 }
 
-// the side walls say how far the robot is from the corridor's centre line, a wall ahead how far
-// it is from the cell's edge; only on straights, along the maze's lines
+// where a side sensor's ray meets a wall's face, along the path (side: +1 left, -1 right), for
+// the robot at `along`, `across` off the corridor's centre line, its heading off by e
+float sideHit(int8_t side, float along, float across, float e) {
+  const float sensorAlong = along + kSensorAhead * cosf(e) - side * kSensorSide * sinf(e);
+  const float sensorAcross = across + kSensorAhead * sinf(e) + side * kSensorSide * cosf(e);
+  const float ray = e + side * PI / 4;
+  return sensorAlong + (side * kWallFace - sensorAcross) / sinf(ray) * cosf(ray);
+}
+
+// each side sensor's last reading on this straight: whether it was a wall's face, and where
+bool sawWall[2] = {false, false};
+float lastHit[2];
+
+// a side wall ends at a post's far face, half a post past the cell's edge: when the ray met a
+// wall at the last reading and nothing now, the face ended between the two, taken halfway
+// (within 1.5 cm at 1 m/s and a reading each 30 ms); returns the shift this gives the distance
+// along. Only in the speed run: exploring at 0.4 m/s, the front wall and the decisions 1.5 cm
+// before each cell keep it (with it, an exploration of japan9p went astray)
+float wallEnd(uint8_t i, bool wallNow, float hitNow, float d) {
+  float shift = 0;
+  if (racing && sawWall[i] && !wallNow && d > 1.5f * kSideWall) {
+    const float seen = (lastHit[i] + hitNow) / 2;
+    const float post = kPostHalf * kScale;
+    const float edge = roundf((seen - post) / kCell) * kCell + post;
+    if (fabsf(edge - seen) < 0.03f * kScale) shift = 0.5f * (edge - seen);
+  }
+  sawWall[i] = wallNow;
+  lastHit[i] = hitNow;
+  return shift;
+}
+
+// the side walls say how far the robot is from the corridor's centre line; a wall ahead, and in
+// the speed run the side walls' ends, how far it is along; only on straights, along the maze's
+// lines
 void correctEstimate() {
   if (queueEmpty()) return;
   const Segment& g = queue[head];
-  if (g.kind == Kind::Curve || g.kind == Kind::Pivot) return;
+  if (g.kind == Kind::Curve || g.kind == Kind::Pivot) {
+    sawWall[0] = sawWall[1] = false;
+    return;
+  }
   const float c = cosf(refTheta), s = sinf(refTheta);
   const float along = estX * c + estY * s, across = -estX * s + estY * c;  // across: left
   const float centre = (floorf(across / kCell) + 0.5f) * kCell;
@@ -314,19 +353,23 @@ void correctEstimate() {
     const float d = robot.leftDistance();
     const float off = kWallFace - d * (root * cosf(e) + root * sinf(e)) - kSensorAhead * sinf(e) -
                       kSensorSide * cosf(e);
-    if (d < kSideWall && fabsf(off - (across - centre)) < 0.02f * kScale) {
+    const bool wall = d < kSideWall && fabsf(off - (across - centre)) < 0.02f * kScale;
+    if (wall) {
       shiftAcross += 0.15f * (off - (across - centre));
       shiftTheta += 0.3f * (off - (across - centre)) / (0.1f * kScale);
     }
+    shiftAlong += wallEnd(0, wall, sideHit(1, along, across - centre, e), d);
   }
   if (robot.rightSensor().hasNewData()) {
     const float d = robot.rightDistance();
     const float off = d * (root * cosf(e) - root * sinf(e)) - kWallFace - kSensorAhead * sinf(e) +
                       kSensorSide * cosf(e);
-    if (d < kSideWall && fabsf(off - (across - centre)) < 0.02f * kScale) {
+    const bool wall = d < kSideWall && fabsf(off - (across - centre)) < 0.02f * kScale;
+    if (wall) {
       shiftAcross += 0.15f * (off - (across - centre));
       shiftTheta += 0.3f * (off - (across - centre)) / (0.1f * kScale);
     }
+    shiftAlong += wallEnd(1, wall, sideHit(-1, along, across - centre, e), d);
   }
   if (robot.frontSensor().hasNewData()) {
     const float f = robot.frontDistance();

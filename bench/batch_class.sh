@@ -43,7 +43,7 @@ statuses=$(tail -n +2 "$work/out/results.csv" | awk -F, '{print $5}' | sort | un
 cpu=$(awk -v u="$user" -v s="$system" -v n="$jobs" 'BEGIN { print (u + s) / n }')
 printf "%d contests (%s), link %s, -j 2: %.1f s wall (%.1f contests a minute)\n" "$jobs" \
   "$statuses" "$kind" "$seconds" "$(awk -v s="$seconds" -v n="$jobs" 'BEGIN { print n * 60 / s }')"
-printf "CPU: %.1f s user, %.1f s system: %.2f s a contest; 150 contests on 2 cores: %.1f min\n" \
+printf "CPU: %.1f s user, %.1f s system: %.2f s a contest, so 150 contests on 2 cores: %.1f min\n" \
   "$user" "$system" "$cpu" "$(awk -v c="$cpu" 'BEGIN { print 150 * c / 2 / 60 }')"
 # where a job's time goes: the simulated contest and the rest (start, pictures, replay page)
 python3 - "$work/out" <<'EOF'

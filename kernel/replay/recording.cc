@@ -24,9 +24,11 @@ double Number(const json& value) {
   return value.is_number() ? value.get<double>() : std::numeric_limits<double>::quiet_NaN();
 }
 
-// the topics Take reads, besides the robots' poses
-const std::set<std::string, std::less<>> kTaken = {
-    "/signals", "/events", "/log", "/hud", "/firmware/values", "/beliefs", "/scenery"};
+// a robot's poses: /robot/pose with one robot, /robots/NAME/pose with several
+bool IsPoseTopic(const std::string& t) {
+  return t == "/robot/pose" ||
+         (t.rfind("/robots/", 0) == 0 && t.size() > 13 && t.compare(t.size() - 5, 5, "/pose") == 0);
+}
 
 class RecordingReader : public McapVisitor {
  public:
@@ -35,8 +37,7 @@ class RecordingReader : public McapVisitor {
   void OnChannel(const McapChannel& channel) override {
     topics_[channel.id] = channel.topic;
     const std::string& t = channel.topic;
-    if (t == "/robot/pose" || (t.rfind("/robots/", 0) == 0 && t.size() > 13 &&
-                               t.compare(t.size() - 5, 5, "/pose") == 0)) {
+    if (IsPoseTopic(t)) {
       robot_of_channel_[channel.id] = static_cast<int>(out_.robots.size());
       RecordedRobot robot;
       if (t != "/robot/pose") robot.name = t.substr(8, t.size() - 13);
@@ -51,7 +52,7 @@ class RecordingReader : public McapVisitor {
     out_.end_s = std::max(out_.end_s, t);
     // what a replay does not show (the beams, which it draws from the signals, and the beliefs'
     // 3D scene, which it draws from /beliefs) is not parsed: it is most of a recording's JSON
-    if (robot_of_channel_.count(channel_id) == 0 && !kTaken.contains(topic->second)) return;
+    if (!ReplayReadsTopic(topic->second)) return;
     const json m = json::parse(data, nullptr, false);
     if (m.is_discarded() || !m.is_object()) return;  // a damaged message is skipped
     try {
@@ -179,6 +180,13 @@ class RecordingReader : public McapVisitor {
 };
 
 }  // namespace
+
+bool ReplayReadsTopic(const std::string& topic) {
+  // the topics Take reads: a topic it learns to read goes here too
+  static const std::set<std::string, std::less<>> kRead = {
+      "/signals", "/events", "/log", "/hud", "/firmware/values", "/beliefs", "/scenery"};
+  return IsPoseTopic(topic) || kRead.contains(topic);
+}
 
 Pose2D PoseAt(const RecordedRobot& robot, double t_s) {
   const std::vector<Timed<Pose2D>>& poses = robot.poses;

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // The pictures `unimouse fit` and `unimouse compare` write beside their report
-// (docs/calibrate.md, "Plots"): one channel of one log against time, in panels stacked one above
-// the other that share the time axis, drawn pixel by pixel and written as PNG.
+// (docs/calibrate.md, "Worked example"): one channel of one log against time, in panels stacked one
+// above the other that share the time axis, drawn pixel by pixel and written as PNG.
 #ifndef UNIMOUSE_FIT_RESIDUAL_PLOT_H_
 #define UNIMOUSE_FIT_RESIDUAL_PLOT_H_
 

@@ -84,6 +84,10 @@ Pose2D PoseAt(const RecordedRobot& robot, double t_s);
 /// newer recording format, or not a unimouse recording; a recording cut short is read up to its
 /// last whole record, saying so in `cut_short`.
 Recording ReadRecording(const std::string& path);
+/// Whether reading a recording reads a topic's messages: the others (the ToF beams, which a
+/// replay draws from the signals, and the beliefs' 3D scene, which it draws from /beliefs) are
+/// skipped without being parsed, most of a recording's JSON.
+bool ReplayReadsTopic(const std::string& topic);
 /// The same for a recording's bytes, named `name` (fuzzing, tests).
 Recording ParseRecording(std::string_view bytes, const std::string& name);
 

@@ -388,6 +388,19 @@ void Link::Apply(const SenseContext& ctx, const FirmwareFrame& f, Heard& heard) 
   }
 }
 
+bool Link::Commanded(const SenseContext& ctx) const {
+  for (const Incoming& i : receive_) {
+    if (ctx.Read(i.signal) != 0) return true;
+  }
+  return false;
+}
+
+bool Link::FailIfFirmwareFailed(const SenseContext& ctx) const {
+  const std::string failure = transport_->Failure();
+  if (!failure.empty()) ctx.Fail(failure + " at t=" + Seconds(ctx.time_s()) + " s");
+  return !failure.empty();
+}
+
 void Link::ApplyInOrder(const SenseContext& ctx, const std::vector<uint8_t>& bytes,
                         Heard& heard) const {
   // in the order it happened: a peer that came since the last look (in this read, or in a
@@ -417,14 +430,11 @@ void Link::PeerCame(const SenseContext& ctx) const {
 void Link::PeerLost(const SenseContext& ctx, Heard& heard) const {
   was_connected_ = false;
   // a lost link always stops the motors, whatever the firmware said
-  bool commanded = false;
-  for (const Incoming& i : receive_) commanded = commanded || ctx.Read(i.signal) != 0;
+  const bool commanded = Commanded(ctx);
   ZeroReceived(ctx);
   ctx.Log(commanded ? "firmware disconnected: motors stopped" : "firmware disconnected");
   // a firmware that crashed or quit is the run's error, not a cable pulled out
-  if (const std::string failure = transport_->Failure(); !failure.empty()) {
-    ctx.Fail(failure + " at t=" + Seconds(ctx.time_s()) + " s");
-  }
+  FailIfFirmwareFailed(ctx);
   decoder_.Reset();
   // what the next firmware says of itself is its own, and lock-step waits for a firmware
   // that is there: it comes back when the next one asks
@@ -525,10 +535,7 @@ bool Link::AwaitFirmware(const SenseContext& ctx, Heard& heard, bool Heard::*unt
       if (heard.gone_or_restarted || heard.*until) continue;
       // the last lines a firmware printed before it hung or crashed are the ones that matter
       TakeText(ctx);
-      if (const std::string failure = transport_->Failure(); !failure.empty()) {
-        ctx.Fail(failure + " at t=" + Seconds(ctx.time_s()) + " s");
-        return false;
-      }
+      if (FailIfFirmwareFailed(ctx)) return false;
       std::snprintf(text, sizeof(text),
                     "the firmware did not %s at t=%.3f s within %g s (lock-step)", waiting_for,
                     ctx.time_s(), p_.lockstep_timeout_s);
@@ -650,8 +657,7 @@ void Link::Sense(const SenseContext& ctx) const {
   }
 
   // failsafe: a silent board stops its motors, if it said that it repeats its commands
-  bool commanded = false;
-  for (const Incoming& i : receive_) commanded = commanded || ctx.Read(i.signal) != 0;
+  const bool commanded = Commanded(ctx);
   const bool repeats = s[kRepeats] != 0 || s[kLockstep] != 0;
   if (p_.failsafe_s > 0 && repeats && s[kFailsafe] == 0 &&
       ctx.time_s() - s[kLastFrame_s] > p_.failsafe_s && commanded) {

@@ -168,6 +168,10 @@ class Link final : public Component {
 
   // reads what the transport has, within this step's budget, and applies its frames
   void Receive(const SenseContext& ctx, Heard& heard) const;
+  // whether any received signal (a motor) is not 0
+  bool Commanded(const SenseContext& ctx) const;
+  // ends the run when the firmware crashed or quit (the transport's Failure); returns whether
+  bool FailIfFirmwareFailed(const SenseContext& ctx) const;
   // applies bytes read, with the peers that came and went around them
   void ApplyInOrder(const SenseContext& ctx, const std::vector<uint8_t>& bytes, Heard& heard) const;
   // a peer that came or went: logged, counted, and the motors stopped when one goes

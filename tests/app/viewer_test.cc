@@ -90,13 +90,11 @@ TEST(ViewerTest, KnowsMesasSoftwareRasterisersByTheirRendererNames) {
   EXPECT_FALSE(IsSoftwareRenderer(nullptr));
 }
 
-bool HaveXvfb() { return std::system("command -v xvfb-run > /dev/null 2>&1") == 0; }
-
 TEST(ViewerTest, OpensUnderXvfbDrawsFramesAndItsScreenshotShowsTheMaze) {
-  if (!HaveXvfb()) GTEST_SKIP() << "xvfb-run is not installed (apt install xvfb xauth)";
+  if (!testing::HaveXvfbRun()) GTEST_SKIP() << "xvfb-run is not installed (apt install xvfb xauth)";
   const auto r = testing::UnimouseRun(
       "--scenario none --maze japan2018 --duration 5 --view --view-frames 30 --no-pictures",
-      "viewer_xvfb", "xvfb-run -a -s '-screen 0 1280x1024x24' ");
+      "viewer_xvfb", testing::OnVirtualDisplay());
   ASSERT_EQ(r.outcome.exit_code, 0) << r.outcome.output;
   EXPECT_EQ(r.result["view"]["frames"], 30);
   // the frames were drawn within the run: from the first to the last takes no longer than it
@@ -123,12 +121,12 @@ TEST(ViewerTest, OpensUnderXvfbDrawsFramesAndItsScreenshotShowsTheMaze) {
 }
 
 TEST(ViewerTest, AnMmsProgramOnTheRobotIsShownUntilTheWindowClosesWhichInterruptsTheRun) {
-  if (!HaveXvfb()) GTEST_SKIP() << "xvfb-run is not installed (apt install xvfb xauth)";
+  if (!testing::HaveXvfbRun()) GTEST_SKIP() << "xvfb-run is not installed (apt install xvfb xauth)";
   const std::string out = (std::filesystem::temp_directory_path() / "viewer_mms").string();
   const auto o =
       testing::Unimouse("mms --physical --maze japan2018 --view --view-frames 20 --out " + out +
                             " -- " UNIMOUSE_MMS_FLOODFILL,
-                        "xvfb-run -a -s '-screen 0 1280x1024x24' ");
+                        testing::OnVirtualDisplay());
   // the run goes at real time while the window is open: 20 frames are some seconds of it
   EXPECT_EQ(o.exit_code, 3) << o.output;
   const nlohmann::json r = nlohmann::json::parse(ReadTextFile(out + "/result.json"));

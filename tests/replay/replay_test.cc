@@ -326,8 +326,6 @@ TEST_F(ReplayCommandTest, ARecordingCutShortPlaysUpToItsLastWholeChunkWithAWarni
   EXPECT_TRUE(fs::exists(cut + ".html"));
 }
 
-bool HaveXvfb() { return std::system("command -v xvfb-run > /dev/null 2>&1") == 0; }
-
 // where the window's screenshot shows the robot: the centre of its plate's green (pixels whose
 // neighbours two pixels away are green too, so that a 1-pixel ToF beam does not count), mapped
 // to metres through the maze's outermost red posts, whose outer edges are at -6 mm and 16 cells
@@ -364,7 +362,7 @@ std::optional<std::pair<double, double>> RobotInScreenshot(const std::string& pn
 }
 
 TEST_F(ReplayCommandTest, TheWindowShowsTheRobotWhereTheRecordingPutsItAndTheHudOfThatTime) {
-  if (!HaveXvfb()) GTEST_SKIP() << "xvfb-run is not installed (apt install xvfb xauth)";
+  if (!testing::HaveXvfbRun()) GTEST_SKIP() << "xvfb-run is not installed (apt install xvfb xauth)";
   const std::vector<TraceRow> trace = ReadTrace(Main() + "/trace.csv");
   const std::map<int64_t, double> left_voltage_v =
       ReadTraceColumn(Main() + "/trace.csv", "left.voltage_v");
@@ -377,7 +375,7 @@ TEST_F(ReplayCommandTest, TheWindowShowsTheRobotWhereTheRecordingPutsItAndTheHud
     const testing::Outcome o =
         testing::Unimouse("replay " + Main() + " --at " + at +
                               " --paused --view-frames 2 --signal left.voltage_v --out " + dir,
-                          "xvfb-run -a -s '-screen 0 1280x1024x24' ");
+                          testing::OnVirtualDisplay());
     ASSERT_EQ(o.exit_code, 0) << o.output;
     char said[96];
     std::snprintf(said, sizeof(said), "  screenshot: %s/replay.png at %.3f s\n", dir.c_str(), t);

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <stdexcept>
 
@@ -94,6 +95,12 @@ std::string FreshDirectory(const std::string& stem) {
     throw std::runtime_error(path + ": cannot make a directory");
   }
   return path;
+}
+
+bool HaveXvfbRun() { return std::system("command -v xvfb-run > /dev/null 2>&1") == 0; }
+
+std::string OnVirtualDisplay() {
+  return "xvfb-run -a -f " + FreshDirectory("xauth") + "/Xauthority -s '-screen 0 1280x1024x24' ";
 }
 
 }  // namespace unimouse::testing

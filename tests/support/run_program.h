@@ -42,6 +42,16 @@ std::vector<std::string> DocumentedCommands(const std::string& doc, const std::s
 /// in the place of `unimouse`. Result records are collected as Unimouse does.
 Outcome RunDocumented(const std::string& command, const std::string& directory);
 
+/// Whether xvfb-run is installed: tests that need a display skip without it.
+bool HaveXvfbRun();
+
+/// The `environment` for Unimouse that runs the program on a virtual X display of its own
+/// (xvfb-run, a 1280x1024 screen). The display's authority file is kept in a fresh directory:
+/// when xvfb-run keeps it in a directory of its own, it removes that as it exits, and when the
+/// removal fails (as it once did with several displays starting at once) xvfb-run exits with 5
+/// instead of the program's exit code.
+std::string OnVirtualDisplay();
+
 /// Makes a new, empty directory in the temporary directory, named after `stem` and unique to
 /// this call, and returns its path.
 std::string FreshDirectory(const std::string& stem);

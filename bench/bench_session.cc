@@ -43,13 +43,13 @@ void BM_SessionSpeedControlScenario(benchmark::State& bench) {
 BENCHMARK(BM_SessionSpeedControlScenario)->Unit(benchmark::kMillisecond)->Iterations(3);
 
 // the main job as `unimouse run` makes it (the contest in All Japan 2018 with the bundled
-// micromouse firmware in-process), without its pictures: to set beside BM_BareRobotJapan2018,
+// racer firmware in-process), without its pictures: to set beside BM_BareRobotJapan2018,
 // the same maze's physics alone
 void BM_MainJobJapan2018(benchmark::State& bench) {
   SessionOptions options;
   options.scenario = "micromouse";
   options.sets = {"end_on_log=done"};
-  options.link = "inproc:" UNIMOUSE_FIRMWARE_DIR "/micromouse.so";
+  options.link = "inproc:" UNIMOUSE_FIRMWARE_DIR "/racer.so";
   RunSessionBenchmark(bench, options);
 }
 BENCHMARK(BM_MainJobJapan2018)->Unit(benchmark::kMillisecond)->Iterations(3)->UseRealTime();
@@ -61,7 +61,7 @@ void BM_MainJobRecording(benchmark::State& bench) {
   SessionOptions options;
   options.scenario = "micromouse";
   options.sets = {"end_on_log=done"};
-  options.link = "inproc:" UNIMOUSE_FIRMWARE_DIR "/micromouse.so";
+  options.link = "inproc:" UNIMOUSE_FIRMWARE_DIR "/racer.so";
   options.record = levels[bench.range(0)];
   bench.SetLabel(options.record);
   RunSessionBenchmark(bench, options);

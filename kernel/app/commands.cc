@@ -619,8 +619,8 @@ void AddRunCommand(CommandLine& cli) {
     run->session.duration_given = run_cmd->get_option("--duration")->count() > 0;
     run->session.maze_given = run_cmd->get_option("--maze")->count() > 0;
     run->bad_options = GroupRobotOptions(*run_cmd, *run);
-    // the main job: no challenge and no driver chosen, so the contest with the bundled
-    // micromouse firmware; the robot, the maze, the duration, the seed, the pacing and the
+    // the main job: no challenge and no driver chosen, so the contest with the bundled racer
+    // firmware; the robot, the maze, the duration, the seed, the pacing and the
     // pictures change how it runs, not what runs. An open floor has no contest, and
     // `--scenario none` asks for the robot alone
     bool chosen = run->session.maze == "none";
@@ -631,8 +631,8 @@ void AddRunCommand(CommandLine& cli) {
     if (!chosen) {
       run->session.scenario = "micromouse";
       run->session.sets = {"end_on_log=done"};
-      run->session.link = link::BundledFirmwareSpec(link::FirmwareHost::kInProcess,
-                                                    FirmwareDirectory(), "micromouse");
+      run->session.link =
+          link::BundledFirmwareSpec(link::FirmwareHost::kInProcess, FirmwareDirectory(), "racer");
       for (SessionRobot& robot : run->session.robots) robot.link = run->session.link;
     }
     return RunCommand(*run);

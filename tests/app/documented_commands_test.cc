@@ -89,6 +89,12 @@ TEST(DocumentedCommandsTest, TheMainJobWithVShowsEveryReportAndLeavesItsRecordin
   }
   EXPECT_GT(reports, 200u);
   EXPECT_TRUE(fs::is_regular_file(dir + "/out/run.mcap"));
+  // the result line the README shows, to the millisecond
+  const std::string readme = ReadTextFile(UNIMOUSE_SOURCE_DIR "/README.md");
+  const size_t shown = readme.find("\n    scenario micromouse: passed: ");
+  ASSERT_NE(shown, std::string::npos);
+  const std::string line = readme.substr(shown + 5, readme.find('\n', shown + 1) - shown - 5);
+  EXPECT_NE(o.output.find("  " + line), std::string::npos) << line << "\n" << o.output;
 }
 
 // replay.md's two runs side by side: the main job and the contest with other sensor noise part

@@ -52,7 +52,8 @@ nlohmann::json ShortContest(const std::string& sets) {
 }
 
 TEST(ResultRecordTest, TheContestRecordsEachOfItsThreeRunsWithPathCostAndWallContacts) {
-  // the main job (README): 3 runs, best 71.784 s (path cost 108), 1 wall contact
+  // the micromouse example's contest (docs/mazes.md): 3 runs, best 71.784 s (path cost 108), 1
+  // wall contact
   const testing::RunResult run = testing::UnimouseRun(
       "--scenario micromouse --set end_on_log=done --link inproc:" + kFirmware, "unimouse_contest");
   ASSERT_EQ(run.outcome.exit_code, 0) << run.outcome.output;
@@ -94,13 +95,15 @@ TEST(ResultRecordTest, TheContestRecordsEachOfItsThreeRunsWithPathCostAndWallCon
 }
 
 TEST(ResultRecordTest, TheMomentTheExampleMouseLosesItsPositionIsAWarning) {
-  // the bundled example loses its position in Portugal 2024's final maze: at 65.6 s it believes
-  // it reached cell (11, 11), two cells north of where it is
+  // the micromouse example loses its position in Portugal 2024's final maze: at 65.6 s it
+  // believes it reached cell (11, 11), two cells north of where it is
   const std::string shared = testing::SharedMazesDir();
   if (shared.empty())
     GTEST_SKIP() << "the maze collection (../shared/mazes) is not beside the project";
-  const testing::RunResult run = testing::UnimouseRun(
-      "--maze " + shared + "/classic/Portugal-2024-Final.txt --duration 70", "unimouse_lost");
+  const testing::RunResult run =
+      testing::UnimouseRun("--scenario micromouse --link inproc:" + kFirmware + " --maze " +
+                               shared + "/classic/Portugal-2024-Final.txt --duration 70",
+                           "unimouse_lost");
   ASSERT_EQ(run.outcome.exit_code, 1) << run.outcome.output;  // no run yet
   EXPECT_EQ(run.result["warnings"],
             nlohmann::json::array({"run: firmware reports cell (11, 11) but the robot is in cell "

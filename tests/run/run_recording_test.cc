@@ -79,9 +79,8 @@ double Yaw(const json& rotation) {
 double AngleBetween(double a, double b) { return std::remainder(a - b, 2 * std::numbers::pi); }
 
 TEST(RunRecordingTest, TheMainJobsPosesAreItsTracesAtTheSameTimes) {
-  // the main job as the README runs it: the contest with the bundled firmware
-  const testing::RunResult run = testing::UnimouseRun(
-      "--scenario micromouse --set end_on_log=done --link inproc:" + kFirmware, "main_job_record");
+  // the main job as the README runs it: the contest with the bundled racer firmware
+  const testing::RunResult run = testing::UnimouseRun("--no-pictures", "main_job_record");
   ASSERT_EQ(run.outcome.exit_code, 0) << run.outcome.output;
   const std::string out = OutDir("main_job_record");
   const json recording = testing::ReadRecording(out + "/run.mcap");
@@ -240,13 +239,15 @@ TEST(RunRecordingTest, TheMainJobsPosesAreItsTracesAtTheSameTimes) {
 }
 
 TEST(RunRecordingTest, ContactsAndTheMomentAMouseIsLostAreEventsAsTheResultListsThem) {
-  // the bundled example loses its position in Portugal 2024's final maze at 65.6 s, after
+  // the micromouse example loses its position in Portugal 2024's final maze at 65.6 s, after
   // touching walls (ResultRecordTest.TheMomentTheExampleMouseLosesItsPositionIsAWarning)
   const std::string shared = testing::SharedMazesDir();
   if (shared.empty())
     GTEST_SKIP() << "the maze collection (../shared/mazes) is not beside the project";
-  const testing::RunResult run = testing::UnimouseRun(
-      "--maze " + shared + "/classic/Portugal-2024-Final.txt --duration 70", "lost_record");
+  const testing::RunResult run =
+      testing::UnimouseRun("--scenario micromouse --link inproc:" + kFirmware + " --maze " +
+                               shared + "/classic/Portugal-2024-Final.txt --duration 70",
+                           "lost_record");
   ASSERT_EQ(run.outcome.exit_code, 1) << run.outcome.output;
   const json recording = testing::ReadRecording(OutDir("lost_record") + "/run.mcap");
   ASSERT_TRUE(recording.is_object());

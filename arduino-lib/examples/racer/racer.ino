@@ -418,6 +418,17 @@ void sendWalls(uint8_t x, uint8_t y) {
   robot.debug(UNIMOUSE_ID_DEBUG_WALLS, frame, 4);
 }
 
+// the cell the mouse is about to enter, and where it believes it is: the simulator warns when
+// that cell is not next to the robot's (the moment a mouse gets lost), and its HUD and replay
+// set the estimate beside the truth
+void sendPosition(uint8_t x, uint8_t y) {
+  uint8_t frame[2] = {x, y};
+  robot.debug(UNIMOUSE_ID_DEBUG_VISITED, frame, 2);
+  robot.debugValue("est_x_m", estX);
+  robot.debugValue("est_y_m", estY);
+  robot.debugValue("est_theta_rad", estTheta);
+}
+
 void recordWall(uint8_t x, uint8_t y, Direction side, bool wall) {
   if (wall) {
     maze.placeWall(x, y, side);
@@ -520,6 +531,7 @@ void decide() {
   recordWall(x, y, turnRight(heading), minRight < kSideWall);
   recordWall(x, y, heading, minFront < kFrontWall);
   sendWalls(x, y);
+  sendPosition(x, y);
   minLeft = minRight = minFront = 9;
   const Action a = paths.nextAction(x, y, heading);
   if (kTraceDecisions) {

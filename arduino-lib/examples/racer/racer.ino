@@ -104,6 +104,9 @@ uint8_t head = 0, tail = 0;
 
 // the reference: where the robot should be now, and along which segment
 float refX, refY, refTheta, refV = 0, refW = 0, refS = 0, endX, endY, endTheta;
+// the reference heading's cosine and sine, worked out only when it turns: a Mega 2560 takes
+// some 0.1 ms for each, and the loops must fit in the millisecond between encoder frames
+float refCos, refSin;
 float spin = 0;        // rad/s, a pivot's speed
 float refA = 0;        // m/s^2, along a straight
 float startX, startY;  // where the segment began
@@ -137,6 +140,12 @@ float wrap(float a) {
   while (a > PI) a -= 2 * PI;
   while (a <= -PI) a += 2 * PI;
   return a;
+}
+
+void turnReference(float theta) {
+  refTheta = theta;
+  refCos = cosf(theta);
+  refSin = sinf(theta);
 }
 
 void push(Kind kind, float length, float vMax, float vExit, int8_t turn = 0, bool sense = false) {
@@ -173,10 +182,10 @@ void segmentEnd(const Segment& g) {
   endY = refY;
   endTheta = refTheta;
   if (g.kind == Kind::Straight) {
-    endX += g.length * cosf(refTheta);
-    endY += g.length * sinf(refTheta);
+    endX += g.length * refCos;
+    endY += g.length * refSin;
   } else if (g.kind == Kind::Curve) {
-    const float c = cosf(refTheta), s = sinf(refTheta);
+    const float c = refCos, s = refSin;
     endX += g.length * c - g.turn * g.length * s;
     endY += g.length * s + g.turn * g.length * c;
     endTheta = wrap(refTheta + g.turn * PI / 2);
@@ -206,7 +215,7 @@ void advanceSegments(float dt) {
     // where the estimate is along the line, so that a curve begins where the robot is, not
     // where the reference has got to (the wheels lag it when braking hard); a straight that
     // ends at rest leaves the reference ahead, which then pulls the robot to rest where it is
-    const float c = cosf(refTheta), s = sinf(refTheta);
+    const float c = refCos, s = refSin;
     const float along = (estX - startX) * c + (estY - startY) * s;
     if (along > refS - 0.02f * kScale && along < g.length) {
       refS = along;
@@ -230,10 +239,15 @@ void advanceSegments(float dt) {
     const float ds = v * dt;
     const float k = g.kind == Kind::Curve ? g.turn * curvature(refS + ds / 2, g.length) : 0;
     refW = v * k;
-    const float mid = refTheta + k * ds / 2;
-    refX += ds * cosf(mid);
-    refY += ds * sinf(mid);
-    refTheta = wrap(refTheta + k * ds);
+    if (k == 0) {
+      refX += ds * refCos;
+      refY += ds * refSin;
+    } else {
+      const float mid = refTheta + k * ds / 2;
+      refX += ds * cosf(mid);
+      refY += ds * sinf(mid);
+      turnReference(wrap(refTheta + k * ds));
+    }
     refS += ds;
     if (refS >= length) {
       finished = true;
@@ -253,7 +267,7 @@ void advanceSegments(float dt) {
     refV = 0;
     refS += w * dt;
     refW = (g.turn > 0 ? 1 : -1) * w;
-    refTheta = wrap(refTheta + refW * dt);
+    turnReference(wrap(refTheta + refW * dt));
     if (refS >= total) finished = true;
   } else {
     refV = 0;
@@ -263,9 +277,9 @@ void advanceSegments(float dt) {
   if (finished) {
     refX = endX;
     refY = endY;
-    refTheta = endTheta;
-    refX += carry * cosf(refTheta);
-    refY += carry * sinf(refTheta);
+    turnReference(endTheta);
+    refX += carry * refCos;
+    refY += carry * refSin;
     head = static_cast<uint8_t>((head + 1) % kQueue);
     segmentStarted = false;
   }
@@ -343,16 +357,17 @@ void correctEstimate() {
     sawWall[0] = sawWall[1] = false;
     return;
   }
-  const float c = cosf(refTheta), s = sinf(refTheta);
+  const float c = refCos, s = refSin;
   const float along = estX * c + estY * s, across = -estX * s + estY * c;  // across: left
   const float centre = (floorf(across / kCell) + 0.5f) * kCell;
   const float e = wrap(estTheta - refTheta);
+  const float ce = cosf(e), se = sinf(e);
   float shiftAcross = 0, shiftAlong = 0, shiftTheta = 0;
   const float root = 0.70710678f;
   if (robot.leftSensor().hasNewData()) {
     const float d = robot.leftDistance();
-    const float off = kWallFace - d * (root * cosf(e) + root * sinf(e)) - kSensorAhead * sinf(e) -
-                      kSensorSide * cosf(e);
+    const float off =
+        kWallFace - d * (root * ce + root * se) - kSensorAhead * se - kSensorSide * ce;
     const bool wall = d < kSideWall && fabsf(off - (across - centre)) < 0.02f * kScale;
     if (wall) {
       shiftAcross += 0.15f * (off - (across - centre));
@@ -362,8 +377,8 @@ void correctEstimate() {
   }
   if (robot.rightSensor().hasNewData()) {
     const float d = robot.rightDistance();
-    const float off = d * (root * cosf(e) - root * sinf(e)) - kWallFace - kSensorAhead * sinf(e) +
-                      kSensorSide * cosf(e);
+    const float off =
+        d * (root * ce - root * se) - kWallFace - kSensorAhead * se + kSensorSide * ce;
     const bool wall = d < kSideWall && fabsf(off - (across - centre)) < 0.02f * kScale;
     if (wall) {
       shiftAcross += 0.15f * (off - (across - centre));
@@ -374,7 +389,7 @@ void correctEstimate() {
   if (robot.frontSensor().hasNewData()) {
     const float f = robot.frontDistance();
     if (f > 0.035f * kScale && f < fminf(0.25f * kScale, kRange)) {
-      const float seen = along + (f + kSensorAhead) * cosf(e);
+      const float seen = along + (f + kSensorAhead) * ce;
       const float face = roundf(seen / kCell) * kCell - (kCell / 2 - kWallFace);
       if (fabsf(seen - face) < 0.04f * kScale) shiftAlong = 0.5f * (face - seen);
     }
@@ -387,13 +402,14 @@ void correctEstimate() {
 
 // the tracking controller and the wheels' loops
 void control(float dt) {
-  const float c = cosf(refTheta), s = sinf(refTheta);
+  const float c = refCos, s = refSin;
   const float ex = c * (refX - estX) + s * (refY - estY);
   const float ey = -s * (refX - estX) + c * (refY - estY);
   const float eth = wrap(refTheta - estTheta);
+  const float se = sinf(eth);
   const float v = refV * cosf(eth) + kTrackAlong * ex;
-  const float w = refW + refV * (kTrackSide / kScale * ey + kTrackHeading * sinf(eth)) +
-                  kTrackHeadingRest * sinf(eth);
+  const float w =
+      refW + refV * (kTrackSide / kScale * ey + kTrackHeading * se) + kTrackHeadingRest * se;
   const float vl = v - w * kWheelBase / 2, vr = v + w * kWheelBase / 2;
   const float al = (vl - lastVl) / dt, ar = (vr - lastVr) / dt;
   lastVl = vl;
@@ -618,7 +634,8 @@ void setupMaze() {
   maze.placeWall(0, 0, Direction::East);
   maze.removeWall(0, 0, Direction::North);
   refX = estX = refY = estY = kCell / 2;
-  refTheta = estTheta = headingAngle(Direction::North);
+  estTheta = headingAngle(Direction::North);
+  turnReference(estTheta);
 }
 
 void setup() {

@@ -73,11 +73,10 @@ int FitCommand(const FitOptions& o) {
   for (const fit::FittedParameter& p : report.parameters) {
     char interval[64], file[32];
     std::snprintf(interval, sizeof(interval), "[%.6g, %.6g]", p.ci_low, p.ci_high);
-    // an imu that does not give its z gyro's bias or scale error draws it each run
-    if (fit::ParameterGiven(l.robot, p.ref) || p.ref.key.rfind("gyro_z_", 0) != 0) {
-      std::snprintf(file, sizeof(file), "%.6g", p.file_value);
-    } else {
+    if (fit::ParameterDrawn(l.robot, p.ref)) {
       std::snprintf(file, sizeof(file), "drawn");
+    } else {
+      std::snprintf(file, sizeof(file), "%.6g", p.file_value);
     }
     std::printf("%-34s %12s %12.6g  %-27s %s\n", Name(p.ref).c_str(), file, p.value, interval,
                 p.identified ? "yes" : "no: the logs cannot pin it; the file's value kept");

@@ -121,7 +121,7 @@ double SteadyKt(const std::vector<LogData>& data, const RobotWiring::Side& side,
 }
 
 // the z gyro's bias and scale error: the logged rate g against the replayed true yaw rate w is
-// g = (1 + s) w + b, a linear least-squares fit over every row of every log with a gyro
+// g = (1 + e) w + b, a linear least-squares fit over every row of every log with a gyro
 std::vector<FittedParameter> FitGyro(const RobotSpec& robot, const std::string& imu,
                                      const std::vector<const std::vector<double>*>& logged,
                                      const std::vector<const std::vector<double>*>& yaw_rate) {

@@ -11,8 +11,6 @@
 namespace unimouse::fit {
 namespace {
 
-// the component types a replay leaves out: they write files, wait for firmware, or measure
-// what a log does not have
 // the imu reading that goes with a row is that of the step after the row's own: in lock-step the
 // firmware's answer acts within the step whose frames it read, while the replay's commands act
 // from the next step on (which the encoders' angles, read a step later here, make up for); the
@@ -21,6 +19,8 @@ namespace {
 // spin's start and end, twenty times the chip's noise)
 constexpr int kGyroLag_steps = 1;
 
+// the component types a replay leaves out: they write files, wait for firmware, or measure
+// what a log does not have
 bool LeftOutOfReplay(const std::string& type) {
   return type == "unimouse.logger" || type == "unimouse.link" || type == "unimouse.tof_sensor";
 }
@@ -123,9 +123,10 @@ RobotWiring WireRobot(const RobotSpec& robot) {
   return w;
 }
 
-bool ParameterGiven(const RobotSpec& robot, const ParameterRef& parameter) {
+bool ParameterDrawn(const RobotSpec& robot, const ParameterRef& parameter) {
   const ComponentSpec* c = FindComponent(robot, parameter.component);
-  return c != nullptr && Param(*c, parameter.key) != nullptr;
+  return c != nullptr && c->type == "unimouse.imu" && Param(*c, parameter.key) == nullptr &&
+         (parameter.key == "gyro_z_bias_dps" || parameter.key == "gyro_z_scale_error");
 }
 
 double ParameterValue(const RobotSpec& robot, const ParameterRef& parameter) {

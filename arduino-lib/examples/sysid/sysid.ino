@@ -8,8 +8,9 @@
 // line until the next (-1023..1023); battery_v: the supply voltage the bridges switch;
 // *_counts: encoder counts since the start, read at this line's time; gyro_z_rad_s: the IMU's
 // yaw rate at this line's time, only when the robot's link sends the gyro's z frame
-// (UNIMOUSE_ID_GYRO_Z; the sketch listens for it for 20 ms before it starts). A lab can produce
-// the same log from its own firmware: same columns, same order of reading and commanding.
+// (UNIMOUSE_ID_GYRO_Z; the sketch listens for it for 20 ms, so the first line is at 0.020 s).
+// A lab can produce the same log from its own firmware: same columns, same order of reading and
+// commanding.
 //
 // The sequence (about 50 s; it needs some 3 m of open floor each way):
 //   standstill 1 s                  at rest: the zero of every channel, the gyro's bias
@@ -59,8 +60,8 @@ const Segment kSequence[] = {
 const int kSegments = sizeof(kSequence) / sizeof(kSequence[0]);
 
 int32_t leftCounts = 0, rightCounts = 0;
-uint32_t startMs = 0, lastLogMs = 0, listenFromMs = 0;
-bool listening = false, started = false, done = false, hasGyro = false;
+uint32_t startMs = 0, lastLogMs = 0;
+bool started = false, logging = false, done = false, hasGyro = false;
 
 int16_t interpolate(int16_t from, int16_t to, uint32_t intoMs, uint32_t durationMs) {
   return static_cast<int16_t>(from + (static_cast<int32_t>(to) - from) *
@@ -81,24 +82,24 @@ void loop() {
   if (done) return;
   const uint32_t now = millis();
   if (!started) {
-    // a robot whose link sends the gyro's z gets the column; one without keeps the log as it was
-    if (!listening) {
-      listening = true;
-      listenFromMs = now;
-    }
-    hasGyro = robot.imu().axis(2).hasNewData() || hasGyro;
-    if (now - listenFromMs < kListenMs) return;
     started = true;
     startMs = now;
     lastLogMs = now - kLogPeriodMs;
-    leftCounts = rightCounts = 0;
+  }
+  // a robot whose link sends the gyro's z gets the column; one without keeps the log as it was
+  if (!logging) hasGyro = robot.imu().axis(2).hasNewData() || hasGyro;
+  if (now - lastLogMs < kLogPeriodMs) return;
+  lastLogMs += kLogPeriodMs;
+  const uint32_t t = lastLogMs - startMs;
+  // the first rows go by at rest while the sketch listens; the time keeps counting from the
+  // start, so that the log's time is the run's
+  if (t < kListenMs) return;
+  if (!logging) {
+    logging = true;
     robot.log(hasGyro ? "time_s,left_command,right_command,battery_v,left_counts,right_counts,"
                         "gyro_z_rad_s"
                       : "time_s,left_command,right_command,battery_v,left_counts,right_counts");
   }
-  if (now - lastLogMs < kLogPeriodMs) return;
-  lastLogMs += kLogPeriodMs;
-  const uint32_t t = lastLogMs - startMs;
 
   // the segment this moment falls in
   uint32_t segmentStart = 0;

@@ -14,9 +14,9 @@
 // is kept and the report says so.
 //
 // The gyro: with the motor constants fitted, a log's gyro_z_rad_s column against the replayed
-// robot's true yaw rate at the imu's site w is the line g = (1 + s) w + b (plugins/imu's model
+// robot's true yaw rate w as its imu sees it is the line g = (1 + e) w + b (plugins/imu's model
 // about z, cross-axis terms and drift aside), fitted by linear least squares over every row:
-// b, the bias, from the standstills, s, the scale error, from the spins.
+// b, the bias, from the standstills, e, the scale error, from the spins.
 #ifndef UNIMOUSE_FIT_FIT_H_
 #define UNIMOUSE_FIT_FIT_H_
 

@@ -46,8 +46,9 @@ struct ParameterRef {
 /// out; 0 for an imu's gyro_z_bias_dps and gyro_z_scale_error, which the imu then draws within
 /// its tolerances); throws InputError when the component does not exist.
 double ParameterValue(const RobotSpec& robot, const ParameterRef& parameter);
-/// Whether the robot file gives the parameter itself.
-bool ParameterGiven(const RobotSpec& robot, const ParameterRef& parameter);
+/// Whether the robot file leaves the parameter to a draw each run: an imu's gyro_z_bias_dps or
+/// gyro_z_scale_error that the file does not give.
+bool ParameterDrawn(const RobotSpec& robot, const ParameterRef& parameter);
 /// Sets a parameter's value in the robot spec, as if the file gave it.
 void SetParameter(RobotSpec& robot, const ParameterRef& parameter, double value);
 

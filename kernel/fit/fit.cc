@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 #include <initializer_list>
+#include <limits>
 #include <numbers>
 #include <unsupported/Eigen/LevenbergMarquardt>
 #include <unsupported/Eigen/NumericalDiff>
@@ -120,8 +121,39 @@ double SteadyKt(const std::vector<LogData>& data, const RobotWiring::Side& side,
   return ww > 0 ? vw / ww : 0;
 }
 
+// the residual variance s^2 of a fit of `unknowns` parameters. Simulation-error residuals are
+// correlated from row to row, so they carry less information than their count says: s^2 is
+// inflated by (1 + rho) / (1 - rho), rho the lag-one autocorrelation of the residuals (the
+// effective sample size of an AR(1) series)
+double ResidualVariance(const Eigen::VectorXd& e, Eigen::Index unknowns) {
+  double lag1 = 0;
+  for (Eigen::Index i = 1; i < e.size(); ++i) lag1 += e[i] * e[i - 1];
+  const double rho = std::clamp(lag1 / std::max(e.squaredNorm(), 1e-300), 0.0, 0.99);
+  return e.squaredNorm() / std::max<double>(static_cast<double>(e.size() - unknowns), 1) *
+         (1 + rho) / (1 - rho);
+}
+
+// a linear least-squares fit of y = A theta with the motors' interval: cov = s^2 (A^T A)^-1
+struct LinearFit {
+  Eigen::VectorXd theta;
+  Eigen::MatrixXd covariance;
+  bool full_rank = false;
+};
+LinearFit FitLinear(const Eigen::MatrixXd& a, const Eigen::VectorXd& y) {
+  const Eigen::Index n = a.cols();
+  const Eigen::MatrixXd information = a.transpose() * a;
+  Eigen::JacobiSVD<Eigen::MatrixXd> svd(information, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  LinearFit fit;
+  fit.theta = svd.solve(a.transpose() * y);
+  const double s2 = ResidualVariance(y - a * fit.theta, n);
+  fit.full_rank = svd.singularValues()(n - 1) > 1e-12 * svd.singularValues()(0);
+  fit.covariance = s2 * svd.solve(Eigen::MatrixXd::Identity(n, n));
+  return fit;
+}
+
 // the z gyro's bias and scale error: the logged rate g against the replayed true yaw rate w is
-// g = (1 + e) w + b, a linear least-squares fit over every row of every log with a gyro
+// g = (1 + e) w + b, a linear least-squares fit over every row of every log with a gyro. Logs
+// that never turn the robot cannot pin e: then b alone, at the file's e, from g - (1 + e) w
 std::vector<FittedParameter> FitGyro(const RobotSpec& robot, const std::string& imu,
                                      const std::vector<const std::vector<double>*>& logged,
                                      const std::vector<const std::vector<double>*>& yaw_rate) {
@@ -137,45 +169,36 @@ std::vector<FittedParameter> FitGyro(const RobotSpec& robot, const std::string& 
       g[k] = (*logged[l])[i];
     }
   }
-  const Eigen::MatrixXd information = a.transpose() * a;
-  const Eigen::VectorXd theta = information.ldlt().solve(a.transpose() * g);
-  const Eigen::VectorXd e = g - a * theta;
-  // the same interval as the motors': s^2 (A^T A)^-1, s^2 inflated for the residuals' lag-one
-  // autocorrelation (drift and the replay's small differences are not white)
-  double lag1 = 0;
-  for (Eigen::Index i = 1; i < rows; ++i) lag1 += e[i] * e[i - 1];
-  const double rho = std::clamp(lag1 / std::max(e.squaredNorm(), 1e-300), 0.0, 0.99);
-  const double s2 =
-      e.squaredNorm() / std::max<double>(static_cast<double>(rows) - 2, 1) * (1 + rho) / (1 - rho);
-  Eigen::JacobiSVD<Eigen::MatrixXd> svd(information, Eigen::ComputeFullU | Eigen::ComputeFullV);
-  const bool full_rank = svd.singularValues()(1) > 1e-12 * svd.singularValues()(0);
-  const Eigen::MatrixXd covariance = s2 * svd.solve(Eigen::MatrixXd::Identity(2, 2));
-
   constexpr double kDegPerRad = 180 / std::numbers::pi;
-  std::vector<FittedParameter> out;
-  const struct {
-    const char* key;
-    double value, half, resolution, limit;  // limit: the imu's range for the parameter
-  } fitted[] = {
-      {"gyro_z_bias_dps", theta[1] * kDegPerRad,
-       1.959964 * std::sqrt(std::max(covariance(1, 1), 0.0)) * kDegPerRad, kGyroBiasResolution_dps,
-       1e4},
-      {"gyro_z_scale_error", theta[0] - 1, 1.959964 * std::sqrt(std::max(covariance(0, 0), 0.0)),
-       kGyroScaleResolution, 0.5},
-  };
-  for (const auto& f : fitted) {
+  const auto parameter = [&](const char* key, double value, double variance, bool full_rank,
+                             double resolution, double limit) {
     FittedParameter p;
-    p.ref = {imu, f.key};
+    p.ref = {imu, key};
     p.file_value = ParameterValue(robot, p.ref);
-    p.identified = full_rank && std::isfinite(f.half) && std::isfinite(f.value) &&
-                   f.half <= std::max(kIdentifiedWithin * std::abs(f.value), f.resolution) &&
-                   std::abs(f.value) <= f.limit;
-    p.value = p.identified ? f.value : p.file_value;
-    p.ci_low = f.value - f.half;
-    p.ci_high = f.value + f.half;
-    out.push_back(p);
+    const double half = full_rank ? 1.959964 * std::sqrt(std::max(variance, 0.0))
+                                  : std::numeric_limits<double>::infinity();
+    p.identified = full_rank && std::isfinite(half) && std::isfinite(value) &&
+                   half <= std::max(kIdentifiedWithin * std::abs(value), resolution) &&
+                   std::abs(value) <= limit;  // limit: the imu's range for the parameter
+    p.value = p.identified ? value : p.file_value;
+    p.ci_low = value - half;
+    p.ci_high = value + half;
+    return p;
+  };
+  const LinearFit both = FitLinear(a, g);
+  const FittedParameter scale =
+      parameter("gyro_z_scale_error", both.theta[0] - 1, both.covariance(0, 0), both.full_rank,
+                kGyroScaleResolution, 0.5);
+  FittedParameter bias = parameter("gyro_z_bias_dps", both.theta[1] * kDegPerRad,
+                                   both.covariance(1, 1) * kDegPerRad * kDegPerRad, both.full_rank,
+                                   kGyroBiasResolution_dps, 1e4);
+  if (!scale.identified) {
+    const LinearFit alone = FitLinear(a.col(1), g - (1 + scale.value) * a.col(0));
+    bias = parameter("gyro_z_bias_dps", alone.theta[0] * kDegPerRad,
+                     alone.covariance(0, 0) * kDegPerRad * kDegPerRad, alone.full_rank,
+                     kGyroBiasResolution_dps, 1e4);
   }
-  return out;
+  return {bias, scale};
 }
 
 }  // namespace
@@ -327,14 +350,7 @@ FitReport FitRobot(const RobotSpec& robot, const PluginRegistry& registry,
   residual_fn(x, after);
   Eigen::MatrixXd jacobian(residuals, n);
   with_jacobian.df(x, jacobian);
-  // simulation-error residuals are correlated from row to row, so they carry less information
-  // than their count says: the variance is inflated by (1 + rho) / (1 - rho), rho the lag-one
-  // autocorrelation of the residuals (the effective sample size of an AR(1) series)
-  double lag1 = 0;
-  for (Eigen::Index i = 1; i < residuals; ++i) lag1 += after[i] * after[i - 1];
-  const double rho = std::clamp(lag1 / std::max(after.squaredNorm(), 1e-300), 0.0, 0.99);
-  const double s2 = after.squaredNorm() / std::max<double>(residuals - static_cast<double>(n), 1) *
-                    (1 + rho) / (1 - rho);
+  const double s2 = ResidualVariance(after, n);
   const Eigen::MatrixXd information = jacobian.transpose() * jacobian;
   Eigen::JacobiSVD<Eigen::MatrixXd> svd(information, Eigen::ComputeFullU | Eigen::ComputeFullV);
   const Eigen::MatrixXd covariance = s2 * svd.solve(Eigen::MatrixXd::Identity(n, n));

@@ -275,26 +275,35 @@ TEST(FitTest, RecoversTheGyrosBiasAndScaleErrorDrawnFromASeed) {
 }
 
 TEST(FitTest, TheAfterColumnsAndPlotsAreTheReplayOfTheFittedFileAlsoWhereAValueIsKept) {
-  // the gyro robot's log cut before its steps and spins (the first 20 s: standstill and ramps),
-  // which cannot pin everything: what is not identified keeps the file's value in the fitted
-  // file, and the "after" lines must be that file's replay, not the search's last point
+  // the log of a gyro robot whose z gyro's bias is 0.4 dps, cut before its steps and spins (the
+  // first 20 s: standstill and ramps, driving straight): the standstills pin the bias, nothing
+  // pins the scale error, which keeps the file's draw in the fitted file; the "after" lines must
+  // be that file's replay, not the search's last point
   const std::string gyro = std::string(UNIMOUSE_SOURCE_DIR) + "/robots/unimouse-gyro.yaml";
-  std::istringstream full(ReadTextFile(SimulatedGyroLog(gyro, "sysid_gyro_ramps")));
+  const std::string text = ReadTextFile(gyro);
+  const std::string imu = "odr_hz: 1000, dlpf_hz: 250 }";
+  ASSERT_NE(text.find(imu), std::string::npos);
+  std::string changed = text;
+  changed.replace(changed.find(imu), imu.size(),
+                  "odr_hz: 1000, dlpf_hz: 250, gyro_z_bias_dps: 0.4 }");
+  const std::string dir = FreshDirectory("fit_ramps_only");
+  WriteTextFile(dir + "/changed.yaml", changed);
+  std::istringstream full(
+      ReadTextFile(SimulatedGyroLog(dir + "/changed.yaml", "sysid_gyro_ramps")));
   std::string cut, line;
   std::getline(full, line);
   cut = line + "\n";
   while (std::getline(full, line) && std::stod(line.substr(0, line.find(','))) < 20) {
     cut += line + "\n";
   }
-  const std::string dir = FreshDirectory("fit_ramps_only");
   WriteTextFile(dir + "/ramps.csv", cut);
   const SysidLog log = ReadSysidLog(dir + "/ramps.csv");
-  const std::string text = ReadTextFile(gyro);
   const RobotSpec robot = ParseRobotSpec(text, gyro);
   const FitReport report = FitRobot(robot, Registry(), {log});
-  bool kept = false;
-  for (const FittedParameter& p : report.parameters) kept = kept || !p.identified;
-  ASSERT_TRUE(kept) << "every parameter identified: the test needs one that is not";
+  ASSERT_EQ(report.parameters.size(), 6u);
+  EXPECT_TRUE(report.parameters[4].identified);
+  EXPECT_NEAR(report.parameters[4].value, 0.4, 0.05 * 0.4);
+  ASSERT_FALSE(report.parameters[5].identified) << "the test needs a value that is kept";
 
   const RobotSpec fitted =
       ParseRobotSpec(PatchRobotText(text, robot, report.parameters, "fit"), "fitted");

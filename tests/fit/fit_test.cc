@@ -275,10 +275,11 @@ TEST(FitTest, RecoversTheGyrosBiasAndScaleErrorDrawnFromASeed) {
 }
 
 TEST(FitTest, TheAfterColumnsAndPlotsAreTheReplayOfTheFittedFileAlsoWhereAValueIsKept) {
-  // the log of a gyro robot whose z gyro's bias is 0.4 dps, cut before its steps and spins (the
-  // first 20 s: standstill and ramps, driving straight): the standstills pin the bias, nothing
-  // pins the scale error, which keeps the file's draw in the fitted file; the "after" lines must
-  // be that file's replay, not the search's last point
+  // the log of a gyro robot whose z gyro's bias is 0.4 dps and whose motors' Ra are five times
+  // the file's (beyond the search's bound of four: not identified, the file's Ra kept), cut
+  // before its steps and spins (the first 20 s: standstill and ramps, driving straight): the
+  // standstills pin the bias, nothing pins the scale error, which keeps the file's draw. The
+  // "after" lines must be the fitted file's replay, not the search's last point
   const std::string gyro = std::string(UNIMOUSE_SOURCE_DIR) + "/robots/unimouse-gyro.yaml";
   const std::string text = ReadTextFile(gyro);
   const std::string imu = "odr_hz: 1000, dlpf_hz: 250 }";
@@ -286,6 +287,11 @@ TEST(FitTest, TheAfterColumnsAndPlotsAreTheReplayOfTheFittedFileAlsoWhereAValueI
   std::string changed = text;
   changed.replace(changed.find(imu), imu.size(),
                   "odr_hz: 1000, dlpf_hz: 250, gyro_z_bias_dps: 0.4 }");
+  for (const std::string side : {"left", "right"}) {
+    const std::string motor = "params: { actuator: " + side + "_motor, model: pololu_30_1_lp,";
+    ASSERT_NE(changed.find(motor), std::string::npos);
+    changed.replace(changed.find(motor), motor.size(), motor + " resistance_ohm: 166.7,");
+  }
   const std::string dir = FreshDirectory("fit_ramps_only");
   WriteTextFile(dir + "/changed.yaml", changed);
   std::istringstream full(
@@ -301,6 +307,8 @@ TEST(FitTest, TheAfterColumnsAndPlotsAreTheReplayOfTheFittedFileAlsoWhereAValueI
   const RobotSpec robot = ParseRobotSpec(text, gyro);
   const FitReport report = FitRobot(robot, Registry(), {log});
   ASSERT_EQ(report.parameters.size(), 6u);
+  EXPECT_FALSE(report.parameters[1].identified);
+  EXPECT_FALSE(report.parameters[3].identified);
   EXPECT_TRUE(report.parameters[4].identified);
   EXPECT_NEAR(report.parameters[4].value, 0.4, 0.05 * 0.4);
   ASSERT_FALSE(report.parameters[5].identified) << "the test needs a value that is kept";

@@ -4,7 +4,6 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <map>
 #include <memory>
 
 #include "command_line.h"
@@ -40,27 +39,21 @@ Loaded Load(const FitOptions& o) {
 
 std::string Name(const fit::ParameterRef& p) { return p.component + "." + p.key; }
 
-// the plots' file names: out_dir/<log's stem>-<channel>-<kind>.png, the stem numbered when two
-// logs share it
+// the plots' file names: out_dir/<log's stem>-<channel>-<kind>.png, one stem per log
 class PlotNames {
  public:
   PlotNames(const std::string& out_dir, const std::vector<fit::SysidLog>& logs) : dir_(out_dir) {
-    std::map<std::string, int> seen;
-    for (const fit::SysidLog& log : logs) {
-      std::string stem = std::filesystem::path(log.file).stem().string();
-      const int n = ++seen[stem];
-      if (n > 1) stem += "-" + std::to_string(n);
-      stems_[log.file] = stem;
-    }
+    std::vector<std::string> files;
+    for (const fit::SysidLog& log : logs) files.push_back(log.file);
+    stems_ = fit::PlotStems(files);
   }
-  std::string operator()(const std::string& log, const std::string& channel,
-                         const char* kind) const {
-    return dir_ + "/" + stems_.at(log) + "-" + channel + "-" + kind + ".png";
+  std::string operator()(size_t log_index, const std::string& channel, const char* kind) const {
+    return dir_ + "/" + stems_.at(log_index) + "-" + channel + "-" + kind + ".png";
   }
 
  private:
   std::string dir_;
-  std::map<std::string, std::string> stems_;
+  std::vector<std::string> stems_;
 };
 
 }  // namespace
@@ -78,10 +71,14 @@ int FitCommand(const FitOptions& o) {
   std::printf("%-34s %12s %12s  %-27s %s\n", "parameter", "file", "fitted", "95 % interval",
               "identified");
   for (const fit::FittedParameter& p : report.parameters) {
-    char interval[64];
+    char interval[64], file[32];
     std::snprintf(interval, sizeof(interval), "[%.6g, %.6g]", p.ci_low, p.ci_high);
-    std::printf("%-34s %12.6g %12.6g  %-27s %s\n", Name(p.ref).c_str(), p.file_value, p.value,
-                interval,
+    if (fit::ParameterDrawn(l.robot, p.ref)) {
+      std::snprintf(file, sizeof(file), "drawn");
+    } else {
+      std::snprintf(file, sizeof(file), "%.6g", p.file_value);
+    }
+    std::printf("%-34s %12s %12.6g  %-27s %s\n", Name(p.ref).c_str(), file, p.value, interval,
                 p.identified ? "yes" : "no: the logs cannot pin it; the file's value kept");
   }
   std::printf("%-34s %12s %12s  %-27s %s\n", "each motor's damping_nm_s_per_rad", "", "", "",
@@ -115,7 +112,7 @@ int FitCommand(const FitOptions& o) {
   std::printf("\nwrote %s\n", out.c_str());
   const PlotNames plot_names(o.out_dir, l.logs);
   for (const fit::ChannelFit& c : report.channels) {
-    const std::string plot = plot_names(c.log, c.channel, "fit");
+    const std::string plot = plot_names(c.log_index, c.channel, "fit");
     fit::WritePlot(plot, fit::FitPlot(c));
     std::printf("wrote %s\n", plot.c_str());
   }
@@ -126,21 +123,26 @@ int CompareCommand(const FitOptions& o) {
   const Loaded l = Load(o);
   PluginRegistry registry;
   registry.AddSearchPath(PluginSearchPath(o.plugin_path));
-  std::vector<std::pair<std::string, fit::ChannelComparison>> compared;
-  for (const fit::SysidLog& log : l.logs) {
+  struct Compared {
+    size_t log_index;
+    fit::ChannelComparison channel;
+  };
+  std::vector<Compared> compared;
+  for (size_t i = 0; i < l.logs.size(); ++i) {
+    const fit::SysidLog& log = l.logs[i];
     std::printf("%s replayed on %s\n", log.file.c_str(), l.robot_file.c_str());
     std::printf("%-20s %10s %12s %12s %10s\n", "channel", "RMSE", "max error", "at time_s", "r2");
     for (fit::ChannelComparison& c : fit::CompareLog(l.robot, registry, log)) {
       std::printf("%-20s %10.4g %12.4g %12.3f %10.4f\n", c.channel.c_str(), c.rmse, c.max_error,
                   c.max_error_time_s, c.r2);
-      compared.emplace_back(log.file, std::move(c));
+      compared.push_back({i, std::move(c)});
     }
   }
   std::filesystem::create_directories(o.out_dir);
   const PlotNames plot_names(o.out_dir, l.logs);
-  for (const auto& [log, c] : compared) {
-    const std::string plot = plot_names(log, c.channel, "compare");
-    fit::WritePlot(plot, fit::ComparePlot(log, c));
+  for (const Compared& c : compared) {
+    const std::string plot = plot_names(c.log_index, c.channel.channel, "compare");
+    fit::WritePlot(plot, fit::ComparePlot(l.logs[c.log_index].file, c.channel));
     std::printf("wrote %s\n", plot.c_str());
   }
   return kExitPassed;
@@ -149,7 +151,9 @@ int CompareCommand(const FitOptions& o) {
 void AddFitCommands(CommandLine& cli) {
   auto fit = std::make_shared<FitOptions>();
   CLI::App* fit_cmd = cli.app().add_subcommand(
-      "fit", "fit a robot file's motor constants to a robot's sysid logs (docs/calibrate.md)");
+      "fit",
+      "fit a robot file's motor constants, and its gyro's bias and scale, to a robot's sysid logs "
+      "(docs/calibrate.md)");
   fit_cmd->add_option("robot", fit->robot, "robot YAML file, or the name of a bundled robot")
       ->required();
   fit_cmd->add_option("logs", fit->logs, "CSV logs of the sysid test pattern")->required();

@@ -6,6 +6,8 @@
 #include <cmath>
 #include <filesystem>
 #include <initializer_list>
+#include <limits>
+#include <numbers>
 #include <unsupported/Eigen/LevenbergMarquardt>
 #include <unsupported/Eigen/NumericalDiff>
 
@@ -117,6 +119,86 @@ double SteadyKt(const std::vector<LogData>& data, const RobotWiring::Side& side,
     }
   }
   return ww > 0 ? vw / ww : 0;
+}
+
+// the residual variance s^2 of a fit of `unknowns` parameters. Simulation-error residuals are
+// correlated from row to row, so they carry less information than their count says: s^2 is
+// inflated by (1 + rho) / (1 - rho), rho the lag-one autocorrelation of the residuals (the
+// effective sample size of an AR(1) series)
+double ResidualVariance(const Eigen::VectorXd& e, Eigen::Index unknowns) {
+  double lag1 = 0;
+  for (Eigen::Index i = 1; i < e.size(); ++i) lag1 += e[i] * e[i - 1];
+  const double rho = std::clamp(lag1 / std::max(e.squaredNorm(), 1e-300), 0.0, 0.99);
+  return e.squaredNorm() / std::max<double>(static_cast<double>(e.size() - unknowns), 1) *
+         (1 + rho) / (1 - rho);
+}
+
+// a linear least-squares fit of y = A theta with the motors' interval: cov = s^2 (A^T A)^-1
+struct LinearFit {
+  Eigen::VectorXd theta;
+  Eigen::MatrixXd covariance;
+  bool full_rank = false;
+};
+LinearFit FitLinear(const Eigen::MatrixXd& a, const Eigen::VectorXd& y) {
+  const Eigen::Index n = a.cols();
+  const Eigen::MatrixXd information = a.transpose() * a;
+  Eigen::JacobiSVD<Eigen::MatrixXd> svd(information, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  LinearFit fit;
+  fit.theta = svd.solve(a.transpose() * y);
+  const double s2 = ResidualVariance(y - a * fit.theta, n);
+  fit.full_rank = svd.singularValues()(n - 1) > 1e-12 * svd.singularValues()(0);
+  fit.covariance = s2 * svd.solve(Eigen::MatrixXd::Identity(n, n));
+  return fit;
+}
+
+// the z gyro's bias and scale error: the logged rate g against the replayed true yaw rate w is
+// g = (1 + e) w + b, a linear least-squares fit over every row of every log with a gyro. Logs
+// that never turn the robot cannot pin e: then b alone, at the file's e, from g - (1 + e) w
+std::vector<FittedParameter> FitGyro(const RobotSpec& robot, const std::string& imu,
+                                     const std::vector<const std::vector<double>*>& logged,
+                                     const std::vector<const std::vector<double>*>& yaw_rate) {
+  Eigen::Index rows = 0;
+  for (const std::vector<double>* g : logged) rows += static_cast<Eigen::Index>(g->size());
+  Eigen::MatrixXd a(rows, 2);
+  Eigen::VectorXd g(rows);
+  Eigen::Index k = 0;
+  for (size_t l = 0; l < logged.size(); ++l) {
+    for (size_t i = 0; i < logged[l]->size(); ++i, ++k) {
+      a(k, 0) = (*yaw_rate[l])[i];
+      a(k, 1) = 1;
+      g[k] = (*logged[l])[i];
+    }
+  }
+  constexpr double kDegPerRad = 180 / std::numbers::pi;
+  const auto parameter = [&](const char* key, double value, double variance, bool full_rank,
+                             double resolution, double limit) {
+    FittedParameter p;
+    p.ref = {imu, key};
+    p.file_value = ParameterValue(robot, p.ref);
+    const double half = full_rank ? 1.959964 * std::sqrt(std::max(variance, 0.0))
+                                  : std::numeric_limits<double>::infinity();
+    p.identified = full_rank && std::isfinite(half) && std::isfinite(value) &&
+                   half <= std::max(kIdentifiedWithin * std::abs(value), resolution) &&
+                   std::abs(value) <= limit;  // limit: the imu's range for the parameter
+    p.value = p.identified ? value : p.file_value;
+    p.ci_low = value - half;
+    p.ci_high = value + half;
+    return p;
+  };
+  const LinearFit both = FitLinear(a, g);
+  const FittedParameter scale =
+      parameter("gyro_z_scale_error", both.theta[0] - 1, both.covariance(0, 0), both.full_rank,
+                kGyroScaleResolution, 0.5);
+  FittedParameter bias = parameter("gyro_z_bias_dps", both.theta[1] * kDegPerRad,
+                                   both.covariance(1, 1) * kDegPerRad * kDegPerRad, both.full_rank,
+                                   kGyroBiasResolution_dps, 1e4);
+  if (!scale.identified) {
+    const LinearFit alone = FitLinear(a.col(1), g - (1 + scale.value) * a.col(0));
+    bias = parameter("gyro_z_bias_dps", alone.theta[0] * kDegPerRad,
+                     alone.covariance(0, 0) * kDegPerRad * kDegPerRad, alone.full_rank,
+                     kGyroBiasResolution_dps, 1e4);
+  }
+  return {bias, scale};
 }
 
 }  // namespace
@@ -268,14 +350,7 @@ FitReport FitRobot(const RobotSpec& robot, const PluginRegistry& registry,
   residual_fn(x, after);
   Eigen::MatrixXd jacobian(residuals, n);
   with_jacobian.df(x, jacobian);
-  // simulation-error residuals are correlated from row to row, so they carry less information
-  // than their count says: the variance is inflated by (1 + rho) / (1 - rho), rho the lag-one
-  // autocorrelation of the residuals (the effective sample size of an AR(1) series)
-  double lag1 = 0;
-  for (Eigen::Index i = 1; i < residuals; ++i) lag1 += after[i] * after[i - 1];
-  const double rho = std::clamp(lag1 / std::max(after.squaredNorm(), 1e-300), 0.0, 0.99);
-  const double s2 = after.squaredNorm() / std::max<double>(residuals - static_cast<double>(n), 1) *
-                    (1 + rho) / (1 - rho);
+  const double s2 = ResidualVariance(after, n);
   const Eigen::MatrixXd information = jacobian.transpose() * jacobian;
   Eigen::JacobiSVD<Eigen::MatrixXd> svd(information, Eigen::ComputeFullU | Eigen::ComputeFullV);
   const Eigen::MatrixXd covariance = s2 * svd.solve(Eigen::MatrixXd::Identity(n, n));
@@ -307,24 +382,64 @@ FitReport FitRobot(const RobotSpec& robot, const PluginRegistry& registry,
     report.parameters.push_back(p);
   }
 
-  // r^2 and RMSE per log and channel, with the file's values and with the fitted ones
-  const RobotSpec fitted = residual_fn.Robot(x);
+  // the robot as the fitted file has it: identified values only, the file's elsewhere
+  RobotSpec fitted = robot;
+  for (const FittedParameter& p : report.parameters) {
+    if (p.identified) SetParameter(fitted, p.ref, p.value);
+  }
+
+  std::vector<Channels> was, now;
   for (const LogData& d : data) {
-    const Channels was = ReplayChannels(robot, wiring, registry, *d.log);
-    const Channels now = ReplayChannels(fitted, wiring, registry, *d.log);
-    for (size_t c = 0; c < d.measured.names.size(); ++c) {
+    was.push_back(ReplayChannels(robot, wiring, registry, *d.log));
+    now.push_back(ReplayChannels(fitted, wiring, registry, *d.log));
+  }
+  if (!wiring.imu.empty()) {
+    std::vector<const std::vector<double>*> logged, yaw_rate;
+    for (size_t l = 0; l < data.size(); ++l) {
+      if (now[l].yaw_rate_rad_s.empty()) continue;
+      logged.push_back(&data[l].measured.gyro_z_rad_s);
+      yaw_rate.push_back(&now[l].yaw_rate_rad_s);
+    }
+    if (!logged.empty()) {
+      for (const FittedParameter& p : FitGyro(robot, wiring.imu, logged, yaw_rate)) {
+        report.parameters.push_back(p);
+        // one not identified stays out, as in the fitted file: the imu keeps its draw
+        if (p.identified) SetParameter(fitted, p.ref, p.value);
+      }
+      // the gyro's "after" is the fitted file's imu reading
+      for (size_t l = 0; l < data.size(); ++l) {
+        if (!now[l].yaw_rate_rad_s.empty()) {
+          now[l] = ReplayChannels(fitted, wiring, registry, *data[l].log);
+        }
+      }
+    }
+  }
+
+  // r^2 and RMSE per log and channel, with the file's values and with the fitted file's
+  for (size_t l = 0; l < data.size(); ++l) {
+    const LogData& d = data[l];
+    const auto add = [&](const std::string& name, const std::vector<double>& measured,
+                         const std::vector<double>& with_file,
+                         const std::vector<double>& with_fit) {
       ChannelFit cf;
       cf.log = d.log->file;
-      cf.channel = d.measured.names[c];
-      cf.r2_before = RSquared(d.measured.values[c], was.values[c]);
-      cf.rmse_before = Rmse(d.measured.values[c], was.values[c]);
-      cf.r2_after = RSquared(d.measured.values[c], now.values[c]);
-      cf.rmse_after = Rmse(d.measured.values[c], now.values[c]);
+      cf.log_index = l;
+      cf.channel = name;
+      cf.r2_before = RSquared(measured, with_file);
+      cf.rmse_before = Rmse(measured, with_file);
+      cf.r2_after = RSquared(measured, with_fit);
+      cf.rmse_after = Rmse(measured, with_fit);
       cf.time_s.assign(d.log->time_s.begin() + 1, d.log->time_s.end());
-      cf.logged = d.measured.values[c];
-      cf.replayed_before = was.values[c];
-      cf.replayed_after = now.values[c];
+      cf.logged = measured;
+      cf.replayed_before = with_file;
+      cf.replayed_after = with_fit;
       report.channels.push_back(cf);
+    };
+    for (size_t c = 0; c < d.measured.names.size(); ++c) {
+      add(d.measured.names[c], d.measured.values[c], was[l].values[c], now[l].values[c]);
+    }
+    if (!now[l].gyro_z_rad_s.empty()) {
+      add(kGyroChannel, d.measured.gyro_z_rad_s, was[l].gyro_z_rad_s, now[l].gyro_z_rad_s);
     }
   }
   return report;
@@ -334,8 +449,13 @@ std::vector<ChannelComparison> CompareLog(const RobotSpec& robot, const PluginRe
                                           const SysidLog& log) {
   const RobotWiring wiring = WireRobot(robot);
   CheckLogFitsRobot(log, robot, wiring);
-  const Channels measured = MeasuredChannels(log);
-  const Channels replayed = ReplayChannels(robot, wiring, registry, log);
+  Channels measured = MeasuredChannels(log);
+  Channels replayed = ReplayChannels(robot, wiring, registry, log);
+  if (!replayed.gyro_z_rad_s.empty()) {
+    measured.names.push_back(kGyroChannel);
+    measured.values.push_back(measured.gyro_z_rad_s);
+    replayed.values.push_back(replayed.gyro_z_rad_s);
+  }
   std::vector<ChannelComparison> out;
   for (size_t c = 0; c < measured.names.size(); ++c) {
     ChannelComparison cc;

@@ -11,6 +11,14 @@
 namespace unimouse::fit {
 namespace {
 
+// the imu reading that goes with a row is that of the step after the row's own: in lock-step the
+// firmware's answer acts within the step whose frames it read, while the replay's commands act
+// from the next step on (which the encoders' angles, read a step later here, make up for); the
+// imu's Sense sees the motion at the start of its step, so its reading one step on is the
+// firmware's at the row (measured: a step earlier or later leaves residuals of 0.05 rad/s at each
+// spin's start and end, twenty times the chip's noise)
+constexpr int kGyroLag_steps = 1;
+
 // the component types a replay leaves out: they write files, wait for firmware, or measure
 // what a log does not have
 bool LeftOutOfReplay(const std::string& type) {
@@ -40,6 +48,16 @@ const ComponentSpec* FindComponent(const RobotSpec& robot, const std::string& na
     if (c.name == name) return &c;
   }
   return nullptr;
+}
+
+void SetString(RobotSpec& robot, const std::string& component, const std::string& key,
+               const std::string& value) {
+  SetParameter(robot, {component, key}, 0);
+  for (ComponentSpec& c : robot.components) {
+    for (YamlEntry& e : c.params.entries) {
+      if (c.name == component && e.first.scalar == key) e.second.scalar = value;
+    }
+  }
 }
 
 // the robot's actuator names and the joints they drive
@@ -95,8 +113,20 @@ RobotWiring WireRobot(const RobotSpec& robot) {
   w.right = WireSide(robot, "right");
   for (const ComponentSpec& c : robot.components) {
     if (c.type == "unimouse.battery") w.battery_emf_v = NumberParam(c, "emf_v", 6);
+    if (c.type == "unimouse.imu" && w.imu.empty()) {
+      w.imu = c.name;
+      // plugins/imu: its signals' prefix is `out`, the component's name when empty
+      const std::string out = StringParam(c, "out", "");
+      w.imu_gyro_z = (out.empty() ? c.name : out) + ".gyro_z_rad_s";
+    }
   }
   return w;
+}
+
+bool ParameterDrawn(const RobotSpec& robot, const ParameterRef& parameter) {
+  const ComponentSpec* c = FindComponent(robot, parameter.component);
+  return c != nullptr && c->type == "unimouse.imu" && Param(*c, parameter.key) == nullptr &&
+         (parameter.key == "gyro_z_bias_dps" || parameter.key == "gyro_z_scale_error");
 }
 
 double ParameterValue(const RobotSpec& robot, const ParameterRef& parameter) {
@@ -105,6 +135,11 @@ double ParameterValue(const RobotSpec& robot, const ParameterRef& parameter) {
     throw InputError(robot.file + ": no component '" + parameter.component + "'");
   }
   if (const YamlNode* n = Param(*c, parameter.key)) return n->AsNumber(parameter.key);
+  // an imu without them draws its z gyro's bias and scale error; 0 is their centre
+  if (c->type == "unimouse.imu" &&
+      (parameter.key == "gyro_z_bias_dps" || parameter.key == "gyro_z_scale_error")) {
+    return 0;
+  }
   // a dc_motor's named model supplies what the file leaves out (plugins/dc_motor, table 3.1);
   // the replay asks the kernel-independent defaults through the same names
   const std::string model = StringParam(*c, "model", "pololu_30_1_lp");
@@ -157,6 +192,9 @@ Channels MeasuredChannels(const SysidLog& log) {
     ch.values[0].push_back((log.left_counts[i] - log.left_counts[i - 1]) / dt);
     ch.values[1].push_back((log.right_counts[i] - log.right_counts[i - 1]) / dt);
   }
+  if (!log.gyro_z_rad_s.empty()) {
+    ch.gyro_z_rad_s.assign(log.gyro_z_rad_s.begin() + 1, log.gyro_z_rad_s.end());
+  }
   return ch;
 }
 
@@ -165,6 +203,23 @@ Channels ReplayChannels(const RobotSpec& robot, const RobotWiring& wiring,
   RobotSpec replayed = robot;
   std::erase_if(replayed.components,
                 [](const ComponentSpec& c) { return LeftOutOfReplay(c.type); });
+  // the imu's own truth output is the yaw rate as the chip sees it (its Sense, not the step's
+  // end); read through the chip's low-pass filter below, it is what the gyro reads, less errors
+  const bool gyro = !log.gyro_z_rad_s.empty() && !wiring.imu.empty();
+  std::string truth_out = "fit.imu_truth";
+  double dlpf_alpha = 1;
+  if (gyro) {
+    const ComponentSpec* imu = FindComponent(replayed, wiring.imu);
+    truth_out = StringParam(*imu, "truth_out", "");
+    if (truth_out.empty()) {
+      truth_out = "fit.imu_truth";
+      SetString(replayed, wiring.imu, "truth_out", truth_out);
+    }
+    // plugins/imu: the part's default bandwidth (the LSM6DS3's 400 Hz, the others' 250 Hz)
+    const double dlpf_hz = NumberParam(
+        *imu, "dlpf_hz", StringParam(*imu, "part", "icm20602") == "lsm6ds3" ? 400 : 250);
+    dlpf_alpha = 1 - std::exp(-2 * std::numbers::pi * dlpf_hz * robot.timestep_s);
+  }
   KernelOptions options;
   options.seed = 1;
   options.log_sink = [](double, int, const std::string&, const std::string&) {};
@@ -176,6 +231,21 @@ Channels ReplayChannels(const RobotSpec& robot, const RobotWiring& wiring,
   const int left_q = m.jnt_qposadr[mj_name2id(&m, mjOBJ_JOINT, wiring.left.joint.c_str())];
   const int right_q = m.jnt_qposadr[mj_name2id(&m, mjOBJ_JOINT, wiring.right.joint.c_str())];
   const double dt = kernel->timestep_s();
+  // the imu's reading and the true yaw rate it saw, when the log has a gyro to compare them with
+  const int gyro_signal = gyro ? model.FindSignal(wiring.imu_gyro_z) : -1;
+  const int truth_signal = gyro ? model.FindSignal(truth_out + ".gyro_z_rad_s") : -1;
+  UNIMOUSE_DEMAND(!gyro || (gyro_signal >= 0 && truth_signal >= 0));
+  // per step: the imu's reading and the filtered true rate, from step 0 on
+  std::vector<double> step_gyro, step_rate;
+  double filtered_rate = 0;
+  const auto sample_gyro = [&] {
+    if (!gyro) return;
+    const std::vector<double>& signals = kernel->state().signals();
+    filtered_rate += dlpf_alpha * (signals[truth_signal] - filtered_rate);
+    step_gyro.push_back(signals[gyro_signal]);
+    step_rate.push_back(filtered_rate);
+  };
+  sample_gyro();
 
   // a row's counts are the wheels' angles after as many steps as its time; its commands then
   // hold until the next row's time (the sysid sketch reads, then commands, then logs: replaying
@@ -184,19 +254,26 @@ Channels ReplayChannels(const RobotSpec& robot, const RobotWiring& wiring,
   const mjData& d = kernel->state().data();
   const double left_zero = d.qpos[left_q], right_zero = d.qpos[right_q];
   std::vector<double> left_counts, right_counts;
+  std::vector<int64_t> row_steps;
   int64_t step = 0;
   for (size_t i = 0; i < log.rows(); ++i) {
     const int64_t row_step = std::llround((log.time_s[i] - t0) / dt);
     while (step < row_step) {
       kernel->Step();
+      sample_gyro();
       ++step;
     }
     left_counts.push_back((d.qpos[left_q] - left_zero) * wiring.left.counts_per_rad);
     right_counts.push_back((d.qpos[right_q] - right_zero) * wiring.right.counts_per_rad);
+    row_steps.push_back(row_step);
     // the row's commands, as the voltage the log's battery gives through the file's bridges
     const double scale = wiring.battery_emf_v > 0 ? log.battery_v[i] / wiring.battery_emf_v : 1;
     kernel->state().signals()[left_in] = log.left_command[i] * scale;
     kernel->state().signals()[right_in] = log.right_command[i] * scale;
+  }
+  for (int extra = 0; gyro && extra < kGyroLag_steps; ++extra) {
+    kernel->Step();
+    sample_gyro();
   }
   kernel->Finish();
 
@@ -207,6 +284,11 @@ Channels ReplayChannels(const RobotSpec& robot, const RobotWiring& wiring,
     const double span = log.time_s[i] - log.time_s[i - 1];
     ch.values[0].push_back((left_counts[i] - left_counts[i - 1]) / span);
     ch.values[1].push_back((right_counts[i] - right_counts[i - 1]) / span);
+  }
+  for (size_t i = 1; gyro && i < log.rows(); ++i) {
+    const size_t at = static_cast<size_t>(row_steps[i] + kGyroLag_steps);
+    ch.gyro_z_rad_s.push_back(step_gyro[at]);
+    ch.yaw_rate_rad_s.push_back(step_rate[at]);
   }
   return ch;
 }

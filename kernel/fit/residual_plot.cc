@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
+#include <set>
 
 #include "bitmap_font.h"
 #include "png_file.h"
@@ -134,6 +136,19 @@ std::vector<uint8_t> RenderPlot(const Plot& plot) {
                 kText);
   }
   return std::move(canvas.rgb());
+}
+
+std::vector<std::string> PlotStems(const std::vector<std::string>& log_files) {
+  std::vector<std::string> stems;
+  std::set<std::string> taken;
+  for (const std::string& file : log_files) {
+    const std::string stem = std::filesystem::path(file).stem().string();
+    std::string unique = stem;
+    for (int n = 2; taken.contains(unique); ++n) unique = stem + "-" + std::to_string(n);
+    taken.insert(unique);
+    stems.push_back(unique);
+  }
+  return stems;
 }
 
 void WritePlot(const std::string& path, const Plot& plot) {

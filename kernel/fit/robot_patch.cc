@@ -75,8 +75,9 @@ std::string PatchRobotText(const std::string& text, const RobotSpec& robot,
         above[at.line].push_back(std::string(from, ' ') + p.ref.key + ": " + value);
       }
     }
+    const std::string was = ParameterDrawn(robot, p.ref) ? "drawn" : Number(p.file_value);
     notes[p.ref.component] += (notes[p.ref.component].empty() ? "" : ", ") + p.ref.key + " " +
-                              value + " (was " + Number(p.file_value) + ")";
+                              value + " (was " + was + ")";
   }
   for (const auto& [name, note] : notes) {
     for (const ComponentSpec& c : robot.components) {

@@ -218,6 +218,14 @@ void Imu::DrawErrors(const ResetContext& ctx, const Channel& c, double* slots) c
   for (int i = 0; i < 3; ++i) slots[kTurnOn + i] = within(c.bias);
   // the drift starts in its stationary distribution
   for (int i = 0; i < 3; ++i) slots[kDrift + i] = c.drift_sd * ctx.Normal(c.drift);
+  // a calibrated z gyro replaces its draws after they are made, so that the other axes and the
+  // later draws stay those of the same seed
+  if (&c == &gyro_) {
+    if (param::Given(p_.given, "gyro_z_scale_error")) At(m, 2, 2) = 1 + p_.gyro_z_scale_error;
+    if (param::Given(p_.given, "gyro_z_bias_dps")) {
+      slots[kTurnOn + 2] = p_.gyro_z_bias_dps * kRadPerDeg;
+    }
+  }
 }
 
 void Imu::SiteMotion(const mjModel& m, const mjData& d, const double* previous_v,

@@ -12,8 +12,9 @@
 // S (scale-factor errors) and C (cross-axis sensitivities) are diagonal and off-diagonal
 // matrices drawn once per run, b0 the turn-on bias, all uniform within the part's +- tolerance;
 // b(t) is a first-order Gauss-Markov drift whose Allan deviation peaks at the bias instability;
-// w is white noise of the part's noise density. Every draw comes from streams named after the
-// component, so a seed gives the same readings bit for bit.
+// w is white noise of the part's noise density. A robot file can fix the z gyro's b0 and S
+// (gyro_z_bias_dps, gyro_z_scale_error: a chip calibrated by `unimouse fit`). Every draw comes from
+// streams named after the component, so a seed gives the same readings bit for bit.
 #ifndef UNIMOUSE_PLUGINS_IMU_H_
 #define UNIMOUSE_PLUGINS_IMU_H_
 
@@ -71,6 +72,8 @@ struct ImuParams {
   double gyro_bias_tau_s = 100;
   double gyro_scale_error = 0.01;
   double gyro_cross_axis = 0.02;
+  double gyro_z_bias_dps = 0;
+  double gyro_z_scale_error = 0;
   double accel_range_g = 4;
   double accel_sensitivity_lsb_per_g = 8192;
   double accel_noise_g_per_rt_hz = 100e-6;
@@ -110,6 +113,12 @@ struct ImuParams {
       "gyro sensitivity tolerance (+-, a fraction), drawn per axis", NonNegative{});
     v("gyro_cross_axis", gyro_cross_axis,
       "gyro cross-axis sensitivity tolerance (+-, a fraction), drawn per pair", NonNegative{});
+    v("gyro_z_bias_dps", gyro_z_bias_dps,
+      "the z axis's turn-on bias, signed, instead of a draw (a calibrated chip: unimouse fit)",
+      param::Range{-1e4, 1e4});
+    v("gyro_z_scale_error", gyro_z_scale_error,
+      "the z axis's scale-factor error, signed fraction, instead of a draw (a calibrated chip)",
+      param::Range{-0.5, 0.5});
     v("accel_range_g", accel_range_g, "accelerometer full-scale range; readings saturate there",
       Positive{});
     v("accel_sensitivity_lsb_per_g", accel_sensitivity_lsb_per_g,

@@ -107,5 +107,11 @@ TEST(ResidualPlotTest, AFitsResidualsAreTheReplayLessTheLog) {
   EXPECT_EQ(plot.title.find("/some/where"), std::string::npos);
 }
 
+TEST(PlotStemsTest, GiveEachLogItsOwnNameAlsoForTheSameLogTwiceOrOneNameInTwoFolders) {
+  const std::vector<std::string> stems =
+      PlotStems({"a/sysid.csv", "a/sysid.csv", "b/sysid.csv", "sysid-2.csv", "run.log"});
+  EXPECT_EQ(stems, (std::vector<std::string>{"sysid", "sysid-2", "sysid-3", "sysid-2-2", "run"}));
+}
+
 }  // namespace
 }  // namespace unimouse::fit

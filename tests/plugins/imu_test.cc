@@ -252,6 +252,25 @@ TEST(ImuTest, GyroIntegratedOverASpinGivesTheTurnTimesOnePlusItsScaleError) {
       << "scale error " << scale_error;
 }
 
+TEST(ImuTest, ACalibratedZGyroHasItsGivenBiasAndScaleErrorAndTheOtherAxesKeepTheirDraws) {
+  // drift off, so that the bias is the turn-on bias alone
+  const std::string part = "part: icm20602, gyro_bias_instability_dps: 0";
+  auto drawn = MakeKernel(GyroRobotWith(ImuWith(part)));
+  auto given = MakeKernel(
+      GyroRobotWith(ImuWith(part + ", gyro_z_bias_dps: -0.7, gyro_z_scale_error: 0.025")));
+  drawn->Step();
+  given->Step();
+  EXPECT_NEAR(SignalValue(*given, "truth.gyro_bias_z_rad_s"), -0.7 * kRadPerDeg, 1e-12);
+  EXPECT_NEAR(SignalValue(*given, "truth.gyro_scale_error_z"), 0.025, 1e-12);
+  EXPECT_NE(SignalValue(*drawn, "truth.gyro_scale_error_z"), 0.025);
+  for (const char* axis : {"x", "y"}) {
+    EXPECT_EQ(SignalValue(*given, std::string("truth.gyro_bias_") + axis + "_rad_s"),
+              SignalValue(*drawn, std::string("truth.gyro_bias_") + axis + "_rad_s"));
+    EXPECT_EQ(SignalValue(*given, std::string("truth.gyro_scale_error_") + axis),
+              SignalValue(*drawn, std::string("truth.gyro_scale_error_") + axis));
+  }
+}
+
 TEST(ImuTest, BeyondFullScaleTheGyroSaturatesAtTheRegistersCount) {
   // +-250 dps is 131 LSB/dps on an ICM-20602: full scale is 32750 counts
   auto kernel = MakeKernel(GyroRobotWith(ImuWith("part: icm20602, gyro_range_dps: 250")));

@@ -12,6 +12,11 @@
 // file's value. A parameter is reported identified when its 95 % confidence interval (from the
 // Jacobian at the optimum) is within kIdentifiedWithin of its value; otherwise the file's value
 // is kept and the report says so.
+//
+// The gyro: with the motor constants fitted, a log's gyro_z_rad_s column against the replayed
+// robot's true yaw rate w as its imu sees it is the line g = (1 + e) w + b (plugins/imu's model
+// about z, cross-axis terms and drift aside), fitted by linear least squares over every row:
+// b, the bias, from the standstills, e, the scale error, from the spins.
 #ifndef UNIMOUSE_FIT_FIT_H_
 #define UNIMOUSE_FIT_FIT_H_
 
@@ -29,6 +34,11 @@ namespace unimouse::fit {
 /// Largest half-width of a 95 % confidence interval, as a fraction of the value, at which a
 /// parameter counts as identified by the logs.
 inline constexpr double kIdentifiedWithin = 0.05;
+/// A gyro's bias or scale error that is near zero cannot be known within kIdentifiedWithin of
+/// itself; it counts as identified when its interval's half-width is within these: 0.01 dps,
+/// a few times the ICM-20602's bias instability (0.003 dps), and 0.1 % of the rate.
+inline constexpr double kGyroBiasResolution_dps = 0.01;
+inline constexpr double kGyroScaleResolution = 0.001;
 /// Bounds of a fitted value, as a ratio to the file's: beyond them the log is not of this robot.
 inline constexpr double kMinRatio = 0.25, kMaxRatio = 4;
 /// Shortest log that can identify anything, seconds.
@@ -47,6 +57,7 @@ struct FittedParameter {
 /// How close one channel of one log is, before (the file's values) and after the fit.
 struct ChannelFit {
   std::string log;
+  size_t log_index = 0;  ///< the log's place among those fitted
   std::string channel;
   double r2_before = 0, rmse_before = 0;
   double r2_after = 0, rmse_after = 0;
@@ -67,7 +78,10 @@ struct FitReport {
 /// far faster or slower than this robot's encoders and motors can (a log of another robot).
 void CheckLogFitsRobot(const SysidLog& log, const RobotSpec& robot, const RobotWiring& wiring);
 
-/// Fits both motors' Kt and Ra to the logs. Deterministic: same inputs, same report.
+/// Fits both motors' Kt and Ra to the logs, then, when the logs have a gyro column and the robot
+/// an imu, its z gyro's bias (gyro_z_bias_dps) and scale error (gyro_z_scale_error). Each channel's
+/// "after" is the replay of the robot with the reported values (the file's where not
+/// identified): what the fitted file gives. Deterministic: same inputs, same report.
 FitReport FitRobot(const RobotSpec& robot, const PluginRegistry& registry,
                    const std::vector<SysidLog>& logs);
 
@@ -76,7 +90,8 @@ FitReport FitRobot(const RobotSpec& robot, const PluginRegistry& registry,
 double RSquared(const std::vector<double>& measured, const std::vector<double>& replayed);
 double Rmse(const std::vector<double>& measured, const std::vector<double>& replayed);
 
-/// Per channel of a log: RMSE and largest error of the replay against the log.
+/// Per channel of a log (the wheels; the gyro when the log has one and the robot an imu): RMSE and
+/// largest error of the replay against the log.
 struct ChannelComparison {
   std::string channel;
   double rmse = 0, max_error = 0, r2 = 0;

@@ -53,6 +53,11 @@ PanelBox PlotPanelBox(int index, int panels);
 /// title, label and each panel's top and bottom values in the bitmap font.
 std::vector<uint8_t> RenderPlot(const Plot& plot);
 
+/// The start of each log's plot names, in the order of `log_files`: the file name without its
+/// extension, followed by -2, -3, ... where an earlier log already took it (the same log given
+/// twice, two logs of one name in different folders), so that no two logs share one.
+std::vector<std::string> PlotStems(const std::vector<std::string>& log_files);
+
 /// Renders the plot and writes it as a PNG; throws InputError when it cannot be written.
 void WritePlot(const std::string& path, const Plot& plot);
 

@@ -71,18 +71,23 @@ void BM_StepWithLockstepFirmware(benchmark::State& bench) {
 }
 BENCHMARK(BM_StepWithLockstepFirmware)->Unit(benchmark::kMicrosecond)->Iterations(20000);
 
-// per step: the full robot driven by the micromouse example in lock-step
-void StepWithMicromouse(benchmark::State& bench, const std::string& link) {
+// per step: the full robot driven by an example firmware in lock-step
+void StepWithExample(benchmark::State& bench, const std::string& link) {
   const PluginRegistry registry = Registry();
   auto kernel = WithLink(link, registry);
   for (auto _ : bench) kernel->Step();
 }
 void BM_StepWithInprocMicromouse(benchmark::State& bench) {
-  StepWithMicromouse(bench, "inproc:" UNIMOUSE_FIRMWARE_DIR "/micromouse.so");
+  StepWithExample(bench, "inproc:" UNIMOUSE_FIRMWARE_DIR "/micromouse.so");
 }
 BENCHMARK(BM_StepWithInprocMicromouse)->Unit(benchmark::kMicrosecond)->Iterations(20000);
+// the racer, the main job's firmware: its share of a step (issue 30) beside direct commands
+void BM_StepWithInprocRacer(benchmark::State& bench) {
+  StepWithExample(bench, "inproc:" UNIMOUSE_FIRMWARE_DIR "/racer.so");
+}
+BENCHMARK(BM_StepWithInprocRacer)->Unit(benchmark::kMicrosecond)->Iterations(20000);
 void BM_StepWithNativeMicromouse(benchmark::State& bench) {
-  StepWithMicromouse(bench, "native:" UNIMOUSE_FIRMWARE_DIR "/micromouse");
+  StepWithExample(bench, "native:" UNIMOUSE_FIRMWARE_DIR "/micromouse");
 }
 BENCHMARK(BM_StepWithNativeMicromouse)->Unit(benchmark::kMicrosecond)->Iterations(20000);
 

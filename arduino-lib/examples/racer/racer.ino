@@ -357,6 +357,11 @@ void correctEstimate() {
     sawWall[0] = sawWall[1] = false;
     return;
   }
+  // most passes bring no new reading: nothing to correct
+  const bool leftNew = robot.leftSensor().hasNewData();
+  const bool rightNew = robot.rightSensor().hasNewData();
+  const bool frontNew = robot.frontSensor().hasNewData();
+  if (!leftNew && !rightNew && !frontNew) return;
   const float c = refCos, s = refSin;
   const float along = estX * c + estY * s, across = -estX * s + estY * c;  // across: left
   const float centre = (floorf(across / kCell) + 0.5f) * kCell;
@@ -364,7 +369,7 @@ void correctEstimate() {
   const float ce = cosf(e), se = sinf(e);
   float shiftAcross = 0, shiftAlong = 0, shiftTheta = 0;
   const float root = 0.70710678f;
-  if (robot.leftSensor().hasNewData()) {
+  if (leftNew) {
     const float d = robot.leftDistance();
     const float off =
         kWallFace - d * (root * ce + root * se) - kSensorAhead * se - kSensorSide * ce;
@@ -375,7 +380,7 @@ void correctEstimate() {
     }
     shiftAlong += wallEnd(0, wall, sideHit(1, along, across - centre, e), d);
   }
-  if (robot.rightSensor().hasNewData()) {
+  if (rightNew) {
     const float d = robot.rightDistance();
     const float off =
         d * (root * ce - root * se) - kWallFace - kSensorAhead * se + kSensorSide * ce;
@@ -386,7 +391,7 @@ void correctEstimate() {
     }
     shiftAlong += wallEnd(1, wall, sideHit(-1, along, across - centre, e), d);
   }
-  if (robot.frontSensor().hasNewData()) {
+  if (frontNew) {
     const float f = robot.frontDistance();
     if (f > 0.035f * kScale && f < fminf(0.25f * kScale, kRange)) {
       const float seen = along + (f + kSensorAhead) * ce;

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "fit_commands.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -83,6 +84,17 @@ int FitCommand(const FitOptions& o) {
   }
   std::printf("%-34s %12s %12s  %-27s %s\n", "each motor's damping_nm_s_per_rad", "", "", "",
               "no: wheel speeds alone cannot tell it from Kt and Ra; the file's value kept");
+  // a log with a gyro fitted against a robot without an imu: its column is read and not used
+  const bool gyro_logged = std::any_of(l.logs.begin(), l.logs.end(), [](const fit::SysidLog& log) {
+    return !log.gyro_z_rad_s.empty();
+  });
+  const bool gyro_fitted =
+      std::any_of(report.parameters.begin(), report.parameters.end(),
+                  [](const fit::FittedParameter& p) { return p.ref.key == "gyro_z_bias_dps"; });
+  if (gyro_logged && !gyro_fitted) {
+    std::printf("%-34s %12s %12s  %-27s %s\n", "the gyro's bias and scale error", "", "", "",
+                "no: the robot file has no unimouse.imu; the logs' gyro_z_rad_s is not used");
+  }
   std::printf("\n%-28s %-20s %10s %12s %10s %12s\n", "log", "channel", "r2 before", "RMSE before",
               "r2 after", "RMSE after");
   for (const fit::ChannelFit& c : report.channels) {

@@ -512,6 +512,16 @@ TEST(DocumentedCommandsTest, TheGyroRobotsWorkedExampleFitsItsGyroWithinTheParts
   EXPECT_LE(std::abs(ParameterValue(back, {"imu", "gyro_z_bias_dps"})), 1.0);
   EXPECT_LE(std::abs(ParameterValue(back, {"imu", "gyro_z_scale_error"})), 0.01);
   EXPECT_TRUE(std::filesystem::exists(dir + "/out/fit-gyro/sysid-gyro_z_rad_s-fit.png"));
+  // the same log against the robot without an imu: the motors are fitted, and the report says
+  // that the gyro's column is not used
+  const testing::Outcome plain =
+      Unimouse("fit unimouse " + dir + "/out/sysid-gyro/sysid.csv --out " + dir + "/out/fit-plain");
+  EXPECT_EQ(plain.exit_code, 0) << plain.output;
+  EXPECT_NE(
+      plain.output.find("the robot file has no unimouse.imu; the logs' gyro_z_rad_s is not used"),
+      std::string::npos)
+      << plain.output;
+  EXPECT_EQ(plain.output.find("imu.gyro_z_bias_dps"), std::string::npos) << plain.output;
 }
 
 }  // namespace

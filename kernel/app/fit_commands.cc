@@ -84,6 +84,8 @@ int FitCommand(const FitOptions& o) {
   }
   std::printf("%-34s %12s %12s  %-27s %s\n", "each motor's damping_nm_s_per_rad", "", "", "",
               "no: wheel speeds alone cannot tell it from Kt and Ra; the file's value kept");
+  std::printf("%-34s %12s %12s  %-27s %s\n", "each wheel joint's armature_kg_m2", "", "", "",
+              "no: it enters the speed's time constant only with Ra; the file's value kept");
   // a log with a gyro fitted against a robot without an imu: its column is read and not used
   const bool gyro_logged = std::any_of(l.logs.begin(), l.logs.end(), [](const fit::SysidLog& log) {
     return !log.gyro_z_rad_s.empty();

@@ -472,6 +472,13 @@ TEST(DocumentedCommandsTest, TheWorkedExampleOfCalibrateMdRunsFromLogToFittedFil
   for (const std::string& command : commands) {
     const testing::Outcome o = testing::RunDocumented(command, dir);
     EXPECT_EQ(o.exit_code, 0) << command << "\n" << o.output;
+    // what wheel speeds cannot pin, said so and kept (docs/calibrate.md, Limits)
+    if (command.find(" fit ") != std::string::npos) {
+      for (const char* kept :
+           {"each motor's damping_nm_s_per_rad", "each wheel joint's armature"}) {
+        EXPECT_NE(o.output.find(kept), std::string::npos) << kept << "\n" << o.output;
+      }
+    }
   }
   const std::string fitted = ReadTextFile(dir + "/out/fit/unimouse-fitted.yaml");
   // the log is of the very robot: whatever is fitted stays the file's within the fit's bounds

@@ -334,8 +334,9 @@ float lastHit[2];
 // a side wall ends at a post's far face, half a post past the cell's edge: when the ray met a
 // wall at the last reading and nothing now, the face ended between the two, taken halfway
 // (within 1.5 cm at 1 m/s and a reading each 30 ms); returns the shift this gives the distance
-// along. Only in the speed run: exploring at 0.4 m/s, the front wall and the decisions 1.5 cm
-// before each cell keep it (with it, an exploration of japan9p went astray)
+// along. Only in the speed run and the trip home driven as one: exploring at 0.4 m/s, the front
+// wall and the decisions 1.5 cm before each cell keep it (with it, an exploration of japan9p
+// went astray)
 float wallEnd(uint8_t i, bool wallNow, float hitNow, float d) {
   float shift = 0;
   if (racing && sawWall[i] && !wallNow && d > 1.5f * kSideWall) {

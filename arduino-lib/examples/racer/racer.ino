@@ -16,6 +16,8 @@
 //    staircase of turns, where the explorer's curve leaves a little straight for corrections.
 //  - Exploring never stops except to turn round or to finish: it decides what to do in a cell
 //    1.5 cm before entering it, on the walls its sensors saw while approaching.
+//  - Once exploring is over in the goal, the trip home runs over cells seen only, so it is
+//    planned and driven as a speed run (planFastPath), to the start cell's centre.
 //  - The pose (eq. 3.29-3.31 from the encoders, the heading from the gyro when the robot sends
 //    it) is corrected by side walls (the distance from the corridor's centre line), by a wall
 //    ahead and, in the speed run, by the ends of side walls (the distance along it). The tyres slip
@@ -332,8 +334,9 @@ float lastHit[2];
 // a side wall ends at a post's far face, half a post past the cell's edge: when the ray met a
 // wall at the last reading and nothing now, the face ended between the two, taken halfway
 // (within 1.5 cm at 1 m/s and a reading each 30 ms); returns the shift this gives the distance
-// along. Only in the speed run: exploring at 0.4 m/s, the front wall and the decisions 1.5 cm
-// before each cell keep it (with it, an exploration of japan9p went astray)
+// along. Only in the speed run and the trip home driven as one: exploring at 0.4 m/s, the front
+// wall and the decisions 1.5 cm before each cell keep it (with it, an exploration of japan9p
+// went astray)
 float wallEnd(uint8_t i, bool wallNow, float hitNow, float d) {
   float shift = 0;
   if (racing && sawWall[i] && !wallNow && d > 1.5f * kSideWall) {
@@ -468,24 +471,37 @@ void finish(const char* why) {
   mode = Mode::Done;
 }
 
-// the speed run from the start cell's centre, facing north, along the best path over the walls
-// seen: straights merged, quarter turns as curves that fill their cell
-void planSpeedRun() {
-  solver.calculateCosts(robot.maze().received() ? robot.maze().goalX0() : 7,
-                        robot.maze().received() ? robot.maze().goalY0() : 7,
-                        robot.maze().received() ? robot.maze().goalX1() : 8,
-                        robot.maze().received() ? robot.maze().goalY1() : 8, true);
-  uint8_t x = 0, y = 0;
-  Direction d = Direction::North;
-  speedRunCost = solver.cost(x, y, d);
-  if (speedRunCost == FFSolver<kMaxSide, kMaxSide>::UNREACHABLE) {
-    finish("no way to the goal");
-    return;
+// queues the best path over the walls seen from cell (x, y) facing d, to the goal or home to the
+// start cell, as a speed run drives it: straights merged, quarter turns as curves that fill their
+// cell. It begins in the cell's centre at rest (the speed run) or at its edge on the way in (the
+// trip home once exploring is over, which may first turn round in that cell); it ends on through
+// the open cells straight ahead of the goal, or in the start cell's centre facing north. Returns
+// the path's cost, UNREACHABLE with nothing queued
+uint16_t planFastPath(uint8_t x, uint8_t y, Direction d, bool fromCentre, bool toGoal) {
+  if (toGoal) {
+    solver.calculateCosts(robot.maze().received() ? robot.maze().goalX0() : 7,
+                          robot.maze().received() ? robot.maze().goalY0() : 7,
+                          robot.maze().received() ? robot.maze().goalX1() : 8,
+                          robot.maze().received() ? robot.maze().goalY1() : 8, true);
+  } else {
+    solver.calculateCosts(0, 0, 0, 0, true);
+  }
+  const uint16_t cost = solver.cost(x, y, d);
+  if (cost == FFSolver<kMaxSide, kMaxSide>::UNREACHABLE) return cost;
+  const Action a0 = solver.bestAction(x, y, d);
+  if (!fromCentre && (a0 == Action::TurnLeft || a0 == Action::TurnRight) &&
+      solver.bestAction(x, y, turned(d, a0)) != Action::Forward) {
+    // the way on is back: stop in the cell's centre and turn round there, as exploring does
+    push(Kind::Straight, kCell / 2, kSearch, 0);
+    push(Kind::Pivot, 0, 0, 0, static_cast<int8_t>(a0 == Action::TurnLeft ? 2 : -2));
+    push(Kind::Pause, 0.05f, 0, 0);
+    d = turnAround(d);
+    fromCentre = true;
   }
   const float d90 = kCell / 2;
   const float vTurn = curveSpeed(d90, kYawAccelRun);
   float straight = 0;
-  bool first = true;
+  bool first = fromCentre;
   for (;;) {
     const Action a = solver.bestAction(x, y, d);
     if (a == Action::None) break;
@@ -515,15 +531,19 @@ void planSpeedRun() {
     x = static_cast<uint8_t>(x + stepX(d));
     y = static_cast<uint8_t>(y + stepY(d));
   }
-  // into the goal, then on through the open cells straight ahead (up to two) to a stop
-  float room = kCell / 2;
-  for (uint8_t i = 0; i < 2 && !maze.hasWall(x, y, d); ++i) {
-    if (!maze.isKnown(x, y, d)) break;
-    x = static_cast<uint8_t>(x + stepX(d));
-    y = static_cast<uint8_t>(y + stepY(d));
-    room += kCell;
+  if (toGoal) {
+    // into the goal, then on through the open cells straight ahead (up to two) to a stop
+    float room = kCell / 2;
+    for (uint8_t i = 0; i < 2 && !maze.hasWall(x, y, d); ++i) {
+      if (!maze.isKnown(x, y, d)) break;
+      x = static_cast<uint8_t>(x + stepX(d));
+      y = static_cast<uint8_t>(y + stepY(d));
+      room += kCell;
+    }
+    push(Kind::Straight, straight + room, kTop, 0);
+  } else {
+    push(Kind::Straight, straight + kCell / 2, kTop, 0);
   }
-  push(Kind::Straight, straight + room, kTop, 0);
   // backwards: a curve runs at the speed it is entered at, so each one is slowed to what the
   // straight after it can brake from for the next
   float next = 0;
@@ -538,7 +558,19 @@ void planSpeedRun() {
       next = g.vMax;
     }
   }
+  if (!toGoal) {
+    const int quarter = (static_cast<int>(d) - static_cast<int>(Direction::North) + 4) % 4;
+    if (quarter != 0) push(Kind::Pivot, 0, 0, 0, static_cast<int8_t>(quarter == 3 ? -1 : quarter));
+  }
   racing = true;
+  return cost;
+}
+
+// the speed run from the start cell's centre, facing north, along the best path over the walls
+// seen
+void planSpeedRun() {
+  speedRunCost = planFastPath(0, 0, Direction::North, true, true);
+  if (speedRunCost == FFSolver<kMaxSide, kMaxSide>::UNREACHABLE) finish("no way to the goal");
 }
 
 // the robot is about to enter (nextX, nextY) facing `heading`: record its walls and queue what
@@ -560,6 +592,16 @@ void decide() {
     snprintf(line, sizeof(line), "at %u %u %u do %u", x, y, static_cast<unsigned>(heading),
              static_cast<unsigned>(a));
     robot.log(line);
+  }
+  if (paths.phase() == PathManager<kMaxSide, kMaxSide>::Phase::ReturningHome &&
+      planFastPath(x, y, heading, false, false) != FFSolver<kMaxSide, kMaxSide>::UNREACHABLE) {
+    // exploring is over: the way home runs over cells seen, so it is driven as a speed run, to
+    // the start cell's centre facing north; then a pause and the race
+    push(Kind::Pause, 0.3f, 0, 0);
+    heading = Direction::North;
+    decided = true;
+    then = Then::Race;
+    return;
   }
   if (paths.phase() == PathManager<kMaxSide, kMaxSide>::Phase::SpeedRun && x == 0 && y == 0) {
     // home after exploring: stop in the start cell's centre, face north, and race

@@ -471,6 +471,18 @@ void finish(const char* why) {
   mode = Mode::Done;
 }
 
+// the last path planned, for the simulator's pictures: n, then each cell's x and y
+// (UNIMOUSE_ID_DEBUG_PATH); room for 128 cells on a board, 255 on the PC
+const uint8_t kPathCells = kMaxSide >= 32 ? 255 : kMaxSide * 8;
+uint8_t pathFrame[1 + 2 * kPathCells];
+
+void addPathCell(uint8_t x, uint8_t y) {
+  if (pathFrame[0] == kPathCells) return;
+  pathFrame[1 + 2 * pathFrame[0]] = x;
+  pathFrame[2 + 2 * pathFrame[0]] = y;
+  ++pathFrame[0];
+}
+
 // queues the best path over the walls seen from cell (x, y) facing d, to the goal or home to the
 // start cell, as a speed run drives it: straights merged, quarter turns as curves that fill their
 // cell. It begins in the cell's centre at rest (the speed run) or at its edge on the way in (the
@@ -498,6 +510,8 @@ uint16_t planFastPath(uint8_t x, uint8_t y, Direction d, bool fromCentre, bool t
     d = turnAround(d);
     fromCentre = true;
   }
+  pathFrame[0] = 0;
+  addPathCell(x, y);
   const float d90 = kCell / 2;
   const float vTurn = curveSpeed(d90, kYawAccelRun);
   float straight = 0;
@@ -530,6 +544,7 @@ uint16_t planFastPath(uint8_t x, uint8_t y, Direction d, bool fromCentre, bool t
     }
     x = static_cast<uint8_t>(x + stepX(d));
     y = static_cast<uint8_t>(y + stepY(d));
+    addPathCell(x, y);
   }
   if (toGoal) {
     // into the goal, then on through the open cells straight ahead (up to two) to a stop
@@ -539,6 +554,7 @@ uint16_t planFastPath(uint8_t x, uint8_t y, Direction d, bool fromCentre, bool t
       x = static_cast<uint8_t>(x + stepX(d));
       y = static_cast<uint8_t>(y + stepY(d));
       room += kCell;
+      addPathCell(x, y);
     }
     push(Kind::Straight, straight + room, kTop, 0);
   } else {
@@ -562,6 +578,7 @@ uint16_t planFastPath(uint8_t x, uint8_t y, Direction d, bool fromCentre, bool t
     const int quarter = (static_cast<int>(d) - static_cast<int>(Direction::North) + 4) % 4;
     if (quarter != 0) push(Kind::Pivot, 0, 0, 0, static_cast<int8_t>(quarter == 3 ? -1 : quarter));
   }
+  robot.debug(UNIMOUSE_ID_DEBUG_PATH, pathFrame, static_cast<uint16_t>(1 + 2 * pathFrame[0]));
   racing = true;
   return cost;
 }

@@ -250,7 +250,10 @@ MmsMotion MmsRobot::Drive(long cells) {
       min_right_m = std::min(min_right_m, right_m);
     }
     if (go_m < 0.09 * s && go_m > 0.04 * s) min_front_m = std::min(min_front_m, front_m);
-    if (go_m <= kCoast_m * s || front_m <= control_.front_stop_m * s) break;
+    // a wall ahead nearer than the last cell's own stops the move; that one is 24 mm from the
+    // front sensor at the centre, and the estimate, which its readings corrected, stops there
+    if (go_m <= kCoast_m * s) break;
+    if (front_m <= control_.front_stop_m * s && front_m - wall_face_m < go_m - kCoast_m * s) break;
     if (now_s() - start_s > budget_s) {
       session_.kernel().state().signals()[left_command_] = 0;
       session_.kernel().state().signals()[right_command_] = 0;

@@ -8,8 +8,9 @@
 //  - A move of N cells: both wheels forward, the pose estimated from the encoders and, between
 //    side walls, from the 45-degree sensors (an observer learns the offset from the corridor's
 //    middle and the heading from how the walls' readings change along the way); the robot is
-//    steered back to the middle, along the corridor; the move ends at the last cell's centre,
-//    or 35 mm before a wall the front sensor sees, which also corrects the distance along.
+//    steered back to the middle, along the corridor; the move ends at the last cell's centre
+//    (the front sensor's readings of the wall beyond it correct the distance along), or 35 mm
+//    before a wall the front sensor sees nearer than that.
 //  - A quarter turn: the wheels opposite, closed on the estimated heading, braked as it nears,
 //    until the robot rests within half a degree of it.
 //  - Walls: while the robot crosses into its last cell, the 45-degree sensors see that cell's

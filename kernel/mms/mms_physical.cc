@@ -270,8 +270,12 @@ MmsMotion MmsRobot::Drive(long cells) {
     const double correction =
         std::clamp(-kSteerOffset_per_m / s * offset_m - kSteerHeading_per_rad * heading_rad,
                    -kMaxCorrection, kMaxCorrection);
-    // a ramp over the first 3 cm, so that the wheels do not slip and fool the encoders
-    double base = go_m < 0.03 * s ? kSlow : kForward;
+    // ramps over the first 3 cm and from 6 to 3 cm before the end, so that the wheels do not
+    // slip and fool the encoders (a step down to kSlow left the estimate millimetres behind)
+    double base = kForward;
+    if (go_m < 0.06 * s) {
+      base = kSlow + (kForward - kSlow) * std::max(0.0, go_m - 0.03 * s) / (0.03 * s);
+    }
     if (travelled_m < 0.03 * s) {
       base = kSlow + (kForward - kSlow) * std::max(0.0, travelled_m) / (0.03 * s);
     }

@@ -41,8 +41,9 @@ constexpr double kCoast_m = 0.01;
 // (kTurn from half a radian), less a damping on the turning rate that brakes the robot before
 // the heading instead of letting it roll past (stopping the wheels at 45 let it roll 2.5
 // degrees on); the rate is smoothed over 20 ms, as one encoder count a millisecond is 3 rad/s.
-// Below kTurnMin the caster holds the robot, so a command that pushes on to the heading is at
-// least that. The turn ends once the estimate has been within half a degree for 20 ms, at rest
+// A command that pushes on to the heading is at least kTurnMin, so that the turn does not stall
+// short of it against the friction of the tyres and the caster. The turn ends once the estimate
+// has been within half a degree for 20 ms, at rest
 constexpr double kTurnGain_per_rad = 260;
 constexpr double kTurnDamp_per_radps = 40;
 constexpr double kTurnMin = 45;
@@ -324,8 +325,8 @@ MmsMotion MmsRobot::Turn(int quarter_turns) {
     const double dt = now_s() - before_s;
     rate_radps += ((est_yaw_rad_ - before_rad) / dt - rate_radps) * std::min(1.0, dt / kTurnRate_s);
   }
-  if (!Settle()) return Ended(start_s);
   heading_ = to;
+  if (!Settle()) return Ended(start_s);
   return Arrived(start_s);
 }
 

@@ -5,11 +5,14 @@
 // (left.encoder_counts, right.encoder_counts: counts each tick) and the time-of-flight sensors
 // (tof.left_m, tof.front_m, tof.right_m) every tick.
 //
-//  - A move of N cells: both wheels forward, the pose estimated from the encoders; the heading
-//    is held on the estimate and, between side walls, centred on them; the move ends at the last
-//    cell's centre, or 35 mm before a wall the front sensor sees. At rest the estimate is put
-//    back in the middle of the corridor, facing straight along it.
-//  - A quarter turn: the wheels opposite until the estimated heading has turned 90 degrees.
+//  - A move of N cells: both wheels forward, the pose estimated from the encoders and, between
+//    side walls, from the 45-degree sensors (an observer learns the offset from the corridor's
+//    middle and the heading from how the walls' readings change along the way); the robot is
+//    steered back to the middle, along the corridor; the move ends at the last cell's centre
+//    (the front sensor's readings of the wall beyond it correct the distance along), or 35 mm
+//    before a wall the front sensor sees nearer than that.
+//  - A quarter turn: the wheels opposite, closed on the estimated heading, braked as it nears,
+//    until the robot rests within half a degree of it.
 //  - Walls: while the robot crosses into its last cell, the 45-degree sensors see that cell's
 //    side walls and the front sensor the wall beyond it (it is blind nearer than 3 cm, so at the
 //    cell's centre it cannot see that wall any more).

@@ -1,12 +1,13 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // The physics tier: single moves and turns of the controller checked against the robot's true
 // pose in MuJoCo, what its sensors say of the walls, and `unimouse mms --physical` as a user
-// runs it, up to the flood-fill client solving All Japan 2018 on the robot.
+// runs it, up to the test clients driving classic mazes of the collection on the robot.
 #include "mms_physical.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <numbers>
 
@@ -176,6 +177,45 @@ TEST_F(MmsPhysicalRunTest, FloodFillClientReachesTheGoalOfAllJapan2018OnTheRobot
   EXPECT_LT(contest_s, 600);
   EXPECT_NEAR(result["physical"]["sim_time_s"].get<double>(), contest_s, 0.01);
   EXPECT_LT(result["physical"]["worst_offset_m"].get<double>(), 0.03);
+}
+
+// issue 30's bounds for the physics tier, on eight solvable classic mazes of the collection drawn
+// with seed 30 (bench/mms_physical_sweep.py runs a sample of 50): the flood-fill client reaches
+// every goal, and neither it nor the left-wall follower (a minute of contest time each) touches
+// a wall or comes to rest more than 3 degrees off its heading
+TEST_F(MmsPhysicalRunTest, TestClientsDriveEightClassicMazesWithoutAContactAndWithin3Degrees) {
+  const std::string shared = testing::SharedMazesDir();
+  if (shared.empty())
+    GTEST_SKIP() << "the maze collection (../shared/mazes) is not beside the project";
+  if (std::system("python3 -c '' >/dev/null 2>&1") != 0) GTEST_SKIP() << "no python3";
+  const char* mazes[] = {"alljapan-009-1988-pre",
+                         "alljapan-016-1995-frsh",
+                         "eastjapan-017-1999",
+                         "jcf01",
+                         "map-v1",
+                         "minos24-b",
+                         "sundo-1",
+                         "test-3paths"};
+  const std::string left_wall =
+      "--time-limit-s 60 -- python3 " UNIMOUSE_SOURCE_DIR "/tests/mms/clients/left_wall.py";
+  for (const char* name : mazes) {
+    const std::string maze = "--no-pictures --maze " + shared + "/classic/" + name + ".txt ";
+    for (const std::string& client : {std::string("-- " UNIMOUSE_MMS_FLOODFILL), left_wall}) {
+      const bool flood_fill = client.find("left_wall") == std::string::npos;
+      SCOPED_TRACE(std::string(name) + (flood_fill ? ", flood fill" : ", left wall"));
+      const testing::Outcome outcome =
+          testing::Unimouse("mms --physical --out " + out_ + " " + maze + client);
+      ASSERT_TRUE(fs::exists(out_ + "/result.json")) << outcome.output;
+      const nlohmann::json result = nlohmann::json::parse(ReadTextFile(out_ + "/result.json"));
+      const std::string status = result["status"];
+      // the left-wall follower drives until the contest clock stops it, or onto the goal
+      if (flood_fill) EXPECT_EQ(status, "goal_reached") << result["reason"];
+      if (!flood_fill) EXPECT_TRUE(status == "time_out" || status == "goal_reached") << status;
+      EXPECT_EQ(result["crashes"], 0);
+      EXPECT_EQ(result["physical"]["wall_contacts"], 0);
+      EXPECT_LT(result["physical"]["worst_yaw_error_deg"].get<double>(), 3);
+    }
+  }
 }
 
 // docs/mms.md: --maze-class as the micromouse scenario's maze_class, and a robot too wide for the

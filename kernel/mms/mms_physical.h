@@ -35,7 +35,6 @@ struct MmsControl {
   double side_wall_m = 0.10;     ///< a 45-degree reading below this is a side wall
   double front_wall_m = 0.15;    ///< a front reading below this, crossing into a cell, is a wall
   double front_stop_m = 0.035;   ///< a move ends this near a wall ahead
-  double centred_m = 0.0509;     ///< a 45-degree reading when centred between two walls
   double cell_budget_s = 1.5;    ///< simulated time a move may take per cell, plus
   double move_budget_s = 2;      ///< this for any move or turn, before the robot counts as stuck
   double off_course_rad = 0.35;  ///< a heading farther than this from the mouse's is off course

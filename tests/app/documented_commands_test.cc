@@ -4,6 +4,7 @@
 // the board image of an IMU driver in the working directory.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -74,6 +75,36 @@ TEST(DocumentedCommandsTest, TheRacerRunsTheContestAsFirmwareMdShows) {
   EXPECT_NE(o.output.find("best 26.050 s (path cost 108)"), std::string::npos) << o.output;
 }
 
+// the README's result line of the main job, e.g. "scenario micromouse: passed: 3 runs, ..."
+std::string ReadmeResultLine() {
+  const std::string readme = ReadTextFile(UNIMOUSE_SOURCE_DIR "/README.md");
+  const size_t shown = readme.find("\n    scenario micromouse: passed: ");
+  if (shown == std::string::npos) return "";
+  return readme.substr(shown + 5, readme.find('\n', shown + 1) - shown - 5);
+}
+
+// the README names the main job with its options in its text, and the library's README runs the
+// same sketch as a program of its own: each as written gives the README's result line
+TEST(DocumentedCommandsTest, TheMainJobWithItsOptionsAndAsAProgramGiveTheReadmesResult) {
+  const std::string readme = ReadTextFile(UNIMOUSE_SOURCE_DIR "/README.md");
+  const size_t from = readme.find("with options is `unimouse run");
+  ASSERT_NE(from, std::string::npos);
+  std::string inline_command = readme.substr(from + 17, readme.find('`', from + 17) - from - 17);
+  std::replace(inline_command.begin(), inline_command.end(), '\n', ' ');
+  EXPECT_EQ(inline_command,
+            "unimouse run --scenario micromouse --set end_on_log=done --link inproc:racer");
+  const std::vector<std::string> program =
+      DocumentedCommands("arduino-lib/README.md", "`examples/racer` runs the same contest");
+  ASSERT_EQ(program.size(), 1u);
+  const std::string line = ReadmeResultLine();
+  ASSERT_FALSE(line.empty());
+  for (const std::string& command : {inline_command, program[0]}) {
+    const testing::Outcome o = RunDocumented(command, FreshDirectory("documented_main_job"));
+    EXPECT_EQ(o.exit_code, 0) << command << "\n" << o.output;
+    EXPECT_NE(o.output.find("  " + line), std::string::npos) << command << "\n" << o.output;
+  }
+}
+
 // protocol.md and replay.md name `unimouse run -v` and `unimouse run` in their text: the main job
 // with every report of the firmware on the console, and its recording beside its result
 TEST(DocumentedCommandsTest, TheMainJobWithVShowsEveryReportAndLeavesItsRecording) {
@@ -90,10 +121,8 @@ TEST(DocumentedCommandsTest, TheMainJobWithVShowsEveryReportAndLeavesItsRecordin
   EXPECT_GT(reports, 200u);
   EXPECT_TRUE(fs::is_regular_file(dir + "/out/run.mcap"));
   // the result line the README shows, to the millisecond
-  const std::string readme = ReadTextFile(UNIMOUSE_SOURCE_DIR "/README.md");
-  const size_t shown = readme.find("\n    scenario micromouse: passed: ");
-  ASSERT_NE(shown, std::string::npos);
-  const std::string line = readme.substr(shown + 5, readme.find('\n', shown + 1) - shown - 5);
+  const std::string line = ReadmeResultLine();
+  ASSERT_FALSE(line.empty());
   EXPECT_NE(o.output.find("  " + line), std::string::npos) << line << "\n" << o.output;
 }
 

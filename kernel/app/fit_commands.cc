@@ -1,7 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "fit_commands.h"
 
-#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -86,14 +85,7 @@ int FitCommand(const FitOptions& o) {
               "no: wheel speeds alone cannot tell it from Kt and Ra; the file's value kept");
   std::printf("%-34s %12s %12s  %-27s %s\n", "each wheel joint's armature_kg_m2", "", "", "",
               "no: it enters the speed's time constant only with Ra; the file's value kept");
-  // a log with a gyro fitted against a robot without an imu: its column is read and not used
-  const bool gyro_logged = std::any_of(l.logs.begin(), l.logs.end(), [](const fit::SysidLog& log) {
-    return !log.gyro_z_rad_s.empty();
-  });
-  const bool gyro_fitted =
-      std::any_of(report.parameters.begin(), report.parameters.end(),
-                  [](const fit::FittedParameter& p) { return p.ref.key == "gyro_z_bias_dps"; });
-  if (gyro_logged && !gyro_fitted) {
+  if (report.gyro_not_used) {
     std::printf("%-34s %12s %12s  %-27s %s\n", "the gyro's bias and scale error", "", "", "",
                 "no: the robot file has no unimouse.imu; the logs' gyro_z_rad_s is not used");
   }

@@ -393,6 +393,10 @@ FitReport FitRobot(const RobotSpec& robot, const PluginRegistry& registry,
     was.push_back(ReplayChannels(robot, wiring, registry, *d.log));
     now.push_back(ReplayChannels(fitted, wiring, registry, *d.log));
   }
+  report.gyro_not_used =
+      wiring.imu.empty() && std::any_of(data.begin(), data.end(), [](const LogData& d) {
+        return !d.measured.gyro_z_rad_s.empty();
+      });
   if (!wiring.imu.empty()) {
     std::vector<const std::vector<double>*> logged, yaw_rate;
     for (size_t l = 0; l < data.size(); ++l) {

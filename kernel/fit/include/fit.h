@@ -71,6 +71,8 @@ struct FitReport {
   std::vector<ChannelFit> channels;
   int iterations = 0;
   int replays = 0;  ///< simulations of a whole log
+  /// A log has a gyro column and the robot no imu: the column is read and not used.
+  bool gyro_not_used = false;
 };
 
 /// Checks that a log can identify something on this robot; throws InputError "file:line:

@@ -45,23 +45,22 @@ BENCHMARK(BM_SessionSpeedControlScenario)->Unit(benchmark::kMillisecond)->Iterat
 // the main job as `unimouse run` makes it (the contest in All Japan 2018 with the bundled
 // racer firmware in-process), without its pictures: to set beside BM_BareRobotJapan2018,
 // the same maze's physics alone
-void BM_MainJobJapan2018(benchmark::State& bench) {
+SessionOptions MainJob() {
   SessionOptions options;
   options.scenario = "micromouse";
   options.sets = {"end_on_log=done"};
   options.link = "inproc:" UNIMOUSE_FIRMWARE_DIR "/racer.so";
-  RunSessionBenchmark(bench, options);
+  return options;
 }
+
+void BM_MainJobJapan2018(benchmark::State& bench) { RunSessionBenchmark(bench, MainJob()); }
 BENCHMARK(BM_MainJobJapan2018)->Unit(benchmark::kMillisecond)->Iterations(3)->UseRealTime();
 
 // the main job with its recording off, light (the default) and full: what recording costs in
 // wall time, and the size of run.mcap (docs/performance.md, "Recording")
 void BM_MainJobRecording(benchmark::State& bench) {
   const char* levels[] = {"off", "light", "full"};
-  SessionOptions options;
-  options.scenario = "micromouse";
-  options.sets = {"end_on_log=done"};
-  options.link = "inproc:" UNIMOUSE_FIRMWARE_DIR "/racer.so";
+  SessionOptions options = MainJob();
   options.record = levels[bench.range(0)];
   bench.SetLabel(options.record);
   RunSessionBenchmark(bench, options);

@@ -7,6 +7,7 @@
 
 #include "avr_ioport.h"
 #include "avr_spi.h"
+#include "imu.h"
 #include "sim_avr.h"
 #include "sim_io.h"
 #include "sim_irq.h"
@@ -33,8 +34,6 @@ constexpr double kGyroStartup_s = 0.035;
 // register writes are specified up to 1 MHz of SPI clock (sensor reads up to 20 MHz)
 constexpr double kMaxWriteClock_hz = 1e6;
 
-constexpr double kGyroLsbPerDps[4] = {131, 65.5, 32.8, 16.4};
-constexpr double kAccelLsbPerG[4] = {16384, 8192, 4096, 2048};
 constexpr double kStandardGravity_m_s2 = 9.80665;
 // the temperature register at 25 degC: (T - 21) * 333.87
 constexpr int kTemperature25C = 1335;
@@ -51,6 +50,7 @@ int16_t Counts(double value, double counts_per_unit) {
 
 SpiImu::SpiImu(avr_t* avr, const std::string& part, const std::string& pin)
     : avr_(avr),
+      part_(part),
       who_am_i_(part == "icm20602" ? 0x12 : 0x70),
       // the ICM-20602 powers up asleep; the MPU-6500 awake, on its internal clock
       power_on_reset_(part == "icm20602" ? 0x41 : 0x01) {
@@ -97,8 +97,13 @@ void SpiImu::Latch() {
     latched_.fill(0);
     return;
   }
-  const double gyro = kGyroLsbPerDps[(registers_[kGyroConfig] >> 3) & 3] * 180 / std::numbers::pi;
-  const double accel = kAccelLsbPerG[(registers_[kAccelConfig] >> 3) & 3] / kStandardGravity_m_s2;
+  // FS_SEL and AFS_SEL pick +-250 dps and +-2 g, doubled per step: the part's table is the imu
+  // component's
+  const double gyro = plugins::GyroSensitivity(part_, 250 << ((registers_[kGyroConfig] >> 3) & 3)) *
+                      180 / std::numbers::pi;
+  const double accel =
+      plugins::AccelSensitivity(part_, 2 << ((registers_[kAccelConfig] >> 3) & 3)) /
+      kStandardGravity_m_s2;
   int16_t words[7];
   for (int i = 0; i < 3; ++i) {
     words[i] = Counts(reading_.accel_m_s2[i], accel);

@@ -57,6 +57,7 @@ class SpiImu {
 
   avr_t* avr_;
   avr_irq_t* miso_ = nullptr;
+  std::string part_;
   uint8_t who_am_i_;
   uint8_t power_on_reset_;  // PWR_MGMT_1 after power-on or a reset
   std::array<uint8_t, 128> registers_{};

@@ -17,6 +17,7 @@
 #include <filesystem>
 #include <fstream>
 #include <optional>
+#include <sstream>
 #include <thread>
 
 #include "install_paths.h"
@@ -382,6 +383,24 @@ Waited RunLimited(const std::vector<std::string>& argv, const JobLimits& limits,
   return waited;
 }
 
+// why bubblewrap cannot run a program in the job's sandbox here (its own first line of
+// complaint), or "" when it can
+std::string SandboxProblem(const std::string& bwrap, const fs::path& dir,
+                           const std::string& job_id) {
+  std::vector<std::string> argv = SandboxArgv(bwrap, dir);
+  argv.push_back(FindProgram("true"));
+  const fs::path log = dir / "sandbox.log";
+  const Waited probe = RunLimited(argv, JobLimits{}, 10, log.string(), true, job_id);
+  std::string problem;
+  if (probe.end.exit_code != 0 || probe.end.signal != 0 || probe.end.timed_out) {
+    std::istringstream text(ReadTextFile(log.string()));
+    std::getline(text, problem);
+    if (problem.empty()) problem = "it ended with exit code " + std::to_string(probe.end.exit_code);
+  }
+  fs::remove(log);
+  return problem;
+}
+
 // why a replay wrote no page, or "" when it wrote one
 std::string ReplayFailure(const Waited& replay, double wall_time_s) {
   const ProcessEnd& end = replay.end;
@@ -408,10 +427,18 @@ int RunJob(const Manifest& manifest, const Job& job, const std::string& batch_ou
     fs::remove(dir / file);
   }
 
-  const std::string bwrap = limits.sandbox == "none" ? "" : FindProgram("bwrap");
+  std::string bwrap = limits.sandbox == "none" ? "" : FindProgram("bwrap");
   UNIMOUSE_THROW_UNLESS(
       limits.sandbox != "bwrap" || !bwrap.empty(),
       "submission '" + sub.name + "': sandbox: bwrap, but bwrap is not installed");
+  // installed is not enough: in a chroot or a container without the right to mount, bubblewrap
+  // cannot make its sandbox, and every job would fail as if its submission had
+  const std::string sandbox_problem = bwrap.empty() ? "" : SandboxProblem(bwrap, dir, job.id);
+  UNIMOUSE_THROW_UNLESS(
+      limits.sandbox != "bwrap" || sandbox_problem.empty(),
+      "submission '" + sub.name +
+          "': sandbox: bwrap, but bwrap cannot make its sandbox here: " + sandbox_problem);
+  if (!sandbox_problem.empty()) bwrap.clear();
   const std::vector<std::string> sandbox = SandboxArgv(bwrap, dir);
   std::vector<std::string> argv = sandbox;
   argv.push_back(program);
@@ -479,6 +506,8 @@ int RunJob(const Manifest& manifest, const Job& job, const std::string& batch_ou
       {"replay_page", replay_page},
       {"replay_error", replay_error},
       {"sandbox", bwrap.empty() ? "none" : "bwrap"},
+      {"sandbox_problem",
+       sandbox_problem.empty() ? nlohmann::json(nullptr) : nlohmann::json(sandbox_problem)},
       {"manifest", manifest.file},
       {"unimouse_version", version},
       {"command", command}};

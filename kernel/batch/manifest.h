@@ -32,7 +32,7 @@ struct JobLimits {
   double cpu_time_s = 900;       ///< RLIMIT_CPU of the run (and what it starts)
   int memory_mb = 4096;          ///< RLIMIT_AS of each process
   int file_size_mb = 256;        ///< RLIMIT_FSIZE: the largest file a run may write
-  std::string sandbox = "auto";  ///< auto (bwrap when installed), bwrap, or none
+  std::string sandbox = "auto";  ///< auto (bwrap when it can sandbox here), bwrap, or none
 
   bool operator==(const JobLimits&) const = default;
 };

@@ -673,6 +673,52 @@ limits: {wall_time_s: 60, file_size_mb: 1, sandbox: )" +
   }
 }
 
+// bubblewrap installed but unable to make its sandbox (in a chroot: "Failed to make / slave"), as
+// a stand-in that fails so: with sandbox auto the jobs run without it and job.json says why; with
+// sandbox bwrap no job runs, and the batch's log says why in one line
+TEST(BatchCommandTest, ABubblewrapThatCannotMakeItsSandboxIsSaidSoNotBlamedOnTheSubmission) {
+  const std::string dir = FreshDirectory("batch_broken_bwrap");
+  fs::create_directories(dir + "/bin");
+  const std::string complaint = "bwrap: Failed to make / slave: Invalid argument";
+  WriteFile(dir + "/bin", "bwrap", "#!/bin/sh\necho '" + complaint + "' >&2\nexit 1\n");
+  fs::permissions(dir + "/bin/bwrap", fs::perms::owner_all);
+  for (const std::string sandbox : {"auto", "bwrap"}) {
+    const std::string manifest = WriteFile(dir, sandbox + ".yaml", R"(
+submissions:
+  - name: good
+    controller: )" + kSource + R"(/tests/batch/walking_mouse.lua
+scenarios:
+  - scenario: micromouse
+    set: {contest_s: 3, max_runs: 1}
+limits: {sandbox: )" + sandbox + "}\n");
+    const std::string out = dir + "/out-" + sandbox;
+    const Outcome o =
+        unimouse::testing::Shell("PATH=" + dir + "/bin:$PATH " + UNIMOUSE_BINARY + " batch run " +
+                                 manifest + " -j 1 --out " + out + " 2>&1");
+    if (sandbox == "auto") {
+      ASSERT_EQ(o.exit_code, 0) << o.output;
+      const json jobs = Results(out)["jobs"];
+      ASSERT_EQ(jobs.size(), 1u);
+      EXPECT_EQ(jobs[0]["status"], "passed") << jobs[0].dump();
+      const json record =
+          json::parse(ReadTextFile(out + "/" + jobs[0]["dir"].get<std::string>() + "/job.json"));
+      EXPECT_EQ(record["sandbox"], "none");
+      EXPECT_EQ(record["sandbox_problem"], complaint);
+    } else {
+      // as when bwrap is not installed: the job writes no record, and the batch's log says why
+      EXPECT_EQ(o.exit_code, 3) << o.output;
+      EXPECT_NE(o.output.find("no record (batch job exit code 2, see batch.log)"),
+                std::string::npos)
+          << o.output;
+      EXPECT_NE(ReadTextFile(out + "/batch.log")
+                    .find("submission 'good': sandbox: bwrap, but bwrap cannot make its sandbox "
+                          "here: " +
+                          complaint),
+                std::string::npos);
+    }
+  }
+}
+
 TEST(BatchCommandTest, AnInterruptedBatchWritesWhatItHasAndAResumeFinishesIt) {
   const std::string dir = FreshDirectory("batch_interrupt");
   const std::string manifest = WriteFile(dir, "m.yaml", R"(

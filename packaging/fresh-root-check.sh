@@ -8,6 +8,9 @@ set -euo pipefail
 repo=$(git -C "$(dirname "$0")" rev-parse --show-toplevel)
 root=${1:-/tmp/unimouse-fresh-root}
 
+# a run that was killed may have left its mounts: never remove through them
+awk -v r="$root" '$2 == r || index($2, r "/") == 1 { print $2 }' /proc/mounts | sort -r |
+  while read -r mounted; do umount -l "$mounted"; done
 rm -rf "$root"
 mmdebstrap --variant=minbase --include=git,ca-certificates bookworm "$root"
 git clone -q "$repo" "$root/root/unimouse"
@@ -15,11 +18,16 @@ if [ -d "$repo/../shared/mazes" ]; then
   mkdir -p "$root/root/shared" && cp -r "$repo/../shared/mazes" "$root/root/shared/"
 fi
 cp /etc/resolv.conf "$root/etc/resolv.conf"
+# the root a mount point of its own, as / is on a booted machine (bubblewrap needs that)
+mount --bind "$root" "$root"
 mount --bind /proc "$root/proc"
 mount --bind /dev "$root/dev"
-# a booted machine has its pseudo-terminals mounted under /dev; the link's tests open them
+# a booted machine has its pseudo-terminals mounted under /dev (the link's tests open them) and
+# its cgroups under /sys (the one-node Slurm test's slurmd needs them)
 mount --bind /dev/pts "$root/dev/pts"
-trap 'umount "$root/dev/pts" "$root/proc" "$root/dev"' EXIT
+mount --rbind /sys "$root/sys"
+mount --make-rslave "$root/sys"
+trap 'umount -R "$root"' EXIT
 
 # the two commands are the quick start's two shell blocks
 quick_start=$(sed -n '/^## Quick start/,/^## /p' "$repo/README.md" |
@@ -31,7 +39,9 @@ while IFS= read -r command <&3; do
   number=$((number + 1))
   echo "command $number: $command"
   start=$SECONDS
-  chroot "$root" /bin/bash -c "cd /root/unimouse && $command" < /dev/null
-  echo "command $number took $((SECONDS - start)) s of wall time"
+  status=0
+  chroot "$root" /bin/bash -c "cd /root/unimouse && $command" < /dev/null || status=$?
+  echo "command $number took $((SECONDS - start)) s of wall time, exit code $status"
+  [ "$status" -eq 0 ] || exit "$status"
 done 3<<< "$quick_start"
 echo "fresh-root check passed"

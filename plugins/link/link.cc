@@ -431,7 +431,7 @@ void Link::PeerLost(const SenseContext& ctx, Heard& heard) const {
   was_connected_ = false;
   // a lost link always stops the motors, whatever the firmware said
   const bool commanded = Commanded(ctx);
-  ZeroReceived(ctx);
+  FirmwareStartsOver(ctx);
   ctx.Log(commanded ? "firmware disconnected: motors stopped" : "firmware disconnected");
   // a firmware that crashed or quit is the run's error, not a cable pulled out
   FailIfFirmwareFailed(ctx);
@@ -439,9 +439,13 @@ void Link::PeerLost(const SenseContext& ctx, Heard& heard) const {
   // what the next firmware says of itself is its own, and lock-step waits for a firmware
   // that is there: it comes back when the next one asks
   ctx.state()[kRepeats] = 0;
-  ctx.state()[kLockstep] = 0;
   ctx.SetFirmwarePaced(false);
   heard.gone_or_restarted = true;
+}
+
+void Link::FirmwareStartsOver(const SenseContext& ctx) const {
+  ZeroReceived(ctx);
+  ctx.state()[kLockstep] = 0;
   startup_codes_in_a_row_ = 0;
   if (frames_ever_ > 0) next_frame_restarts_ = true;
 }
@@ -605,11 +609,8 @@ void Link::RunBoard(const SenseContext& ctx, Heard& heard, bool lockstep) const 
   for (const std::string& cause : transport_->TakeResets()) {
     // the board boots again; the firmware's start-up frames say when it is back
     ++board_resets_;
-    ZeroReceived(ctx);
-    ctx.state()[kLockstep] = 0;
+    FirmwareStartsOver(ctx);
     lockstep = false;
-    if (frames_ever_ > 0) next_frame_restarts_ = true;
-    startup_codes_in_a_row_ = 0;
     ctx.Log("the emulated board was reset by " + cause + " before t=" +
             Seconds(ctx.time_s() + period_s_) + " s: the firmware boots again, motors stopped");
     if (!WithinRestarts(ctx, board_resets_, "the emulated board was reset")) return;

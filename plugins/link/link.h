@@ -177,6 +177,9 @@ class Link final : public Component {
   // a peer that came or went: logged, counted, and the motors stopped when one goes
   void PeerCame(const SenseContext& ctx) const;
   void PeerLost(const SenseContext& ctx, Heard& heard) const;
+  // what a firmware that starts again (a new peer, a board reset) has not said yet: no commands,
+  // no lock-step, and its next frame is a restart
+  void FirmwareStartsOver(const SenseContext& ctx) const;
   // before the run's clock starts: skips what comes before the firmware's start-up codes, then
   // reads them and the rest; false (after failing the run) when they do not come in time
   bool AwaitStartUp(const SenseContext& ctx, Heard& heard) const;

@@ -22,7 +22,8 @@
 //    it) is corrected by side walls (the distance from the corridor's centre line), by a wall
 //    ahead and, in the speed run, by the ends of side walls (the distance along it). The tyres slip
 //    in proportion to the force they pass, which the estimate takes off the wheels' travel (kSlip,
-//    measured on this robot).
+//    measured on this robot), and in a fast curve sideways, which it adds to the heading's turn
+//    (kSideSlip).
 //
 // The limits come from robots/unimouse.yaml:
 //  - traction: the wheels' friction is 0.35 and they carry 0.147 of the robot's 0.157 kg (the

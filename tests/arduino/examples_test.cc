@@ -118,7 +118,7 @@ TEST(ArduinoExamplesTest, RacerSpeedRunsJapan2018InUnder26Point5SecondsWithoutTo
   const nlohmann::json& scenario = r.result["scenario"];
   EXPECT_EQ(scenario["status"], "passed") << scenario["reason"];
   const double best_s = scenario["scores"]["best_run_s"].get<double>();
-  EXPECT_LT(best_s, 26.5);  // 26.050 s when this was written (27.219 s before the wall ends)
+  EXPECT_LT(best_s, 26.5);  // 26.076 s when this was written (27.219 s before the wall ends)
   EXPECT_EQ(scenario["scores"]["best_run_path_cost"], 108);
   // the best run among the records, and no wall touched during it
   int best_runs = 0;
@@ -130,7 +130,7 @@ TEST(ArduinoExamplesTest, RacerSpeedRunsJapan2018InUnder26Point5SecondsWithoutTo
   EXPECT_EQ(best_runs, 1) << scenario.dump();
   // nor in any other run, nor between runs
   EXPECT_EQ(scenario["scores"]["wall_contacts"], 0);
-  // the micromouse example's contest takes 442 s; this one 233.8 s (251.7 s when it came home at
+  // the micromouse example's contest takes 442 s; this one 233.6 s (251.7 s when it came home at
   // the explorer's speed)
   EXPECT_LT(scenario["scores"]["time_used_s"].get<double>(), 234);
   const std::string log = ReadTextFile(out + "/log.txt");
@@ -148,9 +148,9 @@ TEST(ArduinoExamplesTest, RacerSpeedRunsJapan2018InUnder26Point5SecondsWithoutTo
 // m/s^2 map-t1's touched a wall), the first two its curves' yaw acceleration (at 37 rad/s^2 a
 // best run on taiwan2015p touched a post); the third was never tuned on, only run to accept or
 // reject a choice (faster curves in staircases touched walls on three of it). Every contest passes
-// and every best run is without a wall contact; the contests marked false touch walls while
-// exploring or coming back, never in a speed run. The bounds are the best runs when this was
-// written, rounded up
+// without a wall contact (four touched walls while exploring or coming back until each segment
+// began exactly where the last one ended). The bounds are the best runs when this was written,
+// rounded up
 TEST(ArduinoExamplesTest, RacerWinsClassicContestsWithoutTouchingAWallInItsBestRun) {
   const std::string shared = testing::SharedMazesDir();
   if (shared.empty()) {
@@ -159,28 +159,27 @@ TEST(ArduinoExamplesTest, RacerWinsClassicContestsWithoutTouchingAWallInItsBestR
   struct Case {
     const char* maze;
     double best_run_bound_s;
-    bool no_contact_at_all;
   };
-  const Case cases[] = {{"minos19", 22.8, true},
-                        {"alljapan-008-1987-pre", 20.2, true},
-                        {"japan9p", 22.6, true},
-                        {"map-t1", 29.7, true},
-                        {"alljapan-016-1995-exp-fin", 20.4, true},
-                        {"taiwan2023cef", 34.6, true},
-                        {"AAMC22Maze", 16.4, true},
-                        {"uknov2010f", 19.2, false},
-                        {"c00d3f", 12.0, true},
-                        {"taiwan2015p", 14.1, true},
-                        {"empty", 4.5, true},
-                        {"alljapan-014-1993-exp-pre", 15.3, true},
-                        {"ijcp02", 13.9, true},
-                        {"kwu1", 19.4, false},
-                        {"minos01w", 12.8, true},
-                        {"uknov2017", 21.6, false},
-                        {"japan1999p", 20.2, true},
-                        {"wmmc-y1", 25.0, true},
-                        {"other-world85fin-1985", 34.6, true},
-                        {"ukoct2019", 29.9, false}};
+  const Case cases[] = {{"minos19", 22.8},
+                        {"alljapan-008-1987-pre", 20.2},
+                        {"japan9p", 22.6},
+                        {"map-t1", 29.7},
+                        {"alljapan-016-1995-exp-fin", 20.4},
+                        {"taiwan2023cef", 34.6},
+                        {"AAMC22Maze", 16.4},
+                        {"uknov2010f", 19.2},
+                        {"c00d3f", 12.0},
+                        {"taiwan2015p", 14.1},
+                        {"empty", 4.5},
+                        {"alljapan-014-1993-exp-pre", 15.3},
+                        {"ijcp02", 13.9},
+                        {"kwu1", 19.4},
+                        {"minos01w", 12.8},
+                        {"uknov2017", 21.6},
+                        {"japan1999p", 20.2},
+                        {"wmmc-y1", 25.0},
+                        {"other-world85fin-1985", 34.6},
+                        {"ukoct2019", 29.9}};
   for (const Case& c : cases) {
     const ExampleRun r = RunExample("racer",
                                     std::string("micromouse --set end_on_log=done --maze ") +
@@ -191,14 +190,8 @@ TEST(ArduinoExamplesTest, RacerWinsClassicContestsWithoutTouchingAWallInItsBestR
     EXPECT_EQ(scenario["status"], "passed") << c.maze << ": " << scenario["reason"];
     const double best_s = scenario["scores"]["best_run_s"].get<double>();
     EXPECT_LT(best_s, c.best_run_bound_s) << c.maze;
-    for (const nlohmann::json& run : scenario["records"]["runs"]) {
-      if (run["time_s"].get<double>() == best_s) {
-        EXPECT_EQ(run["wall_contacts"], 0) << c.maze;
-      }
-    }
-    if (c.no_contact_at_all) {
-      EXPECT_EQ(scenario["scores"]["wall_contacts"], 0) << c.maze;
-    }
+    // neither in the best run nor in any other, nor between runs
+    EXPECT_EQ(scenario["scores"]["wall_contacts"], 0) << c.maze;
     EXPECT_LT(scenario["scores"]["time_used_s"].get<double>(), 442) << c.maze;
   }
 }
@@ -215,7 +208,7 @@ TEST(ArduinoExamplesTest, RacerDrivesTheHalfSizeAndTheGyroRobotsWithoutTouchingA
   EXPECT_EQ(half.result["scenario"]["status"], "passed") << half.result["scenario"]["reason"];
   // the optimum of `unimouse maze solve`, as the micromouse example's test checks
   EXPECT_EQ(half.result["scenario"]["scores"]["best_run_path_cost"], 49);
-  EXPECT_LT(half.result["scenario"]["scores"]["best_run_s"].get<double>(), 13.5);  // 13.055 s
+  EXPECT_LT(half.result["scenario"]["scores"]["best_run_s"].get<double>(), 13.5);  // 13.041 s
   EXPECT_EQ(half.result["scenario"]["scores"]["wall_contacts"], 0);
 
   const ExampleRun gyro = RunExample(
@@ -227,7 +220,7 @@ TEST(ArduinoExamplesTest, RacerDrivesTheHalfSizeAndTheGyroRobotsWithoutTouchingA
   ASSERT_EQ(gyro.outcome.exit_code, 0) << gyro.outcome.output;
   EXPECT_EQ(gyro.result["scenario"]["status"], "passed") << gyro.result["scenario"]["reason"];
   EXPECT_EQ(gyro.result["scenario"]["scores"]["best_run_path_cost"], 108);
-  EXPECT_LT(gyro.result["scenario"]["scores"]["best_run_s"].get<double>(), 26.5);  // 25.961 s
+  EXPECT_LT(gyro.result["scenario"]["scores"]["best_run_s"].get<double>(), 26.5);  // 25.979 s
   EXPECT_EQ(gyro.result["scenario"]["scores"]["wall_contacts"], 0);
 }
 

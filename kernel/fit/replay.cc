@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "replay.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <numbers>
@@ -18,6 +19,29 @@ namespace {
 // firmware's at the row (measured: a step earlier or later leaves residuals of 0.05 rad/s at each
 // spin's start and end, twenty times the chip's noise)
 constexpr int kGyroLag_steps = 1;
+
+// The count an encoder reports, expected over where within a count the wheel started: the
+// wheel's angle in counts, less what algorithm 1 (the encoder component) holds back. That
+// counts a whole count of travel since its last count, either way, so its remainder stays
+// within one count of zero and turning back costs up to a count before the first is reported
+// (a play of one count, as in a gear's backlash). Started anywhere within a count, the
+// remainder is spread evenly over a count's width, which moves with the wheel and wraps: its
+// mean moves with the wheel and stops at +-0.5 count. Without it a replay's wheel turned back
+// a row or so early at each reversal, which a fit took for a longer time constant (the
+// half-size robot's Ra 6-16 % high)
+class ExpectedCount {
+ public:
+  explicit ExpectedCount(double counts) : zero_(counts), counts_(counts) {}
+  void Move(double counts) {
+    held_ = std::clamp(held_ + counts - counts_, -0.5, 0.5);
+    counts_ = counts;
+  }
+  double reported() const { return counts_ - zero_ - held_; }
+
+ private:
+  double zero_, counts_;
+  double held_ = 0;  // algorithm 1 starts with nothing held
+};
 
 // the component types a replay leaves out: they write files, wait for firmware, or measure
 // what a log does not have
@@ -252,7 +276,8 @@ Channels ReplayChannels(const RobotSpec& robot, const RobotWiring& wiring,
   // the simulator's own log this way matches it to the encoders' quantisation)
   const double t0 = log.time_s.front();
   const mjData& d = kernel->state().data();
-  const double left_zero = d.qpos[left_q], right_zero = d.qpos[right_q];
+  ExpectedCount left(d.qpos[left_q] * wiring.left.counts_per_rad);
+  ExpectedCount right(d.qpos[right_q] * wiring.right.counts_per_rad);
   std::vector<double> left_counts, right_counts;
   std::vector<int64_t> row_steps;
   int64_t step = 0;
@@ -261,10 +286,12 @@ Channels ReplayChannels(const RobotSpec& robot, const RobotWiring& wiring,
     while (step < row_step) {
       kernel->Step();
       sample_gyro();
+      left.Move(d.qpos[left_q] * wiring.left.counts_per_rad);
+      right.Move(d.qpos[right_q] * wiring.right.counts_per_rad);
       ++step;
     }
-    left_counts.push_back((d.qpos[left_q] - left_zero) * wiring.left.counts_per_rad);
-    right_counts.push_back((d.qpos[right_q] - right_zero) * wiring.right.counts_per_rad);
+    left_counts.push_back(left.reported());
+    right_counts.push_back(right.reported());
     row_steps.push_back(row_step);
     // the row's commands, as the voltage the log's battery gives through the file's bridges
     const double scale = wiring.battery_emf_v > 0 ? log.battery_v[i] / wiring.battery_emf_v : 1;

@@ -71,8 +71,9 @@ Channels MeasuredChannels(const SysidLog& log);
 /// Replays a log on the robot: each row's commands from its time until the next row's, scaled by
 /// the row's battery voltage over the file's, on an open floor, seed 1, without the robot's
 /// loggers, links and range sensors (which write files, wait for firmware, or do not matter).
-/// The encoders are read before their quantisation (the wheel's angle times counts per radian),
-/// so that the replay is smooth in the parameters. With a gyro column and an imu, also the imu's
+/// The encoders are read before their quantisation (the wheel's angle times counts per radian,
+/// less the part of a count the encoder is expected to hold back), so that the replay is smooth
+/// in the parameters. With a gyro column and an imu, also the imu's
 /// z reading and the site's true yaw rate at each row.
 Channels ReplayChannels(const RobotSpec& robot, const RobotWiring& wiring,
                         const PluginRegistry& registry, const SysidLog& log);

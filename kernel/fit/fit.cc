@@ -5,11 +5,11 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <future>
 #include <initializer_list>
 #include <limits>
 #include <numbers>
 #include <unsupported/Eigen/LevenbergMarquardt>
-#include <unsupported/Eigen/NumericalDiff>
 
 #include "unimouse/errors.h"
 
@@ -21,7 +21,7 @@ constexpr double kFullScaleCommand = 1023;
 // a log whose wheels turn faster or slower than this factor beyond what the file's motors give
 // at the log's commands is of another robot
 constexpr double kOtherRobotFactor = 2.5;
-// forward-difference step of the Jacobian, relative: sqrt(epsfcn) in Eigen's NumericalDiff
+// forward-difference step of the Jacobian, relative: sqrt(epsfcn), as in Eigen's NumericalDiff
 constexpr double kJacobianEpsfcn = 1e-4;
 constexpr int kMaxReplays = 200;
 
@@ -76,21 +76,58 @@ class ReplayResiduals : public Eigen::DenseFunctor<double> {
   }
 
   int operator()(const InputType& x, ValueType& f) const {
+    Residuals(x, f);
+    *replays_ += static_cast<int>(logs_.size());
+    return 0;
+  }
+
+  // forward differences, as Eigen's NumericalDiff takes them (steps of sqrt(kJacobianEpsfcn)
+  // of each ratio), the replays side by side on the machine's cores: each is a simulation of
+  // its own, and the numbers are those of one replay after another
+  int df(const InputType& x, JacobianType& jacobian) const {
+    const Eigen::Index n = x.size();
+    std::vector<InputType> points(static_cast<size_t>(n + 1), x);
+    std::vector<double> h(static_cast<size_t>(n));
+    for (Eigen::Index j = 0; j < n; ++j) {
+      const size_t at = static_cast<size_t>(j);
+      h[at] = std::sqrt(kJacobianEpsfcn) * std::abs(x[j]);
+      if (h[at] == 0) h[at] = std::sqrt(kJacobianEpsfcn);
+      points[at + 1][j] += h[at];
+    }
+    const std::vector<ValueType> f = AtEach(points);
+    for (Eigen::Index j = 0; j < n; ++j) {
+      const size_t at = static_cast<size_t>(j);
+      jacobian.col(j) = (f[at + 1] - f[0]) / h[at];
+    }
+    return 0;
+  }
+
+  // the residuals at each point, the replays side by side
+  std::vector<ValueType> AtEach(const std::vector<InputType>& points) const {
+    std::vector<ValueType> f(points.size(), ValueType(values()));
+    std::vector<std::future<void>> replays;
+    for (size_t i = 0; i < points.size(); ++i) {
+      replays.push_back(std::async(std::launch::async, [&, i] { Residuals(points[i], f[i]); }));
+    }
+    for (std::future<void>& r : replays) r.get();
+    *replays_ += static_cast<int>(points.size() * logs_.size());
+    return f;
+  }
+
+ private:
+  void Residuals(const InputType& x, ValueType& f) const {
     const RobotSpec robot = Robot(x);
     Eigen::Index k = 0;
     for (const LogData& data : logs_) {
       const Channels replayed = ReplayChannels(robot, wiring_, registry_, *data.log);
-      ++*replays_;
       for (size_t c = 0; c < replayed.values.size(); ++c) {
         for (size_t i = 0; i < replayed.values[c].size(); ++i) {
           f[k++] = (replayed.values[c][i] - data.measured.values[c][i]) / data.scale[c];
         }
       }
     }
-    return 0;
   }
 
- private:
   const RobotSpec& robot_;
   const RobotWiring& wiring_;
   const PluginRegistry& registry_;
@@ -301,8 +338,7 @@ FitReport FitRobot(const RobotSpec& robot, const PluginRegistry& registry,
   FitReport report;
   ReplayResiduals residual_fn(robot, wiring, registry, data, unknowns, file_values, residuals,
                               &report.replays);
-  Eigen::NumericalDiff<ReplayResiduals> with_jacobian(residual_fn, kJacobianEpsfcn);
-  Eigen::LevenbergMarquardt<Eigen::NumericalDiff<ReplayResiduals>> lm(with_jacobian);
+  Eigen::LevenbergMarquardt<ReplayResiduals> lm(residual_fn);
   lm.setMaxfev(kMaxReplays);
   lm.setXtol(1e-6);
   lm.setFtol(1e-8);
@@ -316,7 +352,7 @@ FitReport FitRobot(const RobotSpec& robot, const PluginRegistry& registry,
   // that a start far off falls into
   const double kt_ratio[] = {SteadyKt(data, wiring.left, true) / file_values[0],
                              SteadyKt(data, wiring.right, false) / file_values[2]};
-  Eigen::VectorXd start = x, trial = x, f(residuals);
+  Eigen::VectorXd start = x, f(residuals);
   start[0] = std::clamp(kt_ratio[0], kMinRatio, kMaxRatio);
   start[2] = std::clamp(kt_ratio[1], kMinRatio, kMaxRatio);
   residual_fn(start, f);
@@ -327,14 +363,16 @@ FitReport FitRobot(const RobotSpec& robot, const PluginRegistry& registry,
        {std::initializer_list<double>{0.5, 0.7, 1.4, 2.0},
         std::initializer_list<double>{0.85, 0.92, 1.08, 1.17}}) {
     for (Eigen::Index tau_index : {1, 3}) {
-      const Eigen::VectorXd base = start;
+      std::vector<Eigen::VectorXd> trials;
       for (double factor : factors) {
-        trial = base;
-        trial[tau_index] = std::clamp(base[tau_index] * factor, kMinRatio, kMaxRatio);
-        residual_fn(trial, f);
-        if (f.squaredNorm() < best) {
-          best = f.squaredNorm();
-          start = trial;
+        trials.push_back(start);
+        trials.back()[tau_index] = std::clamp(start[tau_index] * factor, kMinRatio, kMaxRatio);
+      }
+      const std::vector<Eigen::VectorXd> at = residual_fn.AtEach(trials);
+      for (size_t i = 0; i < trials.size(); ++i) {
+        if (at[i].squaredNorm() < best) {
+          best = at[i].squaredNorm();
+          start = trials[i];
         }
       }
     }
@@ -349,7 +387,7 @@ FitReport FitRobot(const RobotSpec& robot, const PluginRegistry& registry,
   // confidence intervals from the Jacobian at the optimum: cov = s^2 (J^T J)^-1
   residual_fn(x, after);
   Eigen::MatrixXd jacobian(residuals, n);
-  with_jacobian.df(x, jacobian);
+  residual_fn.df(x, jacobian);
   const double s2 = ResidualVariance(after, n);
   const Eigen::MatrixXd information = jacobian.transpose() * jacobian;
   Eigen::JacobiSVD<Eigen::MatrixXd> svd(information, Eigen::ComputeFullU | Eigen::ComputeFullV);

@@ -6,6 +6,7 @@
 #include <cstring>
 #include <iomanip>
 #include <limits>
+#include <mutex>
 #include <numbers>
 #include <sstream>
 
@@ -193,7 +194,13 @@ mjModel* CompileMjcf(const std::string& mjcf, const std::string& what) {
   std::memcpy(vfs.filedata[index], mjcf.data(), mjcf.size());
   char error[1024] = "";
   mjModel* m = nullptr;
-  GuardMujoco([&] { m = mj_loadXML(name, &vfs, error, sizeof(error)); });
+  {
+    // MuJoCo's XML loader keeps global state; a fit builds its replays' worlds on several
+    // threads at once (kernel/fit/fit.cc), so one at a time
+    static std::mutex loading;
+    const std::lock_guard<std::mutex> one_at_a_time(loading);
+    GuardMujoco([&] { m = mj_loadXML(name, &vfs, error, sizeof(error)); });
+  }
   mj_deleteVFS(&vfs);
   if (m == nullptr) {
     std::string reason(error);

@@ -86,12 +86,12 @@ class ReplayResiduals : public Eigen::DenseFunctor<double> {
   // its own, and the numbers are those of one replay after another
   int df(const InputType& x, JacobianType& jacobian) const {
     const Eigen::Index n = x.size();
+    const double relative = std::sqrt(kJacobianEpsfcn);
     std::vector<InputType> points(static_cast<size_t>(n + 1), x);
     std::vector<double> h(static_cast<size_t>(n));
     for (Eigen::Index j = 0; j < n; ++j) {
       const size_t at = static_cast<size_t>(j);
-      h[at] = std::sqrt(kJacobianEpsfcn) * std::abs(x[j]);
-      if (h[at] == 0) h[at] = std::sqrt(kJacobianEpsfcn);
+      h[at] = x[j] != 0 ? relative * std::abs(x[j]) : relative;
       points[at + 1][j] += h[at];
     }
     const std::vector<ValueType> f = AtEach(points);

@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <mutex>
 #include <numbers>
 
 #include "kernel.h"
@@ -248,14 +247,7 @@ Channels ReplayChannels(const RobotSpec& robot, const RobotWiring& wiring,
   KernelOptions options;
   options.seed = 1;
   options.log_sink = [](double, int, const std::string&, const std::string&) {};
-  std::unique_ptr<Kernel> kernel;
-  {
-    // a fit replays several at once (kernel/fit/fit.cc); MuJoCo's XML loader keeps global
-    // state, so the models are built one at a time
-    static std::mutex building;
-    const std::lock_guard<std::mutex> one_at_a_time(building);
-    kernel = Kernel::Create(replayed, nullptr, registry, options);
-  }
+  std::unique_ptr<Kernel> kernel = Kernel::Create(replayed, nullptr, registry, options);
   const Model& model = kernel->model();
   const mjModel& m = kernel->mj_model();
   const int left_in = model.FindSignal(wiring.left.command_input);

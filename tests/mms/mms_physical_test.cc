@@ -187,7 +187,7 @@ TEST_F(MmsPhysicalRunTest, TestClientsDriveEightClassicMazesWithoutAContactAndWi
   const std::string shared = testing::SharedMazesDir();
   if (shared.empty())
     GTEST_SKIP() << "the maze collection (../shared/mazes) is not beside the project";
-  if (std::system("python3 -c '' >/dev/null 2>&1") != 0) GTEST_SKIP() << "no python3";
+  if (std::system(UNIMOUSE_PYTHON3 " -c '' >/dev/null 2>&1") != 0) GTEST_SKIP() << "no python3";
   const char* mazes[] = {"alljapan-009-1988-pre",
                          "alljapan-016-1995-frsh",
                          "eastjapan-017-1999",
@@ -196,8 +196,8 @@ TEST_F(MmsPhysicalRunTest, TestClientsDriveEightClassicMazesWithoutAContactAndWi
                          "minos24-b",
                          "sundo-1",
                          "test-3paths"};
-  const std::string left_wall =
-      "--time-limit-s 60 -- python3 " UNIMOUSE_SOURCE_DIR "/tests/mms/clients/left_wall.py";
+  const std::string left_wall = "--time-limit-s 60 -- " UNIMOUSE_PYTHON3 " " UNIMOUSE_SOURCE_DIR
+                                "/tests/mms/clients/left_wall.py";
   for (const char* name : mazes) {
     const std::string maze = "--no-pictures --maze " + shared + "/classic/" + name + ".txt ";
     for (const std::string& client : {std::string("-- " UNIMOUSE_MMS_FLOODFILL), left_wall}) {

@@ -80,9 +80,11 @@ class MmsRunTest : public ::testing::Test {
 };
 
 const std::string kFloodFill = UNIMOUSE_MMS_FLOODFILL;
-const std::string kLeftWall = UNIMOUSE_SOURCE_DIR "/tests/mms/clients/left_wall.py";
+// Debian's python3 by its path: a version manager's shim on PATH may cost more than the run
+const std::string kLeftWall =
+    UNIMOUSE_PYTHON3 " " UNIMOUSE_SOURCE_DIR "/tests/mms/clients/left_wall.py";
 
-bool HavePython() { return std::system("python3 -c '' >/dev/null 2>&1") == 0; }
+bool HavePython() { return std::system(UNIMOUSE_PYTHON3 " -c '' >/dev/null 2>&1") == 0; }
 
 TEST_F(MmsRunTest, FloodFillClientReachesTheGoalOfTheBundledMaze) {
   const MmsOutcome run = Mms("--maze japan2018 -- " + kFloodFill);
@@ -103,7 +105,7 @@ TEST_F(MmsRunTest, FloodFillClientReachesTheGoalOfTheBundledMaze) {
 TEST_F(MmsRunTest, LeftWallPythonClientFollowsTheWallIntoTheCentre) {
   if (!HavePython()) GTEST_SKIP() << "no python3";
   const std::string maze = WriteFile("wall.txt", kWallToTheCentreMaze);
-  const MmsOutcome run = Mms("--maze " + maze + " -- python3 " + kLeftWall);
+  const MmsOutcome run = Mms("--maze " + maze + " -- " + kLeftWall);
   EXPECT_EQ(run.outcome.exit_code, 0) << run.outcome.output;
   ASSERT_TRUE(run.result.is_object());
   EXPECT_EQ(run.result["status"], "goal_reached");
@@ -116,7 +118,7 @@ TEST_F(MmsRunTest, LeftWallPythonClientFollowsTheWallIntoTheCentre) {
 TEST_F(MmsRunTest, LeftWallClientRunsOutOfContestTimeWhereTheCentreIsAnIsland) {
   if (!HavePython()) GTEST_SKIP() << "no python3";
   // the open maze's centre has no wall to follow in: the follower circles the perimeter
-  const MmsOutcome run = Mms("--maze " + open_maze_ + " --time-limit-s 30 -- python3 " + kLeftWall);
+  const MmsOutcome run = Mms("--maze " + open_maze_ + " --time-limit-s 30 -- " + kLeftWall);
   EXPECT_EQ(run.outcome.exit_code, 1) << run.outcome.output;
   ASSERT_TRUE(run.result.is_object());
   EXPECT_EQ(run.result["status"], "time_out");
@@ -405,7 +407,7 @@ TEST_F(MmsRunTest, LeftWallPythonClientDoesWhatALeftWallFollowerDoesInEverySolva
     const Maze maze = LoadMaze(file.string());
     const auto [moves, goal] = LeftWallFollower(maze, 60);
     const MmsOutcome run =
-        Mms("--no-pictures --time-limit-s 60 --maze " + file.string() + " -- python3 " + kLeftWall);
+        Mms("--no-pictures --time-limit-s 60 --maze " + file.string() + " -- " + kLeftWall);
     ASSERT_TRUE(run.result.is_object()) << file << ": " << run.outcome.output;
     EXPECT_EQ(run.result["status"], goal ? "goal_reached" : "time_out") << file;
     EXPECT_EQ(run.result["moves"], moves) << file;

@@ -486,7 +486,8 @@ def main(argv):
     if out["statistics"]:
         out["statistics"]["channel_message_counts"] = {
             str(k): v for k, v in out["statistics"]["channel_message_counts"].items()}
-    json.dump(out, sys.stdout)
+    # one write: json.dump writes each token, a system call each when stdout is unbuffered
+    sys.stdout.write(json.dumps(out))
     return 0
 
 

@@ -111,19 +111,29 @@ TEST(ArduinoExamplesOnBoardTest, MicromouseRecordsOnlyTrueWallsWhileExploring) {
 }
 
 // the image one would flash, in the whole contest: it explores All Japan 2018 and speed-runs the
-// path of cost 108, and the same image runs the same contest twice (the longest test: about
-// 150 s a contest on this machine)
-TEST(ArduinoExamplesOnBoardTest, MicromousePassesTheContestTheSameWayTwice) {
+// path of cost 108. Lock-step makes the contest the same every time, to the emulated cycle: the
+// figures below are this contest's when it was written (the longest test, about 140 s on this
+// machine, so it runs once and meets its earlier run's figures rather than running twice). A
+// change of the example, the robot or the physics changes them: run the test and copy them.
+TEST(ArduinoExamplesOnBoardTest, MicromousePassesTheContestTheSameWayEveryTime) {
   IMAGE_OR_SKIP(image, "micromouse");
   const ExampleRun a =
-      RunOnBoard(image, "micromouse --set end_on_log=done", "unimouse_avr_example_contest");
+      RunOnBoard(image, "micromouse --set end_on_log=done --no-pictures --record off",
+                 "unimouse_avr_example_contest");
   ASSERT_EQ(a.outcome.exit_code, 0) << a.outcome.output;
   const nlohmann::json& scenario = a.result["scenario"];
   EXPECT_EQ(scenario["status"], "passed") << scenario["reason"];
-  EXPECT_EQ(scenario["scores"]["best_run_path_cost"], 108) << scenario.dump();
-  const ExampleRun b =
-      RunOnBoard(image, "micromouse --set end_on_log=done", "unimouse_avr_example_contest");
-  EXPECT_EQ(a.result, b.result);
+  const nlohmann::json& scores = scenario["scores"];
+  EXPECT_EQ(scores["best_run_path_cost"], 108) << scenario.dump();
+  EXPECT_EQ(scores["runs"], 3);
+  EXPECT_EQ(scores["wall_contacts"], 4);
+  EXPECT_NEAR(scores["best_run_s"].get<double>(), 73.777, 1e-6);
+  EXPECT_NEAR(scores["time_used_s"].get<double>(), 454.868, 1e-6);
+  const nlohmann::json& board = a.result["measurements"]["link"];
+  EXPECT_EQ(board["avr.cycles"].get<double>(), 7284272001.0);
+  EXPECT_EQ(board["avr.instructions"].get<double>(), 5091716172.0);
+  EXPECT_EQ(board["avr.bytes_to_mcu"].get<double>(), 2868168.0);
+  EXPECT_EQ(board["avr.bytes_from_mcu"].get<double>(), 636247.0);
 }
 
 // the reset button pressed 5 s into the first run, in a small maze: the board boots again, the

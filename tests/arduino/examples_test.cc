@@ -33,6 +33,9 @@ ExampleRun RunExample(const std::string& example, const std::string& scenario,
   return run;
 }
 
+// options of a run whose result alone is compared: no pictures, recording or trace
+const std::string kResultsOnly = "--no-pictures --record off --trace-period 0";
+
 TEST(ArduinoExamplesTest, WallDistancePassesItsScenarioTheSameWayEveryTime) {
   const ExampleRun a = RunExample("wall_distance", "wall_distance", "unimouse_example_wd");
   ASSERT_EQ(a.outcome.exit_code, 0) << a.outcome.output;
@@ -100,8 +103,8 @@ TEST(ArduinoExamplesTest, MicromouseExploresJapan2018AndSpeedRunsThePathOfCost10
   EXPECT_NE(log.find("speed run 1: path cost 108"), std::string::npos) << log;
   EXPECT_NE(log.find("the firmware logged 'done'"), std::string::npos);
   // lock-step: however the two processes are scheduled, the same contest
-  const ExampleRun again =
-      RunExample("micromouse", "micromouse --set end_on_log=done", "unimouse_example_mm2");
+  const ExampleRun again = RunExample(
+      "micromouse", "micromouse --set end_on_log=done " + kResultsOnly, "unimouse_example_mm2");
   EXPECT_EQ(r.result["scenario"], again.result["scenario"]);
   EXPECT_EQ(r.result["robot_pose"], again.result["robot_pose"]);
 }
@@ -136,8 +139,8 @@ TEST(ArduinoExamplesTest, RacerSpeedRunsJapan2018InUnder26Point5SecondsWithoutTo
   const std::string log = ReadTextFile(out + "/log.txt");
   EXPECT_NE(log.find("speed run 1: path cost 108"), std::string::npos) << log;
   // lock-step: the same contest again
-  const ExampleRun again =
-      RunExample("racer", "micromouse --set end_on_log=done", "unimouse_example_racer2");
+  const ExampleRun again = RunExample("racer", "micromouse --set end_on_log=done " + kResultsOnly,
+                                      "unimouse_example_racer2");
   EXPECT_EQ(scenario, again.result["scenario"]);
   EXPECT_EQ(r.result["robot_pose"], again.result["robot_pose"]);
 }
@@ -183,7 +186,7 @@ TEST(ArduinoExamplesTest, RacerWinsClassicContestsWithoutTouchingAWallInItsBestR
   for (const Case& c : cases) {
     const ExampleRun r = RunExample("racer",
                                     std::string("micromouse --set end_on_log=done --maze ") +
-                                        shared + "/classic/" + c.maze + ".txt",
+                                        shared + "/classic/" + c.maze + ".txt " + kResultsOnly,
                                     std::string("unimouse_example_racer_") + c.maze);
     ASSERT_EQ(r.outcome.exit_code, 0) << c.maze << ": " << r.outcome.output;
     const nlohmann::json& scenario = r.result["scenario"];

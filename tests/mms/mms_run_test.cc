@@ -446,8 +446,8 @@ std::string MmsWithPeer(const std::string& dir, const std::string& arguments,
   const std::string script = dir + "/peer.sh";
   WriteTextFile(script, "(" UNIMOUSE_BINARY " mms " + arguments + " > " + dir +
                             "/mms.log 2>&1; echo $? > " + dir + "/mms.rc) &\n" +
-                            "until grep -q waiting " + dir + "/mms.log 2>/dev/null || [ -e " +
-                            dir + "/mms.rc ]; do sleep 0.05; done\n" + client + "\nwait\n");
+                            "until grep -q waiting " + dir + "/mms.log 2>/dev/null || [ -e " + dir +
+                            "/mms.rc ]; do sleep 0.05; done\n" + client + "\nwait\n");
   std::system(("bash " + script + " > " + dir + "/client.log 2>&1").c_str());
   return ReadTextFile(dir + "/mms.log");
 }

@@ -12,6 +12,7 @@
 #include <numbers>
 
 #include "inline_assets.h"
+#include "mms_clients.h"
 #include "plugin_rig.h"
 #include "png_file.h"
 #include "run_program.h"
@@ -163,7 +164,7 @@ class MmsPhysicalRunTest : public ::testing::Test {
 };
 
 TEST_F(MmsPhysicalRunTest, FloodFillClientReachesTheGoalOfAllJapan2018OnTheRobot) {
-  const nlohmann::json result = Mms("--maze japan2018 -- " UNIMOUSE_MMS_FLOODFILL, 0);
+  const nlohmann::json result = Mms("--maze japan2018 -- " + testing::kFloodFillClient, 0);
   ASSERT_TRUE(result.is_object()) << output_;
   EXPECT_EQ(result["mode"], "mms-physical");
   EXPECT_EQ(result["status"], "goal_reached") << result["reason"];
@@ -187,7 +188,7 @@ TEST_F(MmsPhysicalRunTest, TestClientsDriveEightClassicMazesWithoutAContactAndWi
   const std::string shared = testing::SharedMazesDir();
   if (shared.empty())
     GTEST_SKIP() << "the maze collection (../shared/mazes) is not beside the project";
-  if (std::system(UNIMOUSE_PYTHON3 " -c '' >/dev/null 2>&1") != 0) GTEST_SKIP() << "no python3";
+  if (!testing::HavePython()) GTEST_SKIP() << "no python3";
   const char* mazes[] = {"alljapan-009-1988-pre",
                          "alljapan-016-1995-frsh",
                          "eastjapan-017-1999",
@@ -196,11 +197,10 @@ TEST_F(MmsPhysicalRunTest, TestClientsDriveEightClassicMazesWithoutAContactAndWi
                          "minos24-b",
                          "sundo-1",
                          "test-3paths"};
-  const std::string left_wall = "--time-limit-s 60 -- " UNIMOUSE_PYTHON3 " " UNIMOUSE_SOURCE_DIR
-                                "/tests/mms/clients/left_wall.py";
+  const std::string left_wall = "--time-limit-s 60 -- " + testing::kLeftWallClient;
   for (const char* name : mazes) {
     const std::string maze = "--no-pictures --maze " + shared + "/classic/" + name + ".txt ";
-    for (const std::string& client : {std::string("-- " UNIMOUSE_MMS_FLOODFILL), left_wall}) {
+    for (const std::string& client : {"-- " + testing::kFloodFillClient, left_wall}) {
       const bool flood_fill = client.find("left_wall") == std::string::npos;
       SCOPED_TRACE(std::string(name) + (flood_fill ? ", flood fill" : ", left wall"));
       const testing::Outcome outcome =
@@ -209,8 +209,11 @@ TEST_F(MmsPhysicalRunTest, TestClientsDriveEightClassicMazesWithoutAContactAndWi
       const nlohmann::json result = nlohmann::json::parse(ReadTextFile(out_ + "/result.json"));
       const std::string status = result["status"];
       // the left-wall follower drives until the contest clock stops it, or onto the goal
-      if (flood_fill) EXPECT_EQ(status, "goal_reached") << result["reason"];
-      if (!flood_fill) EXPECT_TRUE(status == "time_out" || status == "goal_reached") << status;
+      if (flood_fill) {
+        EXPECT_EQ(status, "goal_reached") << result["reason"];
+      } else {
+        EXPECT_TRUE(status == "time_out" || status == "goal_reached") << status;
+      }
       EXPECT_EQ(result["crashes"], 0);
       EXPECT_EQ(result["physical"]["wall_contacts"], 0);
       EXPECT_LT(result["physical"]["worst_yaw_error_deg"].get<double>(), 3);

@@ -22,6 +22,7 @@
 #include <fstream>
 
 #include "inline_assets.h"
+#include "mms_clients.h"
 #include "png_file.h"
 #include "run_program.h"
 #include "text_file.h"
@@ -79,12 +80,9 @@ class MmsRunTest : public ::testing::Test {
   std::string open_maze_ = WriteFile("open.txt", testing::kOpenMaze5x5);
 };
 
-const std::string kFloodFill = UNIMOUSE_MMS_FLOODFILL;
-// Debian's python3 by its path: a version manager's shim on PATH may cost more than the run
-const std::string kLeftWall =
-    UNIMOUSE_PYTHON3 " " UNIMOUSE_SOURCE_DIR "/tests/mms/clients/left_wall.py";
-
-bool HavePython() { return std::system(UNIMOUSE_PYTHON3 " -c '' >/dev/null 2>&1") == 0; }
+const std::string& kFloodFill = testing::kFloodFillClient;
+const std::string& kLeftWall = testing::kLeftWallClient;
+using testing::HavePython;
 
 TEST_F(MmsRunTest, FloodFillClientReachesTheGoalOfTheBundledMaze) {
   const MmsOutcome run = Mms("--maze japan2018 -- " + kFloodFill);

@@ -3,11 +3,15 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <deque>
 #include <filesystem>
 #include <future>
 #include <initializer_list>
 #include <limits>
+#include <memory>
+#include <mutex>
 #include <numbers>
 #include <unsupported/Eigen/LevenbergMarquardt>
 
@@ -24,6 +28,13 @@ constexpr double kOtherRobotFactor = 2.5;
 // forward-difference step of the Jacobian, relative: sqrt(epsfcn), as in Eigen's NumericalDiff
 constexpr double kJacobianEpsfcn = 1e-4;
 constexpr int kMaxReplays = 200;
+// replayed points kept for the search to come back to (a few MB for a minute's log)
+constexpr size_t kRecentReplays = 16;
+// searches on the counts at most, each from a better point of a scan around the last one's end
+constexpr int kSearchRounds = 4;
+// a command that changes by more than this from one row to the next is a step (the ramps change
+// theirs by under one a row)
+constexpr double kStep = 2;
 
 std::string At(const SysidLog& log, size_t row) {
   return log.file + ":" + std::to_string(log.line[row]);
@@ -37,13 +48,61 @@ std::vector<ParameterRef> Unknowns(const RobotWiring& w) {
           {w.right.motor, "resistance_ohm"}};
 }
 
+// The segment of each row 1..n-1 of a log: a new one begins after each step of either command.
+std::vector<int> StepSegments(const SysidLog& log) {
+  std::vector<int> segment;
+  int current = 0;
+  for (size_t i = 1; i < log.rows(); ++i) {
+    const size_t from = i - 1;
+    if (from > 0 && (std::abs(log.left_command[from] - log.left_command[from - 1]) > kStep ||
+                     std::abs(log.right_command[from] - log.right_command[from - 1]) > kStep)) {
+      ++current;
+    }
+    segment.push_back(current);
+  }
+  return segment;
+}
+
+// Each wheel's counts since the last step of either command, at rows 1..n-1, from its speeds
+// between rows. A speed from two rounded counts carries the difference of two roundings, so its
+// errors are correlated from row to row, where a count's rounding is its own; and a step's lag
+// (the time constant times the speed it reaches) stays in the counts until the next step, where
+// in the speeds it shows in the first rows alone: the counts pin the time constant, and so Ra.
+std::vector<std::vector<double>> CountsSinceStep(const SysidLog& log,
+                                                 const std::vector<int>& segments,
+                                                 const std::vector<std::vector<double>>& speeds) {
+  std::vector<std::vector<double>> counts(speeds.size());
+  for (size_t c = 0; c < speeds.size(); ++c) {
+    double since = 0;
+    for (size_t k = 0; k < segments.size(); ++k) {
+      if (k > 0 && segments[k] != segments[k - 1]) since = 0;
+      since += speeds[c][k] * (log.time_s[k + 1] - log.time_s[k]);
+      counts[c].push_back(since);
+    }
+  }
+  return counts;
+}
+
+// a channel's RMS, at least 1, so that channels weigh alike
+double Rms(const std::vector<double>& values) {
+  double sum = 0;
+  for (double v : values) sum += v * v;
+  return std::max(std::sqrt(sum / static_cast<double>(values.size())), 1.0);
+}
+
 struct LogData {
   const SysidLog* log;
   Channels measured;
-  std::vector<double> scale;  // each channel's RMS, so that channels weigh alike
+  std::vector<int> segments;                // StepSegments
+  std::vector<std::vector<double>> counts;  // CountsSinceStep of the measured speeds
+  std::vector<double> speed_scale, counts_scale;
 };
 
-// the residuals of every log's replay at the ratios x, scaled by each channel's RMS
+// what the search compares: the wheels' speeds between rows, or their counts since each step
+enum class Compared { kSpeeds, kCountsSinceStep };
+
+// the residuals of every log's replay at the ratios x, of speeds or of counts since each step,
+// each channel scaled by its RMS
 class ReplayResiduals : public Eigen::DenseFunctor<double> {
  public:
   ReplayResiduals(const RobotSpec& robot, const RobotWiring& wiring, const PluginRegistry& registry,
@@ -57,6 +116,8 @@ class ReplayResiduals : public Eigen::DenseFunctor<double> {
         unknowns_(unknowns),
         file_values_(file_values),
         replays_(replays) {}
+
+  void Compare(Compared compared) { compared_ = compared; }
 
   // the robot at x. The unknowns come in pairs per motor, (Kt, Ra), searched as the ratios of
   // Kt and of the mechanical time constant's Ra / Kt^2 (eq. 3.1 and 3.7 with La negligible) to
@@ -77,19 +138,21 @@ class ReplayResiduals : public Eigen::DenseFunctor<double> {
 
   int operator()(const InputType& x, ValueType& f) const {
     Residuals(x, f);
-    *replays_ += static_cast<int>(logs_.size());
     return 0;
   }
 
   // forward differences, as Eigen's NumericalDiff takes them (steps of sqrt(kJacobianEpsfcn)
-  // of each ratio), the replays side by side on the machine's cores: each is a simulation of
-  // its own, and the numbers are those of one replay after another
+  // of each ratio; of Kt a tenth of that on the counts, whose drift over a long step is Kt's
+  // error times the step's counts), the replays side by side on the machine's cores: each is a
+  // simulation of its own, and the numbers are those of one replay after another
   int df(const InputType& x, JacobianType& jacobian) const {
     const Eigen::Index n = x.size();
-    const double relative = std::sqrt(kJacobianEpsfcn);
     std::vector<InputType> points(static_cast<size_t>(n + 1), x);
     std::vector<double> h(static_cast<size_t>(n));
     for (Eigen::Index j = 0; j < n; ++j) {
+      const double relative = compared_ == Compared::kCountsSinceStep && j % 2 == 0
+                                  ? std::sqrt(kJacobianEpsfcn) / 10
+                                  : std::sqrt(kJacobianEpsfcn);
       const size_t at = static_cast<size_t>(j);
       h[at] = x[j] != 0 ? relative * std::abs(x[j]) : relative;
       points[at + 1][j] += h[at];
@@ -110,19 +173,46 @@ class ReplayResiduals : public Eigen::DenseFunctor<double> {
       replays.push_back(std::async(std::launch::async, [&, i] { Residuals(points[i], f[i]); }));
     }
     for (std::future<void>& r : replays) r.get();
-    *replays_ += static_cast<int>(points.size() * logs_.size());
     return f;
   }
 
  private:
-  void Residuals(const InputType& x, ValueType& f) const {
+  // every log replayed at x. The search comes back to points it has replayed (the Jacobian's
+  // base is the last step's end, a scan's best is the next search's start, the speeds and the
+  // counts come from one replay), so the last few are kept
+  std::shared_ptr<const std::vector<Channels>> Replayed(const InputType& x) const {
+    {
+      std::lock_guard<std::mutex> lock(recent_mutex_);
+      for (const auto& [at, channels] : recent_) {
+        if (at == x) return channels;
+      }
+    }
     const RobotSpec robot = Robot(x);
-    Eigen::Index k = 0;
+    auto channels = std::make_shared<std::vector<Channels>>();
     for (const LogData& data : logs_) {
-      const Channels replayed = ReplayChannels(robot, wiring_, registry_, *data.log);
-      for (size_t c = 0; c < replayed.values.size(); ++c) {
-        for (size_t i = 0; i < replayed.values[c].size(); ++i) {
-          f[k++] = (replayed.values[c][i] - data.measured.values[c][i]) / data.scale[c];
+      channels->push_back(ReplayChannels(robot, wiring_, registry_, *data.log));
+    }
+    std::lock_guard<std::mutex> lock(recent_mutex_);
+    *replays_ += static_cast<int>(logs_.size());
+    recent_.emplace_back(x, channels);
+    if (recent_.size() > kRecentReplays) recent_.pop_front();
+    return channels;
+  }
+
+  void Residuals(const InputType& x, ValueType& f) const {
+    const std::shared_ptr<const std::vector<Channels>> replayed_logs = Replayed(x);
+    Eigen::Index k = 0;
+    const bool counts = compared_ == Compared::kCountsSinceStep;
+    for (size_t l = 0; l < logs_.size(); ++l) {
+      const LogData& data = logs_[l];
+      const std::vector<std::vector<double>>& speeds = (*replayed_logs)[l].values;
+      const std::vector<std::vector<double>> replayed =
+          counts ? CountsSinceStep(*data.log, data.segments, speeds) : speeds;
+      const std::vector<std::vector<double>>& logged = counts ? data.counts : data.measured.values;
+      for (size_t c = 0; c < replayed.size(); ++c) {
+        const double scale = counts ? data.counts_scale[c] : data.speed_scale[c];
+        for (size_t i = 0; i < replayed[c].size(); ++i) {
+          f[k++] = (replayed[c][i] - logged[c][i]) / scale;
         }
       }
     }
@@ -135,6 +225,9 @@ class ReplayResiduals : public Eigen::DenseFunctor<double> {
   const std::vector<ParameterRef>& unknowns_;
   const std::vector<double>& file_values_;
   int* replays_;
+  Compared compared_ = Compared::kSpeeds;
+  mutable std::mutex recent_mutex_;
+  mutable std::deque<std::pair<InputType, std::shared_ptr<const std::vector<Channels>>>> recent_;
 };
 
 // Kt of one side from the log's quasi-static rows (the command steady for the last 0.3 s and the
@@ -147,7 +240,7 @@ double SteadyKt(const std::vector<LogData>& data, const RobotWiring::Side& side,
     const std::vector<double>& speed = d.measured.values[left ? 0 : 1];
     size_t steady_since = 0;
     for (size_t i = 1; i < log.rows(); ++i) {
-      if (std::abs(command[i] - command[i - 1]) > 2) steady_since = i;
+      if (std::abs(command[i] - command[i - 1]) > kStep) steady_since = i;
       if (log.time_s[i] - log.time_s[steady_since] < 0.3 || command[i] == 0) continue;
       const double volts = command[i] / kFullScaleCommand * log.battery_v[i];
       const double w = speed[i - 1] / side.counts_per_rad;
@@ -321,12 +414,12 @@ FitReport FitRobot(const RobotSpec& robot, const PluginRegistry& registry,
   int residuals = 0;
   for (const SysidLog& log : logs) {
     CheckLogFitsRobot(log, robot, wiring);
-    LogData d{&log, MeasuredChannels(log), {}};
-    for (const std::vector<double>& channel : d.measured.values) {
-      double sum = 0;
-      for (double v : channel) sum += v * v;
-      d.scale.push_back(std::max(std::sqrt(sum / static_cast<double>(channel.size())), 1.0));
-      residuals += static_cast<int>(channel.size());
+    LogData d{&log, MeasuredChannels(log), StepSegments(log), {}, {}, {}};
+    d.counts = CountsSinceStep(log, d.segments, d.measured.values);
+    for (size_t c = 0; c < d.counts.size(); ++c) {
+      d.speed_scale.push_back(Rms(d.measured.values[c]));
+      d.counts_scale.push_back(Rms(d.counts[c]));
+      residuals += static_cast<int>(d.counts[c].size());
     }
     data.push_back(std::move(d));
   }
@@ -340,11 +433,9 @@ FitReport FitRobot(const RobotSpec& robot, const PluginRegistry& registry,
                               &report.replays);
   Eigen::LevenbergMarquardt<ReplayResiduals> lm(residual_fn);
   lm.setMaxfev(kMaxReplays);
-  lm.setXtol(1e-6);
-  lm.setFtol(1e-8);
   const Eigen::Index n = static_cast<Eigen::Index>(unknowns.size());
   Eigen::VectorXd x = Eigen::VectorXd::Ones(n);
-  Eigen::VectorXd before(residuals), after(residuals);
+  Eigen::VectorXd before(residuals);
   residual_fn(x, before);
   // where the search starts: Kt from the quasi-static rows (steady speed V / Kt, eq. 3.1 and 3.6
   // with no current change), then each motor's time constant ratio as the best
@@ -381,17 +472,78 @@ FitReport FitRobot(const RobotSpec& robot, const PluginRegistry& registry,
   // the very robot): the search then cannot end worse than the file
   if (before.squaredNorm() < best) start = Eigen::VectorXd::Ones(n);
   x = start;
-  lm.minimize(x);
-  report.iterations = static_cast<int>(lm.iterations());
+  // then the search on the counts since each step, which pin the time constants where the
+  // speeds hardly do. Their error is rough (tyre slip in the steps), so each end of the search is
+  // tried against a scan around it, and searched again from a better point
+  residual_fn.Compare(Compared::kCountsSinceStep);
+  lm.setXtol(1e-4);
+  lm.setFtol(1e-5);
+  for (int round = 0; round < kSearchRounds; ++round) {
+    lm.minimize(x);
+    report.iterations += static_cast<int>(lm.iterations());
+    double best_here = lm.fnorm() * lm.fnorm();
+    const Eigen::VectorXd was = x;
+    // each time constant alone by 3 and by 12 % (the dips tyre slip makes are some percent
+    // wide; a strong motor's steps slip most), and both the opposite ways by 3 %: the wheels
+    // share the chassis, so one too long and the other too short is a valley of its own. Kt
+    // needs no scan: the search's own steps of it are fine enough
+    struct Direction {
+      std::array<double, 4> exponents;
+      double step;
+    };
+    for (const Direction& d : {Direction{{0, 1, 0, 0}, 0.03}, Direction{{0, 0, 0, 1}, 0.03},
+                               Direction{{0, 1, 0, -1}, 0.03}, Direction{{0, 1, 0, 0}, 0.12},
+                               Direction{{0, 0, 0, 1}, 0.12}}) {
+      std::vector<Eigen::VectorXd> trials;
+      for (double sign : {-1, 1}) {
+        trials.push_back(x);
+        for (Eigen::Index j = 0; j < n; ++j) {
+          const double factor = std::pow(1 + sign * d.step, d.exponents[j]);
+          trials.back()[j] = std::clamp(x[j] * factor, kMinRatio, kMaxRatio);
+        }
+      }
+      const std::vector<Eigen::VectorXd> at = residual_fn.AtEach(trials);
+      for (size_t i = 0; i < trials.size(); ++i) {
+        if (at[i].squaredNorm() < best_here) {
+          best_here = at[i].squaredNorm();
+          x = trials[i];
+        }
+      }
+    }
+    if (x == was) break;
+  }
 
-  // confidence intervals from the Jacobian at the optimum: cov = s^2 (J^T J)^-1
+  // Confidence intervals from the counts' Jacobian at the optimum, by the cluster-robust
+  // (sandwich) covariance cov = A^-1 (sum_g J_g^T r_g r_g^T J_g) A^-1 G / (G - 1), A = J^T J,
+  // g each log's segments between steps: a count since a step carries every error of the rows
+  // before it, so residuals are correlated within a segment and independent across. They say
+  // how far the residuals' spread moves the fit, not how far a model error (tyre slip) pulls it:
+  // they are narrower than the errors seen (docs/calibrate.md, limits)
+  Eigen::VectorXd after(residuals);
   residual_fn(x, after);
   Eigen::MatrixXd jacobian(residuals, n);
   residual_fn.df(x, jacobian);
-  const double s2 = ResidualVariance(after, n);
+  residual_fn.Compare(Compared::kSpeeds);
+  std::vector<Eigen::VectorXd> scores;
+  Eigen::Index k = 0;
+  for (const LogData& d : data) {
+    const size_t first = scores.size();
+    scores.resize(first + static_cast<size_t>(d.segments.back() + 1), Eigen::VectorXd::Zero(n));
+    for (size_t c = 0; c < d.counts.size(); ++c) {
+      for (int segment : d.segments) {
+        scores[first + static_cast<size_t>(segment)] += jacobian.row(k).transpose() * after[k];
+        ++k;
+      }
+    }
+  }
+  Eigen::MatrixXd meat = Eigen::MatrixXd::Zero(n, n);
+  for (const Eigen::VectorXd& g : scores) meat += g * g.transpose();
+  const double clusters = static_cast<double>(scores.size());
   const Eigen::MatrixXd information = jacobian.transpose() * jacobian;
   Eigen::JacobiSVD<Eigen::MatrixXd> svd(information, Eigen::ComputeFullU | Eigen::ComputeFullV);
-  const Eigen::MatrixXd covariance = s2 * svd.solve(Eigen::MatrixXd::Identity(n, n));
+  const Eigen::MatrixXd inverse = svd.solve(Eigen::MatrixXd::Identity(n, n));
+  const Eigen::MatrixXd covariance =
+      inverse * meat * inverse * clusters / std::max(clusters - 1, 1.0);
   const bool full_rank = svd.singularValues()(n - 1) > 1e-12 * svd.singularValues()(0);
 
   // each value and its interval from the searched ratios (Kt = Kt_file x0, Ra = Ra_file x1 x0^2),

@@ -187,8 +187,8 @@ TEST(FitTest, TheHalfSizeRobotGivesBackItsMotorConstantsWithinFivePercent) {
 TEST(FitTest, EndsNoFurtherFromTheFilesOwnLogThanTheFileItself) {
   // the file's values are the truth here: a search that wanders off them (it did, to RMSE 39.8
   // from 34.3 counts/s, starting from the quasi-static Kt) makes the fitted file worse. What
-  // the search minimises, and docs/calibrate.md promises, is the total of both wheels' squared
-  // residuals, each channel divided by its RMS; one wheel alone may end a little worse
+  // docs/calibrate.md promises is the total of both wheels' squared speed residuals, each
+  // channel divided by its RMS; one wheel alone may end a little worse
   const SysidLog log = ReadSysidLog(SimulatedLog(kRobot, "sysid_own"));
   const FitReport report =
       FitRobot(ParseRobotSpec(ReadTextFile(kRobot), kRobot), Registry(), {log});

@@ -176,6 +176,18 @@ class ReplayResiduals : public Eigen::DenseFunctor<double> {
     return f;
   }
 
+  // the trials replayed side by side; `point` moves to the best that beats `best` (its squared
+  // residuals), if any
+  void MoveToBest(const std::vector<InputType>& trials, InputType& point, double& best) const {
+    const std::vector<ValueType> at = AtEach(trials);
+    for (size_t i = 0; i < trials.size(); ++i) {
+      if (at[i].squaredNorm() < best) {
+        best = at[i].squaredNorm();
+        point = trials[i];
+      }
+    }
+  }
+
  private:
   // every log replayed at x. The search comes back to points it has replayed (the Jacobian's
   // base is the last step's end, a scan's best is the next search's start, the speeds and the
@@ -459,13 +471,7 @@ FitReport FitRobot(const RobotSpec& robot, const PluginRegistry& registry,
         trials.push_back(start);
         trials.back()[tau_index] = std::clamp(start[tau_index] * factor, kMinRatio, kMaxRatio);
       }
-      const std::vector<Eigen::VectorXd> at = residual_fn.AtEach(trials);
-      for (size_t i = 0; i < trials.size(); ++i) {
-        if (at[i].squaredNorm() < best) {
-          best = at[i].squaredNorm();
-          start = trials[i];
-        }
-      }
+      residual_fn.MoveToBest(trials, start, best);
     }
   }
   // the file's own values, when they replay the logs better than every start found (a log of
@@ -502,13 +508,7 @@ FitReport FitRobot(const RobotSpec& robot, const PluginRegistry& registry,
           trials.back()[j] = std::clamp(x[j] * factor, kMinRatio, kMaxRatio);
         }
       }
-      const std::vector<Eigen::VectorXd> at = residual_fn.AtEach(trials);
-      for (size_t i = 0; i < trials.size(); ++i) {
-        if (at[i].squaredNorm() < best_here) {
-          best_here = at[i].squaredNorm();
-          x = trials[i];
-        }
-      }
+      residual_fn.MoveToBest(trials, x, best_here);
     }
     if (x == was) break;
   }

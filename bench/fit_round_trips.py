@@ -8,7 +8,7 @@
 # (docs/calibrate.md, limits).
 #
 #   bench/fit_round_trips.py [--unimouse BIN] [--robots unimouse unimouse-half] [--seeds 1 2 ...]
-#     (default build/bin/unimouse, both robots, seeds 1 to 5)
+#     (default $UNIMOUSE_BINARY, else build/bin/unimouse; both robots; seeds 1 to 5)
 import argparse
 import os
 import random
@@ -38,7 +38,8 @@ def changed_robot(text, truth):
 
 def main():
     parser = argparse.ArgumentParser()
-    parser.add_argument("--unimouse", default=os.path.join(ROOT, "build", "bin", "unimouse"))
+    parser.add_argument("--unimouse", default=os.environ.get(
+        "UNIMOUSE_BINARY", os.path.join(ROOT, "build", "bin", "unimouse")))
     parser.add_argument("--robots", nargs="+", default=["unimouse", "unimouse-half"])
     parser.add_argument("--seeds", nargs="+", type=int, default=[1, 2, 3, 4, 5])
     args = parser.parse_args()

@@ -529,5 +529,24 @@ TEST(DocumentedCommandsTest, TheGyroRobotsWorkedExampleFitsItsGyroWithinTheParts
   EXPECT_EQ(plain.output.find("imu.gyro_z_bias_dps"), std::string::npos) << plain.output;
 }
 
+// docs/calibrate.md, limits: the round-trip script's one draw, word for word from the source tree
+// (the script finds the built program in UNIMOUSE_BINARY)
+TEST(DocumentedCommandsTest, TheRoundTripScriptOfCalibrateMdGivesBackItsDrawWithinFivePercent) {
+  if (!testing::HavePython()) GTEST_SKIP() << "no python3";
+  const std::vector<std::string> commands =
+      testing::DocumentedCommands("docs/calibrate.md", "- **Other draws than the tests'**");
+  ASSERT_EQ(commands.size(), 1u);
+  ASSERT_EQ(commands[0].rfind("bench/fit_round_trips.py ", 0), 0u) << commands[0];
+  const testing::Outcome o = testing::Shell(
+      "cd " UNIMOUSE_SOURCE_DIR " && UNIMOUSE_BINARY=" UNIMOUSE_BINARY " " UNIMOUSE_PYTHON3 " " +
+      commands[0]);
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  EXPECT_NE(o.output.find("unimouse-half  seed  3  Kt left"), std::string::npos) << o.output;
+  // its last line: the worst fitted constant against the drawn one, within the acceptance's 5 %
+  const size_t at = o.output.find("worst error ");
+  ASSERT_NE(at, std::string::npos) << o.output;
+  EXPECT_LT(std::stod(o.output.substr(at + 12)), 5) << o.output;
+}
+
 }  // namespace
 }  // namespace unimouse::fit

@@ -523,7 +523,6 @@ FitReport FitRobot(const RobotSpec& robot, const PluginRegistry& registry,
   residual_fn(x, after);
   Eigen::MatrixXd jacobian(residuals, n);
   residual_fn.df(x, jacobian);
-  residual_fn.Compare(Compared::kSpeeds);
   std::vector<Eigen::VectorXd> scores;
   Eigen::Index k = 0;
   for (const LogData& d : data) {

@@ -80,12 +80,12 @@ class MmsRunTest : public ::testing::Test {
   std::string open_maze_ = WriteFile("open.txt", testing::kOpenMaze5x5);
 };
 
-const std::string& kFloodFill = testing::kFloodFillClient;
-const std::string& kLeftWall = testing::kLeftWallClient;
 using testing::HavePython;
+using testing::kFloodFillClient;
+using testing::kLeftWallClient;
 
 TEST_F(MmsRunTest, FloodFillClientReachesTheGoalOfTheBundledMaze) {
-  const MmsOutcome run = Mms("--maze japan2018 -- " + kFloodFill);
+  const MmsOutcome run = Mms("--maze japan2018 -- " + kFloodFillClient);
   EXPECT_EQ(run.outcome.exit_code, 0) << run.outcome.output;
   ASSERT_TRUE(run.result.is_object()) << run.outcome.output;
   EXPECT_EQ(run.result["status"], "goal_reached");
@@ -103,7 +103,7 @@ TEST_F(MmsRunTest, FloodFillClientReachesTheGoalOfTheBundledMaze) {
 TEST_F(MmsRunTest, LeftWallPythonClientFollowsTheWallIntoTheCentre) {
   if (!HavePython()) GTEST_SKIP() << "no python3";
   const std::string maze = WriteFile("wall.txt", kWallToTheCentreMaze);
-  const MmsOutcome run = Mms("--maze " + maze + " -- " + kLeftWall);
+  const MmsOutcome run = Mms("--maze " + maze + " -- " + kLeftWallClient);
   EXPECT_EQ(run.outcome.exit_code, 0) << run.outcome.output;
   ASSERT_TRUE(run.result.is_object());
   EXPECT_EQ(run.result["status"], "goal_reached");
@@ -116,7 +116,7 @@ TEST_F(MmsRunTest, LeftWallPythonClientFollowsTheWallIntoTheCentre) {
 TEST_F(MmsRunTest, LeftWallClientRunsOutOfContestTimeWhereTheCentreIsAnIsland) {
   if (!HavePython()) GTEST_SKIP() << "no python3";
   // the open maze's centre has no wall to follow in: the follower circles the perimeter
-  const MmsOutcome run = Mms("--maze " + open_maze_ + " --time-limit-s 30 -- " + kLeftWall);
+  const MmsOutcome run = Mms("--maze " + open_maze_ + " --time-limit-s 30 -- " + kLeftWallClient);
   EXPECT_EQ(run.outcome.exit_code, 1) << run.outcome.output;
   ASSERT_TRUE(run.result.is_object());
   EXPECT_EQ(run.result["status"], "time_out");
@@ -287,7 +287,7 @@ TEST_F(MmsRunTest, AFloodOfGarbageIsLoggedWithACapAndEndsByTheCommandLimit) {
 }
 
 TEST_F(MmsRunTest, TheViewerGoesWithThePhysicsTierOnly) {
-  const MmsOutcome run = Mms("--view --maze " + open_maze_ + " -- " + kFloodFill);
+  const MmsOutcome run = Mms("--view --maze " + open_maze_ + " -- " + kFloodFillClient);
   EXPECT_EQ(run.outcome.exit_code, 2);
   EXPECT_EQ(run.result["status"], "error");
   EXPECT_EQ(run.result["reason"], "--view goes with --physical");
@@ -295,13 +295,13 @@ TEST_F(MmsRunTest, TheViewerGoesWithThePhysicsTierOnly) {
 
 TEST_F(MmsRunTest, BadInputExitsTwoAndReplacesAStaleResult) {
   Mms("--maze " + open_maze_ + " -- " + ShellClient("exit 0\n"));
-  const MmsOutcome missing = Mms("--maze " + dir_ + "/nowhere.txt -- " + kFloodFill);
+  const MmsOutcome missing = Mms("--maze " + dir_ + "/nowhere.txt -- " + kFloodFillClient);
   EXPECT_EQ(missing.outcome.exit_code, 2);
   EXPECT_EQ(missing.result["status"], "error");
   const MmsOutcome no_program = Mms("--maze " + open_maze_ + " -- " + dir_ + "/no-such-program");
   EXPECT_EQ(no_program.outcome.exit_code, 2);
   EXPECT_NE(no_program.outcome.output.find("cannot run"), std::string::npos);
-  EXPECT_EQ(Mms("--reply-timeout-s 0 -- " + kFloodFill).outcome.exit_code, 2);
+  EXPECT_EQ(Mms("--reply-timeout-s 0 -- " + kFloodFillClient).outcome.exit_code, 2);
 }
 
 // the goal cells reachable from the start: a maze the flood fill must solve
@@ -351,7 +351,7 @@ TEST_F(MmsRunTest, FloodFillClientReachesTheGoalOfEverySolvableClassicMaze) {
   int reached = 0;
   const auto start = std::chrono::steady_clock::now();
   for (const fs::path& file : mazes) {
-    const MmsOutcome run = Mms("--maze " + file.string() + " -- " + kFloodFill);
+    const MmsOutcome run = Mms("--maze " + file.string() + " -- " + kFloodFillClient);
     const bool ok = run.outcome.exit_code == 0 && run.result["status"] == "goal_reached";
     EXPECT_TRUE(ok) << file << ": " << run.outcome.output;
     reached += ok ? 1 : 0;
@@ -405,7 +405,7 @@ TEST_F(MmsRunTest, LeftWallPythonClientDoesWhatALeftWallFollowerDoesInEverySolva
     const Maze maze = LoadMaze(file.string());
     const auto [moves, goal] = LeftWallFollower(maze, 60);
     const MmsOutcome run =
-        Mms("--no-pictures --time-limit-s 60 --maze " + file.string() + " -- " + kLeftWall);
+        Mms("--no-pictures --time-limit-s 60 --maze " + file.string() + " -- " + kLeftWallClient);
     ASSERT_TRUE(run.result.is_object()) << file << ": " << run.outcome.output;
     EXPECT_EQ(run.result["status"], goal ? "goal_reached" : "time_out") << file;
     EXPECT_EQ(run.result["moves"], moves) << file;
@@ -451,14 +451,14 @@ std::string MmsWithPeer(const std::string& dir, const std::string& arguments,
 }
 
 TEST_F(MmsRunTest, OverTcpAnMmsArduinoStyleClientReachesTheGoalWithItsLogShown) {
-  const MmsOutcome piped = Mms("--maze japan2018 -- " + kFloodFill);
+  const MmsOutcome piped = Mms("--maze japan2018 -- " + kFloodFillClient);
   ASSERT_EQ(piped.outcome.exit_code, 0);
   const std::string port = std::to_string(FreePort());
   // the board's sketch: a log line, then the algorithm, on one line to the simulator
   const std::string log =
       MmsWithPeer(dir_, "--maze japan2018 --out " + out_ + " --port tcp:127.0.0.1:" + port,
                   "exec 3<>/dev/tcp/127.0.0.1/" + port + "\n{ echo 'log hello from the board'; " +
-                      kFloodFill + "; } <&3 >&3");
+                      kFloodFillClient + "; } <&3 >&3");
   EXPECT_EQ(ReadTextFile(dir_ + "/mms.rc"), "0\n") << log;
   EXPECT_NE(log.find("mms: log: hello from the board"), std::string::npos) << log;
   const auto result = nlohmann::json::parse(ReadTextFile(out_ + "/result.json"));
@@ -473,7 +473,7 @@ TEST_F(MmsRunTest, OverAPtyTheClientReachesTheGoal) {
   const std::string link = dir_ + "/mouse";
   const std::string log =
       MmsWithPeer(dir_, "--maze japan2018 --out " + out_ + " --port pty:" + link,
-                  kFloodFill + " <>" + link + " >&0");
+                  kFloodFillClient + " <>" + link + " >&0");
   EXPECT_EQ(ReadTextFile(dir_ + "/mms.rc"), "0\n") << log;
   EXPECT_EQ(nlohmann::json::parse(ReadTextFile(out_ + "/result.json"))["status"], "goal_reached");
   EXPECT_FALSE(fs::exists(fs::symlink_status(link))) << "the run removes its link";
@@ -493,7 +493,7 @@ TEST_F(MmsRunTest, OverASerialPortTheClientReachesTheGoal) {
   if (client == 0) {
     dup2(master, 0);
     dup2(master, 1);
-    execl(kFloodFill.c_str(), kFloodFill.c_str(), nullptr);
+    execl(kFloodFillClient.c_str(), kFloodFillClient.c_str(), nullptr);
     _exit(127);
   }
   const MmsOutcome run = Mms("--maze japan2018 --port serial:" + std::string(name) + "@115200");
@@ -517,7 +517,7 @@ TEST_F(MmsRunTest, ABoardThatNeverSpeaksEndsAfterTheConnectTimeout) {
 }
 
 TEST_F(MmsRunTest, AProgramAndAPortTogetherAreBadInput) {
-  const MmsOutcome run = Mms("--maze japan2018 --port tcp::0 -- " + kFloodFill);
+  const MmsOutcome run = Mms("--maze japan2018 --port tcp::0 -- " + kFloodFillClient);
   EXPECT_EQ(run.outcome.exit_code, 2) << run.outcome.output;
   EXPECT_NE(run.outcome.output.find("not both"), std::string::npos) << run.outcome.output;
 }

@@ -3,7 +3,6 @@
 #ifndef UNIMOUSE_TESTS_MMS_CLIENTS_H_
 #define UNIMOUSE_TESTS_MMS_CLIENTS_H_
 
-#include <cstdlib>
 #include <string>
 
 namespace unimouse::testing {
@@ -14,9 +13,6 @@ inline const std::string kFloodFillClient = UNIMOUSE_MMS_FLOODFILL;
 /// manager's shim on PATH may cost more than the run.
 inline const std::string kLeftWallClient =
     UNIMOUSE_PYTHON3 " " UNIMOUSE_SOURCE_DIR "/tests/mms/clients/left_wall.py";
-
-/// Whether that python3 starts (tests of the Python client skip without it).
-inline bool HavePython() { return std::system(UNIMOUSE_PYTHON3 " -c '' >/dev/null 2>&1") == 0; }
 
 }  // namespace unimouse::testing
 

@@ -97,6 +97,8 @@ std::string FreshDirectory(const std::string& stem) {
   return path;
 }
 
+bool HavePython() { return std::system(UNIMOUSE_PYTHON3 " -c '' >/dev/null 2>&1") == 0; }
+
 bool HaveXvfbRun() { return std::system("command -v xvfb-run > /dev/null 2>&1") == 0; }
 
 std::string OnVirtualDisplay() {

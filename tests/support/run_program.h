@@ -45,6 +45,10 @@ Outcome RunDocumented(const std::string& command, const std::string& directory);
 /// Whether xvfb-run is installed: tests that need a display skip without it.
 bool HaveXvfbRun();
 
+/// Whether the tests' python3 (UNIMOUSE_PYTHON3, Debian's first) starts: tests of Python
+/// programs skip without it.
+bool HavePython();
+
 /// The `environment` for Unimouse that runs the program on a virtual X display of its own
 /// (xvfb-run, a 1280x1024 screen). The display's authority file is kept in a fresh directory:
 /// when xvfb-run keeps it in a directory of its own, it removes that as it exits, and when the

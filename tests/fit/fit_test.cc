@@ -61,7 +61,7 @@ std::string ChangedRobot(const MotorConstants& m, const std::string& file = kRob
 // runs the sysid example in the sysid scenario on a robot file; returns the log's path
 std::string SimulatedLog(const std::string& robot_file, const std::string& name) {
   const testing::RunResult run =
-      UnimouseRun("--robot " + robot_file + " --scenario sysid --link native:sysid", name);
+      UnimouseRun("--robot " + robot_file + " --scenario sysid --link inproc:sysid", name);
   EXPECT_EQ(run.outcome.exit_code, 0) << run.outcome.output;
   return (std::filesystem::temp_directory_path() / name / "sysid.csv").string();
 }

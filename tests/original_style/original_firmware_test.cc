@@ -113,7 +113,7 @@ FirmwareRun OverPty(const std::string& firmware, const std::string& arguments,
                     const std::string& link_settings,
                     const std::function<void(Board&, const fs::path&)>& while_running = nullptr) {
   const fs::path temp = fs::temp_directory_path();
-  const std::string name = "original_" + TestName();
+  const std::string name = "original_" + TestName() + "_pty";
   const std::string device = (temp / (name + "_board")).string();
   const fs::path firmware_output = temp / (name + "_firmware.txt");
   auto simulator = std::async(std::launch::async, [&] {
@@ -132,11 +132,25 @@ FirmwareRun OverPty(const std::string& firmware, const std::string& arguments,
 // `unimouse run` starting the firmware itself, on its stdin and stdout
 FirmwareRun OverNativeLink(const std::string& firmware, const std::string& arguments,
                            const std::string& link_settings) {
-  const std::string name = "original_" + TestName();
+  const std::string name = "original_" + TestName() + "_native";
   return {testing::UnimouseRun(arguments + " --no-pictures --link native:" + Firmware(firmware) +
                                    " " + link_settings,
                                name),
           fs::temp_directory_path() / name, ""};
+}
+
+// the same firmware over a pseudo-terminal and over the native link at once: each is paced by
+// the wall clock and takes under half a core, so the two take the time of one (this group of
+// tests runs alone, beside no other test)
+struct BothRuns {
+  FirmwareRun pty, native;
+};
+BothRuns OverBothLinks(const std::string& firmware, const std::string& arguments,
+                       const std::string& link_settings) {
+  auto native = std::async(std::launch::async,
+                           [&] { return OverNativeLink(firmware, arguments, link_settings); });
+  FirmwareRun pty = OverPty(firmware, arguments, link_settings);
+  return {std::move(pty), native.get()};
 }
 
 std::string Status(const FirmwareRun& r) {
@@ -212,7 +226,8 @@ std::vector<std::map<std::string, double>> Trace(const FirmwareRun& r) {
   return rows;
 }
 
-void ExpectPassed(const FirmwareRun& r) {
+void ExpectPassed(const FirmwareRun& r, const char* link) {
+  SCOPED_TRACE(link);
   EXPECT_EQ(r.run.outcome.exit_code, 0) << Story(r);
   EXPECT_EQ(Status(r), "passed") << Reason(r);
   // it said hello over the log frame as the original library sent it, sent nothing the link did
@@ -222,47 +237,36 @@ void ExpectPassed(const FirmwareRun& r) {
   EXPECT_LT(LoggedAt(r, "lock-step on"), 0) << Story(r);
 }
 
-TEST(OriginalFirmwareTest, WallDistancePassesOverAPseudoTerminal) {
-  ExpectPassed(OverPty("wall_distance", kWallDistance, kOriginalLinkSettings));
+TEST(OriginalFirmwareTest, WallDistancePassesOverAPseudoTerminalAndTheNativeLink) {
+  const BothRuns r = OverBothLinks("wall_distance", kWallDistance, kOriginalLinkSettings);
+  ExpectPassed(r.pty, "pty");
+  ExpectPassed(r.native, "native");
 }
 
-TEST(OriginalFirmwareTest, WallDistancePassesOverTheNativeLink) {
-  ExpectPassed(OverNativeLink("wall_distance", kWallDistance, kOriginalLinkSettings));
+TEST(OriginalFirmwareTest, SpeedControlPassesOverAPseudoTerminalAndTheNativeLink) {
+  const BothRuns r = OverBothLinks("speed_control", kSpeedControl, kOriginalLinkSettings);
+  ExpectPassed(r.pty, "pty");
+  ExpectPassed(r.native, "native");
 }
 
-TEST(OriginalFirmwareTest, SpeedControlPassesOverAPseudoTerminal) {
-  ExpectPassed(OverPty("speed_control", kSpeedControl, kOriginalLinkSettings));
+TEST(OriginalFirmwareTest,
+     TimeTrialWithTheRightMotorSetOncePassesOverAPseudoTerminalAndTheNativeLink) {
+  const BothRuns r = OverBothLinks("time_trial", kTimeTrial, kOriginalLinkSettings);
+  for (const FirmwareRun* run : {&r.pty, &r.native}) {
+    ExpectPassed(*run, run == &r.pty ? "pty" : "native");
+    EXPECT_GT(run->run.result["scenario"]["scores"].value("best_lap_s", 0.0), 0) << Reason(*run);
+  }
 }
 
-TEST(OriginalFirmwareTest, SpeedControlPassesOverTheNativeLink) {
-  ExpectPassed(OverNativeLink("speed_control", kSpeedControl, kOriginalLinkSettings));
-}
-
-TEST(OriginalFirmwareTest, TimeTrialWithTheRightMotorSetOncePassesOverAPseudoTerminal) {
-  const FirmwareRun r = OverPty("time_trial", kTimeTrial, kOriginalLinkSettings);
-  ExpectPassed(r);
-  EXPECT_GT(r.run.result["scenario"]["scores"].value("best_lap_s", 0.0), 0) << Reason(r);
-}
-
-TEST(OriginalFirmwareTest, TimeTrialWithTheRightMotorSetOncePassesOverTheNativeLink) {
-  const FirmwareRun r = OverNativeLink("time_trial", kTimeTrial, kOriginalLinkSettings);
-  ExpectPassed(r);
-  EXPECT_GT(r.run.result["scenario"]["scores"].value("best_lap_s", 0.0), 0) << Reason(r);
-}
-
-TEST(OriginalFirmwareTest, BlockingTurnsReachTheGoalOverAPseudoTerminal) {
-  const FirmwareRun r = OverPty("blocking_turns", kTurnsMaze, kOriginalLinkSettings);
-  ExpectPassed(r);
-  // the path it drove, five cells and two quarter turns, without touching a wall
-  EXPECT_EQ(r.run.result["scenario"]["scores"].value("best_run_path_cost", 0), 7) << Reason(r);
-  EXPECT_EQ(r.run.result["scenario"]["scores"].value("wall_contacts", -1), 0) << Reason(r);
-}
-
-TEST(OriginalFirmwareTest, BlockingTurnsReachTheGoalOverTheNativeLink) {
-  const FirmwareRun r = OverNativeLink("blocking_turns", kTurnsMaze, kOriginalLinkSettings);
-  ExpectPassed(r);
-  EXPECT_EQ(r.run.result["scenario"]["scores"].value("best_run_path_cost", 0), 7) << Reason(r);
-  EXPECT_EQ(r.run.result["scenario"]["scores"].value("wall_contacts", -1), 0) << Reason(r);
+TEST(OriginalFirmwareTest, BlockingTurnsReachTheGoalOverAPseudoTerminalAndTheNativeLink) {
+  const BothRuns r = OverBothLinks("blocking_turns", kTurnsMaze, kOriginalLinkSettings);
+  for (const FirmwareRun* run : {&r.pty, &r.native}) {
+    ExpectPassed(*run, run == &r.pty ? "pty" : "native");
+    // the path it drove, five cells and two quarter turns, without touching a wall
+    EXPECT_EQ(run->run.result["scenario"]["scores"].value("best_run_path_cost", 0), 7)
+        << Reason(*run);
+    EXPECT_EQ(run->run.result["scenario"]["scores"].value("wall_contacts", -1), 0) << Reason(*run);
+  }
 }
 
 // the simulator encodes distances with a 1.2 m full scale; the original library decodes them
@@ -283,7 +287,7 @@ TEST(OriginalFirmwareTest, WithTheDefaultLinkSettingsTheWallDistanceFirmwareKeep
 // with the default failsafe, so the turn ends and the robot reaches the goal
 TEST(OriginalFirmwareTest, WithTheDefaultFailsafeABlockingTurnKeepsItsCommandsThroughItsSilence) {
   const FirmwareRun r = OverPty("blocking_turns", kTurnsMaze, "--link-set tof_full_scale_m=1.0");
-  ExpectPassed(r);
+  ExpectPassed(r, "pty");
   EXPECT_LT(LoggedAt(r, "motors stopped"), 0) << Story(r);
 }
 

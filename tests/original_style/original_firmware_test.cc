@@ -226,8 +226,8 @@ std::vector<std::map<std::string, double>> Trace(const FirmwareRun& r) {
   return rows;
 }
 
-void ExpectPassed(const FirmwareRun& r, const char* link) {
-  SCOPED_TRACE(link);
+void ExpectPassed(const FirmwareRun& r) {
+  SCOPED_TRACE(r.out.filename().string());  // the run's name says its link
   EXPECT_EQ(r.run.outcome.exit_code, 0) << Story(r);
   EXPECT_EQ(Status(r), "passed") << Reason(r);
   // it said hello over the log frame as the original library sent it, sent nothing the link did
@@ -239,21 +239,21 @@ void ExpectPassed(const FirmwareRun& r, const char* link) {
 
 TEST(OriginalFirmwareTest, WallDistancePassesOverAPseudoTerminalAndTheNativeLink) {
   const BothRuns r = OverBothLinks("wall_distance", kWallDistance, kOriginalLinkSettings);
-  ExpectPassed(r.pty, "pty");
-  ExpectPassed(r.native, "native");
+  ExpectPassed(r.pty);
+  ExpectPassed(r.native);
 }
 
 TEST(OriginalFirmwareTest, SpeedControlPassesOverAPseudoTerminalAndTheNativeLink) {
   const BothRuns r = OverBothLinks("speed_control", kSpeedControl, kOriginalLinkSettings);
-  ExpectPassed(r.pty, "pty");
-  ExpectPassed(r.native, "native");
+  ExpectPassed(r.pty);
+  ExpectPassed(r.native);
 }
 
 TEST(OriginalFirmwareTest,
      TimeTrialWithTheRightMotorSetOncePassesOverAPseudoTerminalAndTheNativeLink) {
   const BothRuns r = OverBothLinks("time_trial", kTimeTrial, kOriginalLinkSettings);
   for (const FirmwareRun* run : {&r.pty, &r.native}) {
-    ExpectPassed(*run, run == &r.pty ? "pty" : "native");
+    ExpectPassed(*run);
     EXPECT_GT(run->run.result["scenario"]["scores"].value("best_lap_s", 0.0), 0) << Reason(*run);
   }
 }
@@ -261,7 +261,7 @@ TEST(OriginalFirmwareTest,
 TEST(OriginalFirmwareTest, BlockingTurnsReachTheGoalOverAPseudoTerminalAndTheNativeLink) {
   const BothRuns r = OverBothLinks("blocking_turns", kTurnsMaze, kOriginalLinkSettings);
   for (const FirmwareRun* run : {&r.pty, &r.native}) {
-    ExpectPassed(*run, run == &r.pty ? "pty" : "native");
+    ExpectPassed(*run);
     // the path it drove, five cells and two quarter turns, without touching a wall
     EXPECT_EQ(run->run.result["scenario"]["scores"].value("best_run_path_cost", 0), 7)
         << Reason(*run);
@@ -287,7 +287,7 @@ TEST(OriginalFirmwareTest, WithTheDefaultLinkSettingsTheWallDistanceFirmwareKeep
 // with the default failsafe, so the turn ends and the robot reaches the goal
 TEST(OriginalFirmwareTest, WithTheDefaultFailsafeABlockingTurnKeepsItsCommandsThroughItsSilence) {
   const FirmwareRun r = OverPty("blocking_turns", kTurnsMaze, "--link-set tof_full_scale_m=1.0");
-  ExpectPassed(r, "pty");
+  ExpectPassed(r);
   EXPECT_LT(LoggedAt(r, "motors stopped"), 0) << Story(r);
 }
 

@@ -20,8 +20,9 @@ packages=(
   # check (docs/result.schema.json); a headless browser for the batch report, and Slurm (the
   # tests start its daemons on one node, from their own config)
   libgtest-dev libgmock-dev libbenchmark-dev clang libclang-rt-14-dev python3-jsonschema
-  # the tests' own MCAP reader (tests/support/mcap_reader.py): the chunks' decompressions
-  python3-zstandard python3-lz4
+  # the tests' own MCAP reader (tests/support/mcap_reader.py): the chunks' decompressions and
+  # each JSON message's check against its schema
+  python3-zstandard python3-lz4 python3-fastjsonschema
   chromium slurmctld slurmd slurm-client
   # counting a run's system calls (tests/run/step_system_calls_test.cc)
   strace

@@ -257,6 +257,40 @@ INSTANTIATE_TEST_SUITE_P(Compressions, McapWriterTest,
                            return std::string(*name ? name : "none");
                          });
 
+// the tests' reader checks every JSON message against its channel's schema: the recordings'
+// schema tests rest on it refusing a message that breaks one
+TEST(McapTestReader, RefusesAMessageThatBreaksItsChannelsSchema) {
+  const std::string dir = testing::FreshDirectory("mcap_schema_check");
+  const auto write = [&](const std::string& name, const json& message) {
+    const std::string path = dir + "/" + name + ".mcap";
+    McapWriter writer(path, {});
+    const uint16_t schema =
+        writer.AddSchema("test.Count", "jsonschema",
+                         R"({"type":"object","properties":{"n":{"type":"integer","minimum":0},)"
+                         R"("kind":{"type":"string","pattern":"^[a-z]+$"}},"required":["n"]})");
+    const uint16_t channel = writer.AddChannel(schema, "/count", "json");
+    writer.Write(channel, 0, json{{"n", 1}, {"kind", "fine"}}.dump());
+    writer.Write(channel, kMs, message.dump());
+    writer.Close();
+    return path;
+  };
+  EXPECT_TRUE(ReadWithPython(write("follows", json{{"n", 2}}))["complete"].get<bool>());
+  for (const auto& [name, message] :
+       std::vector<std::pair<std::string, json>>{{"negative", {{"n", -1}}},
+                                                 {"fraction", {{"n", 1.5}}},
+                                                 {"missing", {{"kind", "fine"}}},
+                                                 {"pattern", {{"n", 1}, {"kind", "Not fine"}}}}) {
+    const std::string path = write(name, message);
+    const auto outcome = testing::Shell("(" + std::string(UNIMOUSE_PYTHON3) +
+                                        " " UNIMOUSE_SOURCE_DIR "/tests/support/mcap_reader.py '" +
+                                        path + "' 2>'" + path + ".err')");
+    EXPECT_EQ(outcome.exit_code, 1) << name;
+    const std::string complaint = ReadAll(path + ".err");
+    EXPECT_NE(complaint.find("the message does not follow schema 'test.Count'"), std::string::npos)
+        << name << ": " << complaint;
+  }
+}
+
 TEST(McapWriterChunks, CloseAtTheirSizeThreshold) {
   std::string file = testing::FreshDirectory("mcap_size") + "/run.mcap";
   McapWriterOptions options;

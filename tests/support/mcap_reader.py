@@ -163,9 +163,9 @@ class Reader:
         schema = self.schemas.get(channel["schema_id"])
         if schema is None or schema["encoding"] != "jsonschema":
             return
+        import fastjsonschema
         validator = self.validators.get(schema["id"])
         if validator is None:
-            import fastjsonschema
             import jsonschema
             try:
                 parsed = json.loads(schema["data"])
@@ -177,9 +177,9 @@ class Reader:
             self.validators[schema["id"]] = validator
         try:
             validator(message)
-        except Exception as e:  # fastjsonschema.JsonSchemaValueException
+        except fastjsonschema.JsonSchemaValueException as e:
             raise Fault(f"{what}: the message does not follow schema {schema['name']!r}: "
-                        f"{getattr(e, 'message', e)}")
+                        f"{e.message}")
 
     def define(self, table, record, what):
         old = table.get(record["id"])

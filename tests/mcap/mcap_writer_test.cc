@@ -36,20 +36,33 @@ std::string ReadAll(const std::string& path) {
   return text.str();
 }
 
-// stdout is the reading, stderr the reader's complaint
+// a reader's run: its exit code and stdout (the reading), and its stderr (the complaint)
+struct Reading {
+  testing::Outcome outcome;
+  std::string complaint;
+};
+
+Reading RunReader(const std::string& command, const std::string& file) {
+  const std::string complaint = file + ".err";
+  Reading r{testing::Shell("(" + command + " 2>'" + complaint + "')"), ""};
+  r.complaint = ReadAll(complaint);
+  return r;
+}
+
 json Read(const std::string& command, const std::string& file) {
-  std::string complaint = file + ".err";
-  auto outcome = testing::Shell("(" + command + " 2>'" + complaint + "')");
-  EXPECT_EQ(outcome.exit_code, 0) << command << ": " << ReadAll(complaint);
-  if (outcome.exit_code != 0) return json();
-  return json::parse(outcome.output);
+  const Reading r = RunReader(command, file);
+  EXPECT_EQ(r.outcome.exit_code, 0) << command << ": " << r.complaint;
+  if (r.outcome.exit_code != 0) return json();
+  return json::parse(r.outcome.output);
+}
+
+std::string PythonReader(const std::string& file, bool cut_ok = false) {
+  return std::string(UNIMOUSE_PYTHON3) + " " UNIMOUSE_SOURCE_DIR "/tests/support/mcap_reader.py '" +
+         file + "'" + (cut_ok ? " --cut-ok" : "");
 }
 
 json ReadWithPython(const std::string& file, bool cut_ok = false) {
-  return Read(std::string(UNIMOUSE_PYTHON3) +
-                  " " UNIMOUSE_SOURCE_DIR "/tests/support/mcap_reader.py '" + file + "'" +
-                  (cut_ok ? " --cut-ok" : ""),
-              file);
+  return Read(PythonReader(file, cut_ok), file);
 }
 
 // why @mcap/core cannot run here, or "" when it can
@@ -281,13 +294,11 @@ TEST(McapTestReader, RefusesAMessageThatBreaksItsChannelsSchema) {
                                                  {"missing", {{"kind", "fine"}}},
                                                  {"pattern", {{"n", 1}, {"kind", "Not fine"}}}}) {
     const std::string path = write(name, message);
-    const auto outcome = testing::Shell("(" + std::string(UNIMOUSE_PYTHON3) +
-                                        " " UNIMOUSE_SOURCE_DIR "/tests/support/mcap_reader.py '" +
-                                        path + "' 2>'" + path + ".err')");
-    EXPECT_EQ(outcome.exit_code, 1) << name;
-    const std::string complaint = ReadAll(path + ".err");
-    EXPECT_NE(complaint.find("the message does not follow schema 'test.Count'"), std::string::npos)
-        << name << ": " << complaint;
+    const Reading r = RunReader(PythonReader(path), path);
+    EXPECT_EQ(r.outcome.exit_code, 1) << name;
+    EXPECT_NE(r.complaint.find("the message does not follow schema 'test.Count'"),
+              std::string::npos)
+        << name << ": " << r.complaint;
   }
 }
 

@@ -51,6 +51,23 @@
 #endif
 const uint8_t kMaxSide = UNIMOUSE_MAZE_MAX_SIDE;
 
+// On a board the loops take their time. A Mega 2560 does floating point in software (an
+// operation some 10 us, a sinf 130 us): one pass takes about 2.2 ms there, so the loops run every
+// 3 ms (kLoopMicros, the wheels' speeds still smoothed over 8 ms), take the sines and cosines of
+// small angles from their series (sinCos), and the wheels' loop is softer (kWheelP), as the
+// commands act 2 to 3 ms after the counts they answer. On the PC a pass takes no simulated time:
+// the loops run every millisecond, worked out as written (docs/firmware.md).
+#ifdef __AVR__
+const bool kBoard = true;
+#else
+const bool kBoard = false;
+#endif
+#ifndef RACER_LOOP_MICROS
+#define RACER_LOOP_MICROS (kBoard ? 3000 : 1000)
+#endif
+const uint16_t kLoopMicros = RACER_LOOP_MICROS;
+const float kSpeedSmoothing = kLoopMicros == 1000 ? 0.12f : 0.12f * kLoopMicros / 1000;
+
 SimulationRobot robot(Serial);
 Maze<kMaxSide, kMaxSide> maze;
 FFSolver<kMaxSide, kMaxSide> solver(maze);
@@ -88,8 +105,9 @@ const float kRampAngle = 0.349066f;
 const float kTurnShape = 1.367867f;
 const float kTurnLength = 2.268928f;
 // the controllers: wheel travel (command per m and per m/s) and tracking (1/s, 1/m^2)
-float kWheelP = 30000, kWheelD = 800, kSpeedFF = 845, kAccelFF = 45;
+float kWheelP = kBoard ? 20000 : 30000, kWheelD = 800, kSpeedFF = 845, kAccelFF = 45;
 const float kTrackAlong = 6, kTrackSide = 250, kTrackHeading = 14, kTrackHeadingRest = 6;
+float trackSide = kTrackSide;  // 1/m^2, scaled with the cell
 
 enum class Kind : uint8_t { Straight, Curve, Pivot, Pause };
 struct Segment {
@@ -126,6 +144,7 @@ bool hasGyro = false;
 float gyroBias = 0;
 uint16_t gyroSamples = 0;
 uint32_t lastMicros = 0;
+float perCount = 0;  // m of a wheel's travel per encoder count
 
 enum class Mode : uint8_t { AwaitMaze, Calibrate, Run, Done };
 Mode mode = Mode::AwaitMaze;
@@ -148,10 +167,53 @@ float wrap(float a) {
   return a;
 }
 
+// the sine and cosine of a; on a board from their series below half a radian (within 2e-6,
+// somewhat sooner than sinf and cosf)
+void sinCos(float a, float* s, float* c) {
+  if (kBoard && fabsf(a) < 0.5f) {
+    const float a2 = a * a;
+    *s = a * (1 - a2 * (1.0f / 6) * (1 - a2 * (1.0f / 20)));
+    *c = 1 - a2 * 0.5f * (1 - a2 * (1.0f / 12) * (1 - a2 * (1.0f / 30)));
+    return;
+  }
+  *s = sinf(a);
+  *c = cosf(a);
+}
+
 void turnReference(float theta) {
   refTheta = theta;
   refCos = cosf(theta);
   refSin = sinf(theta);
+}
+
+// the sine and cosine of a heading; on a board, one near the reference's is the reference's
+// turned by the difference
+void headingSinCos(float a, float* s, float* c) {
+  if (kBoard) {
+    const float d = wrap(a - refTheta);
+    if (fabsf(d) < 0.5f) {
+      float sd, cd;
+      sinCos(d, &sd, &cd);
+      *s = refSin * cd + refCos * sd;
+      *c = refCos * cd - refSin * sd;
+      return;
+    }
+  }
+  *s = sinf(a);
+  *c = cosf(a);
+}
+
+// turns the reference by a step's small angle; at each segment's end it is set exactly
+void turnReferenceBy(float dtheta) {
+  if (!kBoard) {
+    turnReference(wrap(refTheta + dtheta));
+    return;
+  }
+  float s, c;
+  headingSinCos(refTheta + dtheta, &s, &c);
+  refTheta = wrap(refTheta + dtheta);
+  refCos = c;
+  refSin = s;
 }
 
 void push(Kind kind, float length, float vMax, float vExit, int8_t turn = 0, bool sense = false) {
@@ -162,14 +224,20 @@ void push(Kind kind, float length, float vMax, float vExit, int8_t turn = 0, boo
 
 bool queueEmpty() { return head == tail; }
 
-// a curve's curvature at s along it, for displacement d (positive: the magnitude)
-float curvature(float s, float d) {
-  const float peak = kTurnShape / d;
-  const float ramp = 2 * kRampAngle / peak;
-  const float length = kTurnLength / peak;
-  if (s < ramp) return peak * s / ramp;
-  if (s > length - ramp) return peak * (length - s) / ramp;
-  return peak;
+// the current curve: its peak curvature, its ramps' length and its whole length
+float curvePeak, curveRamp, curveLength;
+
+void startCurve(float d) {
+  curvePeak = kTurnShape / d;
+  curveRamp = 2 * kRampAngle / curvePeak;
+  curveLength = kTurnLength / curvePeak;
+}
+
+// the current curve's curvature at s along it (positive: the magnitude)
+float curvature(float s) {
+  if (s < curveRamp) return curvePeak * s / curveRamp;
+  if (s > curveLength - curveRamp) return curvePeak * (curveLength - s) / curveRamp;
+  return curvePeak;
 }
 
 // the speed at which a quarter turn of displacement d keeps to kLateral, and its ramps' yaw
@@ -217,6 +285,7 @@ void advanceSegments(float dt) {
     startX = refX - carried * refCos;
     startY = refY - carried * refSin;
     segmentEnd(g);
+    if (g.kind == Kind::Curve) startCurve(g.length);
     segmentStarted = true;
     refS = carried;
     carried = 0;
@@ -249,16 +318,17 @@ void advanceSegments(float dt) {
     }
     refV = v;
     const float ds = v * dt;
-    const float k = g.kind == Kind::Curve ? g.turn * curvature(refS + ds / 2, g.length) : 0;
+    const float k = g.kind == Kind::Curve ? g.turn * curvature(refS + ds / 2) : 0;
     refW = v * k;
     if (k == 0) {
       refX += ds * refCos;
       refY += ds * refSin;
     } else {
-      const float mid = refTheta + k * ds / 2;
-      refX += ds * cosf(mid);
-      refY += ds * sinf(mid);
-      turnReference(wrap(refTheta + k * ds));
+      float s, c;
+      headingSinCos(refTheta + k * ds / 2, &s, &c);
+      refX += ds * c;
+      refY += ds * s;
+      turnReferenceBy(k * ds);
     }
     refS += ds;
     if (refS >= length) {
@@ -279,7 +349,7 @@ void advanceSegments(float dt) {
     refV = 0;
     refS += w * dt;
     refW = (g.turn > 0 ? 1 : -1) * w;
-    turnReference(wrap(refTheta + refW * dt));
+    turnReferenceBy(refW * dt);
     if (refS >= total) finished = true;
   } else {
     refV = 0;
@@ -309,15 +379,14 @@ void advanceReference(float dt) {
 // the encoders (and the gyro) move the estimate
 void updateEstimate(float dt) {
   const int32_t l = robot.leftEncoderTotal(), r = robot.rightEncoderTotal();
-  const float perCount = 2 * PI * kWheelRadius / kCountsPerTurn;
   const float dl = (l - lastLeft) * perCount, dr = (r - lastRight) * perCount;
   lastLeft = l;
   lastRight = r;
   wheelL += dl;
   wheelR += dr;
-  // the wheels' speeds, smoothed over about 8 ms: one count a step is 0.28 m/s
-  speedL += 0.12f * (dl / dt - speedL);
-  speedR += 0.12f * (dr / dt - speedR);
+  // the wheels' speeds, smoothed over about 8 ms: one count a millisecond is 0.28 m/s
+  speedL += kSpeedSmoothing * (dl / dt - speedL);
+  speedR += kSpeedSmoothing * (dr / dt - speedR);
   // the tyres slip in proportion to the force they pass: measured on this robot, the wheels
   // turn 3 % faster than the ground goes by for each m/s^2 of acceleration (and slower when
   // braking), so the travel is the wheels' divided by 1 + 0.03 a
@@ -328,19 +397,24 @@ void updateEstimate(float dt) {
   // in the explorer's (0.9 m/s^2); the estimate adds 3 % per m/s^2 beyond 1 m/s^2
   const float lateral = fabsf(refV * refW) / kScale - kSideSlipFrom;
   if (!hasGyro && lateral > 0) dtheta *= 1 + kSideSlip * lateral;
-  const float mid = estTheta + dtheta / 2;
-  estX += ds * cosf(mid);
-  estY += ds * sinf(mid);
+  float s, c;
+  headingSinCos(estTheta + dtheta / 2, &s, &c);
+  estX += ds * c;
+  estY += ds * s;
   estTheta = wrap(estTheta + dtheta);
 }
 
 // where a side sensor's ray meets a wall's face, along the path (side: +1 left, -1 right), for
-// the robot at `along`, `across` off the corridor's centre line, its heading off by e
-float sideHit(int8_t side, float along, float across, float e) {
-  const float sensorAlong = along + kSensorAhead * cosf(e) - side * kSensorSide * sinf(e);
-  const float sensorAcross = across + kSensorAhead * sinf(e) + side * kSensorSide * cosf(e);
+// the robot at `along`, `across` off the corridor's centre line, its heading off by e (its sine
+// se and cosine ce)
+float sideHit(int8_t side, float along, float across, float e, float se, float ce) {
+  const float sensorAlong = along + kSensorAhead * ce - side * kSensorSide * se;
+  const float sensorAcross = across + kSensorAhead * se + side * kSensorSide * ce;
+  const float toWall = side * kWallFace - sensorAcross;
+  // the ray is 45 degrees off the heading: on a board, its cotangent from e's sine and cosine
+  if (kBoard) return sensorAlong + toWall * (ce - side * se) / (se + side * ce);
   const float ray = e + side * PI / 4;
-  return sensorAlong + (side * kWallFace - sensorAcross) / sinf(ray) * cosf(ray);
+  return sensorAlong + toWall / sinf(ray) * cosf(ray);
 }
 
 // each side sensor's last reading on this straight: whether it was a wall's face, and where
@@ -385,7 +459,8 @@ void correctEstimate() {
   const float along = estX * c + estY * s, across = -estX * s + estY * c;  // across: left
   const float centre = (floorf(across / kCell) + 0.5f) * kCell;
   const float e = wrap(estTheta - refTheta);
-  const float ce = cosf(e), se = sinf(e);
+  float se, ce;
+  sinCos(e, &se, &ce);
   float shiftAcross = 0, shiftAlong = 0, shiftTheta = 0;
   const float root = 0.70710678f;
   if (leftNew) {
@@ -397,7 +472,7 @@ void correctEstimate() {
       shiftAcross += 0.15f * (off - (across - centre));
       shiftTheta += 0.3f * (off - (across - centre)) / (0.1f * kScale);
     }
-    shiftAlong += wallEnd(0, wall, sideHit(1, along, across - centre, e), d);
+    shiftAlong += wallEnd(0, wall, sideHit(1, along, across - centre, e, se, ce), d);
   }
   if (rightNew) {
     const float d = robot.rightDistance();
@@ -408,7 +483,7 @@ void correctEstimate() {
       shiftAcross += 0.15f * (off - (across - centre));
       shiftTheta += 0.3f * (off - (across - centre)) / (0.1f * kScale);
     }
-    shiftAlong += wallEnd(1, wall, sideHit(-1, along, across - centre, e), d);
+    shiftAlong += wallEnd(1, wall, sideHit(-1, along, across - centre, e, se, ce), d);
   }
   if (frontNew) {
     const float f = robot.frontDistance();
@@ -430,10 +505,10 @@ void control(float dt) {
   const float ex = c * (refX - estX) + s * (refY - estY);
   const float ey = -s * (refX - estX) + c * (refY - estY);
   const float eth = wrap(refTheta - estTheta);
-  const float se = sinf(eth);
-  const float v = refV * cosf(eth) + kTrackAlong * ex;
-  const float w =
-      refW + refV * (kTrackSide / kScale * ey + kTrackHeading * se) + kTrackHeadingRest * se;
+  float se, ce;
+  sinCos(eth, &se, &ce);
+  const float v = refV * ce + kTrackAlong * ex;
+  const float w = refW + refV * (trackSide * ey + kTrackHeading * se) + kTrackHeadingRest * se;
   const float vl = v - w * kWheelBase / 2, vr = v + w * kWheelBase / 2;
   const float al = (vl - lastVl) / dt, ar = (vr - lastVr) / dt;
   lastVl = vl;
@@ -504,15 +579,15 @@ void addPathCell(uint8_t x, uint8_t y) {
 // cell. It begins in the cell's centre at rest (the speed run) or at its edge on the way in (the
 // trip home once exploring is over, which may first turn round in that cell); it ends on through
 // the open cells straight ahead of the goal, or in the start cell's centre facing north. Returns
-// the path's cost, UNREACHABLE with nothing queued
+// the path's cost, UNREACHABLE with nothing queued. Home, the solver already holds the costs:
+// PathManager has just planned the way home over the walls seen (a flood fill the less, 21 ms on
+// a board, in which the robot drives on without its loops)
 uint16_t planFastPath(uint8_t x, uint8_t y, Direction d, bool fromCentre, bool toGoal) {
   if (toGoal) {
     solver.calculateCosts(robot.maze().received() ? robot.maze().goalX0() : 7,
                           robot.maze().received() ? robot.maze().goalY0() : 7,
                           robot.maze().received() ? robot.maze().goalX1() : 8,
                           robot.maze().received() ? robot.maze().goalY1() : 8, true);
-  } else {
-    solver.calculateCosts(0, 0, 0, 0, true);
   }
   const uint16_t cost = solver.cost(x, y, d);
   if (cost == FFSolver<kMaxSide, kMaxSide>::UNREACHABLE) return cost;
@@ -657,8 +732,10 @@ void decide() {
   if (a == Action::Forward) {
     push(Kind::Straight, kCell, kSearch, kSearch, 0, true);
   } else {
+    // the costs are those nextAction just worked out: a second flood fill (20 ms on a board)
+    // would give the same
     const Direction h1 = turned(heading, a);
-    const Action b = paths.nextAction(x, y, h1);
+    const Action b = solver.bestAction(x, y, h1);
     if (b == Action::Forward) {
       const float vTurn = curveSpeed(kCell / 2 - kTurnStraight, kYawAccel);
       push(Kind::Straight, kTurnStraight, kSearch, vTurn);
@@ -711,6 +788,8 @@ void setupMaze() {
   kSpeedFF /= kScale;
   kWheelP /= kScale;
   kWheelD /= kScale;
+  trackSide = kTrackSide / kScale;
+  perCount = 2 * PI * kWheelRadius / kCountsPerTurn;
   maze.placeWall(0, 0, Direction::East);
   maze.removeWall(0, 0, Direction::North);
   refX = estX = refY = estY = kCell / 2;
@@ -726,10 +805,10 @@ void setup() {
 
 void loop() {
   robot.update();
-  // the loops run once a millisecond: on the PC each loop() is one 1 ms step; a board without
+  // the loops run every kLoopMicros: on the PC each loop() is one 1 ms step; a board without
   // lock-step loops faster, and its encoder frames come once a millisecond
   const uint32_t now = micros();
-  if (mode != Mode::AwaitMaze && now - lastMicros < 1000) return;
+  if (mode != Mode::AwaitMaze && now - lastMicros < kLoopMicros) return;
   float dt = (now - lastMicros) * 1e-6f;
   lastMicros = now;
   // a board that spent a while planning (a flood fill takes some 20 ms on a Mega 2560) catches up

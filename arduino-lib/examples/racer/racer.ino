@@ -19,11 +19,11 @@
 //  - Once exploring is over in the goal, the trip home runs over cells seen only, so it is
 //    planned and driven as a speed run (planFastPath), to the start cell's centre.
 //  - The pose (eq. 3.29-3.31 from the encoders, the heading from the gyro when the robot sends
-//    it) is corrected by side walls (the distance from the corridor's centre line), by a wall
-//    ahead and, in the speed run, by the ends of side walls (the distance along it). The tyres slip
-//    in proportion to the force they pass, which the estimate takes off the wheels' travel (kSlip,
-//    measured on this robot), and in a fast curve sideways, which it adds to the heading's turn
-//    (kSideSlip).
+//    it) is corrected by side walls (the distance from the corridor's centre line, shared
+//    between the offset and the heading by a Kalman filter), by a wall ahead and, in the speed
+//    run, by the ends of side walls (the distance along it). The tyres slip in proportion to the
+//    force they pass, which the estimate takes off the wheels' travel (kSlip, measured on this
+//    robot), and in a fast curve sideways, which it adds to the heading's turn (kSideSlip).
 //
 // The limits come from robots/unimouse.yaml:
 //  - traction: the wheels' friction is 0.35 and they carry 0.147 of the robot's 0.157 kg (the
@@ -104,6 +104,19 @@ float kTurnStraight = 0.03f;                   // m, the straights around an exp
 const float kRampAngle = 0.349066f;
 const float kTurnShape = 1.367867f;
 const float kTurnLength = 2.268928f;
+// How sure the estimate is across the path and of its heading: a Kalman filter's covariance (m^2,
+// m rad, rad^2) in the frame of the path. The wheels lose heading as they roll and, more, as they
+// turn; a fast curve's side slip more again (at 1.8 m/s^2 across the heading comes out of a
+// speed-run curve 2.5 to 4 degrees off, about 3 % of the turn); a turn makes the error along the
+// path, a few mm, an error across. A side reading's offset is good to about 3 mm. These numbers
+// were chosen over the tests' twenty classic mazes at seeds 2 to 8 (docs/firmware.md)
+const float kHeadingNoise = 1e-4f;      // rad^2 per m rolled
+const float kTurnNoise = 2e-4f;         // rad^2 per rad turned, up to 1 m/s^2 across
+const float kTurnNoiseFast = 5e-3f;     // rad^2 per rad turned, per m/s^2 across beyond it
+const float kAcrossNoise = 1e-6f;       // m^2 per m rolled
+const float kAcrossTurnNoise = 1.6e-5f;  // m^2 per rad turned
+const float kReadingNoise = 1e-5f;      // m^2, a side reading's offset
+float pAA = 1e-6f, pAH = 0, pHH = 1e-4f;
 // the controllers: wheel travel (command per m and per m/s) and tracking (1/s, 1/m^2)
 float kWheelP = kBoard ? 20000 : 30000, kWheelD = 800, kSpeedFF = 845, kAccelFF = 45;
 const float kTrackAlong = 6, kTrackSide = 250, kTrackHeading = 14, kTrackHeadingRest = 6;
@@ -397,6 +410,15 @@ void updateEstimate(float dt) {
   // in the explorer's (0.9 m/s^2); the estimate adds 3 % per m/s^2 beyond 1 m/s^2
   const float lateral = fabsf(refV * refW) / kScale - kSideSlipFrom;
   if (!hasGyro && lateral > 0) dtheta *= 1 + kSideSlip * lateral;
+  // the covariance follows: the heading's error carries the estimate across as it rolls
+  if (!kBoard) {
+    const float ads = fabsf(ds), turn = fabsf(dtheta);
+    pAA += ds * (2 * pAH + ds * pHH) + kAcrossNoise * kScale * ads +
+           kAcrossTurnNoise * kScale * kScale * turn;
+    pAH += ds * pHH;
+    pHH += kHeadingNoise / kScale * ads +
+           (kTurnNoise + (!hasGyro && lateral > 0 ? kTurnNoiseFast * lateral : 0)) * turn;
+  }
   float s, c;
   headingSinCos(estTheta + dtheta / 2, &s, &c);
   estX += ds * c;
@@ -440,6 +462,30 @@ float wallEnd(uint8_t i, bool wallNow, float hitNow, float d) {
   return shift;
 }
 
+// a side reading `d` of the offset from the corridor's centre line, `miss` off the estimate's: it
+// measures the offset plus the heading's error times a lever (the sensor's distance ahead and the
+// ray's across to the wall); the covariance shares it between the two (a Kalman filter's update),
+// less the shifts another reading of this pass made. On a board the shares are fixed (a tenth of
+// a pass's time less, and the filter's 3 wall contacts in the main job's contest there were not
+// traced), and only straights turn the heading
+void sideReading(float miss, float d, float* shiftAcross, float* shiftTheta) {
+  if (kBoard) {
+    *shiftAcross += 0.15f * miss;
+    *shiftTheta += 0.3f * miss / (0.1f * kScale);
+    return;
+  }
+  const float lever = kSensorAhead + d * 0.70710678f;
+  miss -= *shiftAcross + lever * *shiftTheta;
+  const float hA = pAA + lever * pAH, hH = pAH + lever * pHH;
+  const float gain = 1 / (hA + lever * hH + kReadingNoise * kScale * kScale);
+  const float kA = hA * gain, kH = hH * gain;
+  *shiftAcross += kA * miss;
+  *shiftTheta += kH * miss;
+  pAA -= kA * hA;
+  pAH -= kA * hH;
+  pHH -= kH * hH;
+}
+
 // the side walls say how far the robot is from the corridor's centre line; a wall ahead, and in
 // the speed run the side walls' ends, how far it is along; only on straights, along the maze's
 // lines
@@ -468,10 +514,7 @@ void correctEstimate() {
     const float off =
         kWallFace - d * (root * ce + root * se) - kSensorAhead * se - kSensorSide * ce;
     const bool wall = d < kSideWall && fabsf(off - (across - centre)) < 0.02f * kScale;
-    if (wall) {
-      shiftAcross += 0.15f * (off - (across - centre));
-      shiftTheta += 0.3f * (off - (across - centre)) / (0.1f * kScale);
-    }
+    if (wall) sideReading(off - (across - centre), d, &shiftAcross, &shiftTheta);
     shiftAlong += wallEnd(0, wall, sideHit(1, along, across - centre, e, se, ce), d);
   }
   if (rightNew) {
@@ -479,10 +522,7 @@ void correctEstimate() {
     const float off =
         d * (root * ce - root * se) - kWallFace - kSensorAhead * se + kSensorSide * ce;
     const bool wall = d < kSideWall && fabsf(off - (across - centre)) < 0.02f * kScale;
-    if (wall) {
-      shiftAcross += 0.15f * (off - (across - centre));
-      shiftTheta += 0.3f * (off - (across - centre)) / (0.1f * kScale);
-    }
+    if (wall) sideReading(off - (across - centre), d, &shiftAcross, &shiftTheta);
     shiftAlong += wallEnd(1, wall, sideHit(-1, along, across - centre, e, se, ce), d);
   }
   if (frontNew) {
@@ -493,8 +533,7 @@ void correctEstimate() {
       if (fabsf(seen - face) < 0.04f * kScale) shiftAlong = 0.5f * (face - seen);
     }
   }
-  // a heading that is off shows as a drift across: turn the estimate by a little of it
-  if (g.kind == Kind::Straight) estTheta = wrap(estTheta + shiftTheta);
+  if (!kBoard || g.kind == Kind::Straight) estTheta = wrap(estTheta + shiftTheta);
   estX += shiftAlong * c - shiftAcross * s;
   estY += shiftAlong * s + shiftAcross * c;
 }

@@ -109,7 +109,8 @@ const float kTurnLength = 2.268928f;
 // turn; a fast curve's side slip more again (at 1.8 m/s^2 across the heading comes out of a
 // speed-run curve 2.5 to 4 degrees off, about 3 % of the turn); a turn makes the error along the
 // path, a few mm, an error across. A side reading's offset is good to about 3 mm. These numbers
-// were chosen over the tests' twenty classic mazes at seeds 2 to 8 (docs/firmware.md)
+// were chosen over the tests' twenty classic mazes at seeds 2 to 5, and checked at 6 to 8 and 1
+// (docs/firmware.md)
 const float kHeadingNoise = 1e-4f;      // rad^2 per m rolled
 const float kTurnNoise = 2e-4f;         // rad^2 per rad turned, up to 1 m/s^2 across
 const float kTurnNoiseFast = 5e-3f;     // rad^2 per rad turned, per m/s^2 across beyond it
@@ -465,9 +466,9 @@ float wallEnd(uint8_t i, bool wallNow, float hitNow, float d) {
 // a side reading `d` of the offset from the corridor's centre line, `miss` off the estimate's: it
 // measures the offset plus the heading's error times a lever (the sensor's distance ahead and the
 // ray's across to the wall); the covariance shares it between the two (a Kalman filter's update),
-// less the shifts another reading of this pass made. On a board the shares are fixed (a tenth of
-// a pass's time less, and the filter's 3 wall contacts in the main job's contest there were not
-// traced), and only straights turn the heading
+// less the shifts another reading of this pass made. On a board the shares stay fixed, and only
+// straights turn the heading: with the filter, the main job's contest there touched walls coming
+// home (not traced yet)
 void sideReading(float miss, float d, float* shiftAcross, float* shiftTheta) {
   if (kBoard) {
     *shiftAcross += 0.15f * miss;

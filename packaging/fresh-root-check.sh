@@ -18,6 +18,12 @@ if [ -d "$repo/../shared/mazes" ]; then
   mkdir -p "$root/root/shared" && cp -r "$repo/../shared/mazes" "$root/root/shared/"
 fi
 cp /etc/resolv.conf "$root/etc/resolv.conf"
+# the certificate authorities this machine adds to Debian's (a proxy's on some networks): without
+# them npm cannot reach its registry from the root, and the tests that need its packages skip
+if compgen -G "/usr/local/share/ca-certificates/*.crt" > /dev/null; then
+  cp /usr/local/share/ca-certificates/*.crt "$root/usr/local/share/ca-certificates/"
+  chroot "$root" update-ca-certificates > /dev/null
+fi
 # the root a mount point of its own, as / is on a booted machine (bubblewrap needs that)
 mount --bind "$root" "$root"
 mount --bind /proc "$root/proc"

@@ -15,7 +15,9 @@
 //    straight ahead before the next decision; in the speed run it fills the cell, except in a
 //    staircase of turns, where the explorer's curve leaves a little straight for corrections.
 //  - Exploring never stops except to turn round or to finish: it decides what to do in a cell
-//    1.5 cm before entering it, on the walls its sensors saw while approaching.
+//    1.5 cm before entering it, on the walls its sensors saw while approaching. Cells ahead that
+//    are known on every side and that the plan crosses straight on, it crosses as one faster
+//    straight (kKnown), deciding at the last one's far edge.
 //  - Once exploring is over in the goal, the trip home runs over cells seen only, so it is
 //    planned and driven as a speed run (planFastPath), to the start cell's centre.
 //  - The pose (eq. 3.29-3.31 from the encoders, the heading from the gyro when the robot sends
@@ -87,12 +89,13 @@ float kAccel = 1.6f;            // m/s^2, along the path (traction, above), expl
 float kAccelRun = 1.8f;         // m/s^2, the same in the speed run
 float kLateral = 1.8f;          // m/s^2, v^2 kappa in a curve
 float kTop = 1.0f;              // m/s, on long straights
-const float kYawAccel = 30;     // rad/s^2, entering and leaving a curve, exploring
+const float kYawAccel = 35;     // rad/s^2, entering and leaving a curve, exploring
 const float kSlip = 0.03f;      // s^2/m, the tyres' slip per m/s^2 (below)
 const float kSideSlip = 0.03f;  // s^2/m, the turn the wheels miss per m/s^2 across (below)
 const float kSideSlipFrom = 1;  // m/s^2, the lateral acceleration from which they miss it
 const float kYawAccelRun = 40;  // rad/s^2, the same in the speed run (curveSpeed)
 float kSearch = 0.40f;          // m/s, exploring straights
+float kKnown = 0.70f;           // m/s, exploring straights through cells known on every side
 float kSideWall = 0.10f;        // m, a 45-degree reading below this is a side wall
 float kFrontWall = 0.22f;       // m, a front reading below this while deciding: a wall ahead
 float kRange = 1.19f;           // m, a reading nearer than this saw something
@@ -111,12 +114,12 @@ const float kTurnLength = 2.268928f;
 // path, a few mm, an error across. A side reading's offset is good to about 3 mm. These numbers
 // were chosen over the tests' twenty classic mazes at seeds 2 to 5, and checked at 6 to 8 and 1
 // (docs/firmware.md)
-const float kHeadingNoise = 1e-4f;      // rad^2 per m rolled
-const float kTurnNoise = 2e-4f;         // rad^2 per rad turned, up to 1 m/s^2 across
-const float kTurnNoiseFast = 5e-3f;     // rad^2 per rad turned, per m/s^2 across beyond it
-const float kAcrossNoise = 1e-6f;       // m^2 per m rolled
+const float kHeadingNoise = 1e-4f;       // rad^2 per m rolled
+const float kTurnNoise = 2e-4f;          // rad^2 per rad turned, up to 1 m/s^2 across
+const float kTurnNoiseFast = 5e-3f;      // rad^2 per rad turned, per m/s^2 across beyond it
+const float kAcrossNoise = 1e-6f;        // m^2 per m rolled
 const float kAcrossTurnNoise = 1.6e-5f;  // m^2 per rad turned
-const float kReadingNoise = 1e-5f;      // m^2, a side reading's offset
+const float kReadingNoise = 1e-5f;       // m^2, a side reading's offset
 float pAA = 1e-6f, pAH = 0, pHH = 1e-4f;
 // the filter, not on a board, nor for the half-size robot (below)
 bool filtered = true;
@@ -257,10 +260,10 @@ float curvature(float s) {
 }
 
 // the speed at which a quarter turn of displacement d keeps to kLateral, and its ramps' yaw
-// acceleration (v^2 / (2 * ramp angle * r^2)) to kYawAccel: 30 rad/s^2 takes 0.1 N of a wheel's
-// 0.25 N of grip, for the robot's 3.3e-4 kg m^2 about the axle's middle (plate, wheels, caster).
-// In the speed run 40 rad/s^2 takes 0.14 N, and with the 0.14 N of 1.8 m/s^2 across a wheel
-// needs 0.2 N at the ramp's end; the speed run's curve is then held by kLateral alone
+// acceleration (v^2 / (2 * ramp angle * r^2)) to kYawAccel: 35 rad/s^2 takes 0.12 N of a
+// wheel's 0.25 N of grip, for the robot's 3.3e-4 kg m^2 about the axle's middle (plate, wheels,
+// caster). In the speed run 40 rad/s^2 takes 0.14 N, and with the 0.14 N of 1.8 m/s^2 across a
+// wheel needs 0.2 N at the ramp's end; the speed run's curve is then held by kLateral alone
 float curveSpeed(float d, float yawAccel) {
   const float r = d / kTurnShape;
   return sqrtf(fminf(kLateral, yawAccel * 2 * kRampAngle * r) * r);
@@ -772,8 +775,24 @@ void decide() {
     then = Then::Finish;
     return;
   }
+  uint8_t lastX = x, lastY = y;  // the cell whose far edge the queued segments reach
   if (a == Action::Forward) {
-    push(Kind::Straight, kCell, kSearch, kSearch, 0, true);
+    // the cells ahead that are known on every side and that the plan crosses straight on hold
+    // nothing to see: one faster straight crosses them, deciding at the last one's far edge
+    // (their walls are known, so the plan there cannot change; the target's cells plan None)
+    float length = kCell;
+    for (;;) {
+      const uint8_t aheadX = static_cast<uint8_t>(lastX + stepX(heading));
+      const uint8_t aheadY = static_cast<uint8_t>(lastY + stepY(heading));
+      if ((maze.cell(aheadX, aheadY) >> 4) != 0xF ||
+          solver.bestAction(aheadX, aheadY, heading) != Action::Forward) {
+        break;
+      }
+      lastX = aheadX;
+      lastY = aheadY;
+      length += kCell;
+    }
+    push(Kind::Straight, length, length > kCell ? kKnown : kSearch, kSearch, 0, true);
   } else {
     // the costs are those nextAction just worked out: a second flood fill (20 ms on a board)
     // would give the same
@@ -796,8 +815,8 @@ void decide() {
       heading = h2;
     }
   }
-  nextX = static_cast<uint8_t>(x + stepX(heading));
-  nextY = static_cast<uint8_t>(y + stepY(heading));
+  nextX = static_cast<uint8_t>(lastX + stepX(heading));
+  nextY = static_cast<uint8_t>(lastY + stepY(heading));
   decided = false;
 }
 
@@ -818,10 +837,10 @@ void setupMaze() {
     robot.log("no maze from the simulator: a classic 16 x 16 maze, centre goal");
   }
   robot.reportMazeSize(maze.width(), maze.height());
-  float* lengths[] = {&kCell,      &kWallFace,    &kSensorAhead, &kSensorSide,
-                      &kWheelBase, &kWheelRadius, &kAccel,       &kAccelRun,
-                      &kLateral,   &kTop,         &kSearch,      &kSideWall,
-                      &kFrontWall, &kSenseFrom,   &kDecideAt,    &kTurnStraight};
+  float* lengths[] = {&kCell,        &kWallFace,    &kSensorAhead, &kSensorSide, &kWheelBase,
+                      &kWheelRadius, &kAccel,       &kAccelRun,    &kLateral,    &kTop,
+                      &kSearch,      &kKnown,       &kSideWall,    &kFrontWall,  &kSenseFrom,
+                      &kDecideAt,    &kTurnStraight};
   for (float* l : lengths) *l *= kScale;
   // the half-size robot's short-range sensors read 0.1 m when they see nothing
   // (robots/unimouse-half.yaml): nearer than that a reading is a wall

@@ -120,7 +120,7 @@ TEST(ArduinoExamplesTest, MicromouseExploresJapan2018AndSpeedRunsThePathOfCost10
 // the racer on the main job's contest: the same optimal path as the micromouse example, driven
 // on velocity profiles and curves; its best run's time is the simulator's, from leaving the start
 // cell to entering the goal, and its wall contacts the simulator's count during that run
-TEST(ArduinoExamplesTest, RacerSpeedRunsJapan2018InUnder26Point5SecondsWithoutTouchingAWall) {
+TEST(ArduinoExamplesTest, RacerSpeedRunsJapan2018InUnder26SecondsWithoutTouchingAWall) {
   const std::string out =
       (std::filesystem::temp_directory_path() / "unimouse_example_racer").string();
   const ExampleRun r =

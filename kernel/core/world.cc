@@ -2,6 +2,7 @@
 #include "world.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <iomanip>
@@ -181,6 +182,85 @@ double ReachBelow(const mjModel& m, const mjData& d, int g) {
     default:
       return m.geom_rbound[g];
   }
+}
+
+// MuJoCo 2.2.2's broadphase, run at every step to sort a handful of bodies, costs about a
+// twentieth of a step here (mostly a 3 x 3 eigendecomposition of the robot geoms' spread). The
+// geom pairs it can hand to the narrow phase are known once the model is: every pair of geoms
+// in different bodies that its contact filter lets through, in the order of their bodies' ids.
+// Given those as predefined pairs, in that order and with the parameters it would mix for them,
+// mj_collision runs the same narrow phase on the same pairs, whose bounding spheres drop every
+// pair the broadphase would have skipped, and lists the same contacts in the same order.
+std::vector<std::array<int, 2>> CollidableGeomPairs(const mjModel& m) {
+  const bool filter_parent = (m.opt.disableflags & mjDSBL_FILTERPARENT) == 0;
+  auto weld_parent = [&](int weld) { return m.body_weldid[m.body_parentid[weld]]; };
+  std::vector<std::array<int, 2>> pairs;
+  for (int b1 = 0; b1 < m.nbody; ++b1) {
+    for (int b2 = b1 + 1; b2 < m.nbody; ++b2) {
+      const int weld1 = m.body_weldid[b1], weld2 = m.body_weldid[b2];
+      if (weld1 == weld2) continue;
+      if (filter_parent && weld1 != 0 && weld2 != 0 &&
+          (weld1 == weld_parent(weld2) || weld2 == weld_parent(weld1))) {
+        continue;
+      }
+      for (int g1 = m.body_geomadr[b1]; g1 < m.body_geomadr[b1] + m.body_geomnum[b1]; ++g1) {
+        for (int g2 = m.body_geomadr[b2]; g2 < m.body_geomadr[b2] + m.body_geomnum[b2]; ++g2) {
+          if ((m.geom_contype[g1] & m.geom_conaffinity[g2]) != 0 ||
+              (m.geom_contype[g2] & m.geom_conaffinity[g1]) != 0) {
+            pairs.push_back({g1, g2});
+          }
+        }
+      }
+    }
+  }
+  return pairs;
+}
+
+// what mj_collideGeoms mixes for a pair of geoms it found itself (MuJoCo 2.2.2), with the same
+// operations in the same order, so that the pair's contacts are the same to the bit
+void MixPairParameters(mjModel& m, int pair, int g1, int g2) {
+  m.pair_geom1[pair] = g1;
+  m.pair_geom2[pair] = g2;
+  m.pair_signature[pair] = ((m.geom_bodyid[g1] + 1) << 16) + m.geom_bodyid[g2] + 1;
+  if (m.geom_type[g1] > m.geom_type[g2]) std::swap(g1, g2);  // as it orders them
+  m.pair_margin[pair] = std::max(m.geom_margin[g1], m.geom_margin[g2]);
+  m.pair_gap[pair] = std::max(m.geom_gap[g1], m.geom_gap[g2]);
+  mjtNum friction[3], solref[mjNREF], solimp[mjNIMP];
+  if (m.geom_priority[g1] != m.geom_priority[g2]) {
+    const int g = m.geom_priority[g1] > m.geom_priority[g2] ? g1 : g2;
+    m.pair_dim[pair] = m.geom_condim[g];
+    std::copy_n(m.geom_friction + 3 * g, 3, friction);
+    std::copy_n(m.geom_solref + mjNREF * g, mjNREF, solref);
+    std::copy_n(m.geom_solimp + mjNIMP * g, mjNIMP, solimp);
+  } else {
+    m.pair_dim[pair] = std::max(m.geom_condim[g1], m.geom_condim[g2]);
+    for (int i = 0; i < 3; ++i) {
+      friction[i] = std::max(m.geom_friction[3 * g1 + i], m.geom_friction[3 * g2 + i]);
+    }
+    const mjtNum mix1 = m.geom_solmix[g1], mix2 = m.geom_solmix[g2];
+    mjtNum mix = 1.0;
+    if (mix1 >= mjMINVAL && mix2 >= mjMINVAL) {
+      mix = mix1 / (mix1 + mix2);
+    } else if (mix1 < mjMINVAL && mix2 < mjMINVAL) {
+      mix = 0.5;
+    } else if (mix1 < mjMINVAL) {
+      mix = 0.0;
+    }
+    const mjtNum* ref1 = m.geom_solref + mjNREF * g1;
+    const mjtNum* ref2 = m.geom_solref + mjNREF * g2;
+    for (int i = 0; i < mjNREF; ++i) {
+      solref[i] = ref1[0] > 0 && ref2[0] > 0 ? mix * ref1[i] + (1 - mix) * ref2[i]
+                                             : std::min(ref1[i], ref2[i]);
+    }
+    for (int i = 0; i < mjNIMP; ++i) {
+      solimp[i] = m.geom_solimp[mjNIMP * g1 + i] * mix;
+      solimp[i] += m.geom_solimp[mjNIMP * g2 + i] * (1 - mix);
+    }
+  }
+  const mjtNum unpacked[5] = {friction[0], friction[0], friction[1], friction[2], friction[2]};
+  std::copy_n(unpacked, 5, m.pair_friction + 5 * pair);
+  std::copy_n(solref, mjNREF, m.pair_solref + mjNREF * pair);
+  std::copy_n(solimp, mjNIMP, m.pair_solimp + mjNIMP * pair);
 }
 
 }  // namespace
@@ -386,6 +466,20 @@ std::unique_ptr<World> World::Build(const std::vector<WorldRobot>& robots, const
   x << "</actuator>\n</mujoco>\n";
   w->mjcf_ = x.str();
   w->model_.reset(CompileMjcf(w->mjcf_, robot.file));
+  // the same model again with room for its collidable pairs, which then take the broadphase's
+  // place (CollidableGeomPairs); the compiler sorts <pair> elements, so they are written after
+  const std::vector<std::array<int, 2>> pairs = CollidableGeomPairs(*w->model_);
+  if (!pairs.empty()) {
+    std::string with_pairs = w->mjcf_;
+    std::string room = "<contact>\n";
+    for (size_t i = 0; i < pairs.size(); ++i) room += "<pair geom1='floor' geom2='floor'/>\n";
+    with_pairs.insert(with_pairs.rfind("</mujoco>"), room + "</contact>\n");
+    w->model_.reset(CompileMjcf(with_pairs, robot.file));
+    mjModel& m = *w->model_;
+    UNIMOUSE_DEMAND(m.npair == static_cast<int>(pairs.size()));
+    for (int i = 0; i < m.npair; ++i) MixPairParameters(m, i, pairs[i][0], pairs[i][1]);
+    m.opt.collision = mjCOL_PAIR;
+  }
 
   const mjModel& m = *w->model_;
   w->proxy_count_ = proxies;

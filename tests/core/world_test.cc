@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <numbers>
 
 #include "inline_assets.h"
@@ -256,6 +257,50 @@ TEST(SeveralRobotsWorldTest, RobotsSeeAndTouchEachOtherButNotThemselves) {
   // pushed apart, as solid bodies are
   for (int i = 0; i < 200; ++i) kernel->Step();
   EXPECT_GT(world.RobotPose(d, 1).x_m - world.RobotPose(d, 0).x_m, 0.07);
+}
+
+// The world lists the geom pairs that can touch as MuJoCo's predefined pairs and skips its
+// broadphase (world.cc, CollidableGeomPairs). A twin of the model that finds its pairs by the
+// broadphase, as MuJoCo does unless told otherwise, must step to the same state to the bit while
+// a robot pushes into a wall and another one into it.
+TEST(SeveralRobotsWorldTest, PredefinedPairsStepExactlyAsMujocosBroadphase) {
+  const RobotSpec robot = testing::BareRobot();
+  const Maze maze = ParseMazeText(kSmallMaze, "small.txt");
+  auto world = World::Build({WorldRobot{&robot, "a", Pose2D{0.09, 0.09, std::numbers::pi}},
+                             WorldRobot{&robot, "b", Pose2D{0.27, 0.09, std::numbers::pi}}},
+                            &maze);
+  mjModel& m = world->mutable_model();
+  ASSERT_EQ(m.opt.collision, mjCOL_PAIR);
+  ASSERT_GT(m.npair, 0);
+  std::unique_ptr<mjModel, World::ModelDeleter> twin(mj_copyModel(nullptr, &m));
+  twin->opt.collision = mjCOL_DYNAMIC;
+  std::unique_ptr<mjData, World::DataDeleter> d(mj_makeData(&m)), d2(mj_makeData(twin.get()));
+  for (int r = 0; r < 2; ++r) world->PlaceRobot(*d, world->spawn(r), r);
+  mj_forward(&m, d.get());
+  mj_copyData(d2.get(), twin.get(), d.get());
+
+  int wall_contacts = 0, robot_contacts = 0;
+  for (int step = 0; step < 3000; ++step) {
+    // a drives west into the maze's edge, b west into a, turning a little
+    const double torque[4] = {0.002, 0.0021, 0.003, 0.0025};
+    for (int i = 0; i < 4; ++i) d->ctrl[i] = d2->ctrl[i] = torque[i];
+    world->UpdateCollisionProxies(*d);
+    std::copy_n(m.geom_pos, 3 * m.ngeom, twin->geom_pos);
+    std::copy_n(m.geom_size, 3 * m.ngeom, twin->geom_size);
+    std::copy_n(m.geom_rbound, m.ngeom, twin->geom_rbound);
+    mj_step1(&m, d.get());
+    mj_step2(&m, d.get());
+    mj_step1(twin.get(), d2.get());
+    mj_step2(twin.get(), d2.get());
+    ASSERT_EQ(d->ncon, d2->ncon) << "step " << step;
+    ASSERT_EQ(std::memcmp(d->qpos, d2->qpos, sizeof(mjtNum) * m.nq), 0) << "step " << step;
+    ASSERT_EQ(std::memcmp(d->qvel, d2->qvel, sizeof(mjtNum) * m.nv), 0) << "step " << step;
+    wall_contacts += world->RobotTouchesScenery(*d, 0);
+    robot_contacts += world->RobotTouchesRobot(*d, 1) == 0;
+  }
+  // both kinds of contact happened, for long
+  EXPECT_GT(wall_contacts, 1000);
+  EXPECT_GT(robot_contacts, 1000);
 }
 
 TEST(OpenWorldTest, FlatWorldHasNoSceneryAndPlacesTheRobotAtTheOrigin) {

@@ -528,13 +528,11 @@ void RunRecording::Beliefs(double time_s, const std::string& robot,
                            const FirmwareBeliefs& beliefs) {
   const uint64_t time_ns = Nanoseconds(time_s);
   // each entry [x, y, ...], after a comma unless it is the list's first
-  std::string m = "{\"timestamp\":";
+  std::string m = ",\"robot\":" + JsonText(robot) + ",\"walls\":[";
   auto entry = [&m](int x, int y) {
     if (m.back() != '[') m += ',';
     m += '[' + std::to_string(x) + ',' + std::to_string(y);
   };
-  AppendTimestamp(m, time_ns);
-  m += ",\"robot\":" + JsonText(robot) + ",\"walls\":[";
   for (const auto& [cell, w] : beliefs.walls) {
     entry(cell.first, cell.second);
     m += ',' + std::to_string(w.walls) + ',' + std::to_string(w.known) + ']';
@@ -565,7 +563,14 @@ void RunRecording::Beliefs(double time_s, const std::string& robot,
     m += ',' + JsonText(text) + ']';
   }
   m += "]}";
-  writer_->Write(beliefs_channel_, time_ns, m);
+  // a firmware often says again what it said (the cell it is in, on a speed run): a snapshot that
+  // shows nothing new is left out, and so is its scene, about half of them in a contest
+  std::string& last = last_beliefs_[robot];
+  if (m == last) return;
+  last = m;
+  std::string stamped = "{\"timestamp\":";
+  AppendTimestamp(stamped, time_ns);
+  writer_->Write(beliefs_channel_, time_ns, stamped + m);
   if (maze_dimensions_) {
     writer_->Write(beliefs_scene_channel_, time_ns,
                    BeliefsScene(beliefs, *maze_dimensions_, time_ns));

@@ -56,7 +56,8 @@ class RunRecording {
   /// due there (every step at kFull, every 10 ms at kLight), and returns whether it was. The
   /// first call also records the world's scenery, once.
   bool Sample(const Kernel& kernel);
-  /// Records what a robot's firmware believes about the maze, whole (call it when it changed).
+  /// Records what a robot's firmware believes about the maze, whole (call it when it changed;
+  /// a snapshot the same as the robot's last one is left out).
   void Beliefs(double time_s, const std::string& robot, const FirmwareBeliefs& beliefs);
   /// Records the scenario's HUD lines (call it when they changed).
   void Hud(double time_s, const std::vector<std::string>& lines);
@@ -96,8 +97,9 @@ class RunRecording {
   uint16_t values_channel_ = 0;
   uint16_t beams_channel_ = 0;
   uint16_t beliefs_scene_channel_ = 0;
-  std::optional<MazeDimensions> maze_dimensions_;  // with a maze, where its cells are
-  int64_t beam_every_steps_ = 0;                   // 0: the robots have no beams
+  std::map<std::string, std::string> last_beliefs_;  // by robot, the last snapshot unstamped
+  std::optional<MazeDimensions> maze_dimensions_;    // with a maze, where its cells are
+  int64_t beam_every_steps_ = 0;                     // 0: the robots have no beams
   std::vector<uint16_t> pose_channels_;
   std::vector<std::string> frame_names_;  // as JSON strings
   std::vector<std::string> signal_keys_;  // "name": of each signal, as JSON

@@ -1,11 +1,18 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "recording.h"
 
+#include <algorithm>
+#include <charconv>
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <limits>
+#include <map>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <set>
+#include <span>
+#include <string_view>
 
 #include "mcap_reader.h"
 #include "unimouse/errors.h"
@@ -30,6 +37,247 @@ bool IsPoseTopic(const std::string& t) {
          (t.rfind("/robots/", 0) == 0 && t.size() > 13 && t.compare(t.size() - 5, 5, "/pose") == 0);
 }
 
+// A quicker JSON reader for what recordings hold: plain ASCII keys and strings, numbers, a few
+// levels deep. It calls a SAX handler as nlohmann's parser would, and gives up (false) on
+// anything else, an escape or a syntax error alike, which that parser then reads or refuses.
+class QuickJson {
+ public:
+  QuickJson(std::string_view text, nlohmann::json_sax<json>& sax)
+      : p_(text.data()), end_(text.data() + text.size()), sax_(sax) {}
+
+  bool Read() {
+    if (!Value(0)) return false;
+    SkipSpace();
+    return p_ == end_;
+  }
+
+ private:
+  static constexpr int kMaxDepth = 16;
+
+  void SkipSpace() {
+    while (p_ != end_ && (*p_ == ' ' || *p_ == '\n' || *p_ == '\r' || *p_ == '\t')) ++p_;
+  }
+  bool At(char c) const { return p_ != end_ && *p_ == c; }
+  bool Digit() const { return p_ != end_ && *p_ >= '0' && *p_ <= '9'; }
+
+  bool Value(int depth) {
+    SkipSpace();
+    if (p_ == end_) return false;
+    switch (*p_) {
+      case '{':
+        return Container(depth, '}');
+      case '[':
+        return Container(depth, ']');
+      case '"':
+        return String() && sax_.string(text_);
+      case 't':
+        return Word("true") && sax_.boolean(true);
+      case 'f':
+        return Word("false") && sax_.boolean(false);
+      case 'n':
+        return Word("null") && sax_.null();
+      default:
+        return Number();
+    }
+  }
+
+  // an object ('}') or an array (']'), its opening bracket at p_
+  bool Container(int depth, char close) {
+    if (depth == kMaxDepth) return false;
+    ++p_;
+    const bool object = close == '}';
+    if (!(object ? sax_.start_object(std::size_t(-1)) : sax_.start_array(std::size_t(-1)))) {
+      return false;
+    }
+    SkipSpace();
+    if (!At(close)) {
+      while (true) {
+        if (object) {
+          SkipSpace();
+          if (!At('"') || !String()) return false;
+          SkipSpace();
+          if (!At(':')) return false;
+          ++p_;
+          if (!sax_.key(text_)) return false;
+        }
+        if (!Value(depth + 1)) return false;
+        SkipSpace();
+        if (At(close)) break;
+        if (!At(',')) return false;
+        ++p_;
+      }
+    }
+    ++p_;
+    return object ? sax_.end_object() : sax_.end_array();
+  }
+
+  // a string without escapes or bytes beyond ASCII, its opening quote at p_, into text_
+  bool String() {
+    const char* start = ++p_;
+    while (p_ != end_ && *p_ != '"') {
+      const auto c = static_cast<unsigned char>(*p_);
+      if (c == '\\' || c < 0x20 || c >= 0x80) return false;
+      ++p_;
+    }
+    if (p_ == end_) return false;
+    text_.assign(start, p_);
+    ++p_;
+    return true;
+  }
+
+  bool Word(std::string_view word) {
+    if (static_cast<size_t>(end_ - p_) < word.size() || std::string_view(p_, word.size()) != word) {
+      return false;
+    }
+    p_ += word.size();
+    return true;
+  }
+
+  // JSON's number syntax; an integer as nlohmann reads one (-0 is 0), a fraction correctly
+  // rounded as strtod has it
+  bool Number() {
+    const char* start = p_;
+    if (At('-')) ++p_;
+    if (At('0')) {
+      ++p_;
+    } else if (Digit()) {
+      while (Digit()) ++p_;
+    } else {
+      return false;
+    }
+    bool integer = true;
+    if (At('.')) {
+      ++p_;
+      if (!Digit()) return false;
+      while (Digit()) ++p_;
+      integer = false;
+    }
+    if (At('e') || At('E')) {
+      ++p_;
+      if (At('+') || At('-')) ++p_;
+      if (!Digit()) return false;
+      while (Digit()) ++p_;
+      integer = false;
+    }
+    if (integer && *start == '-') {
+      int64_t v = 0;
+      const auto [end, error] = std::from_chars(start, p_, v);
+      if (error == std::errc() && end == p_) return sax_.number_integer(v);
+    } else if (integer) {
+      uint64_t v = 0;
+      const auto [end, error] = std::from_chars(start, p_, v);
+      if (error == std::errc() && end == p_) return sax_.number_unsigned(v);
+    }
+    double v = 0;
+    const auto [end, error] = std::from_chars(start, p_, v);
+    if (error != std::errc() || end != p_) return false;  // out of range: the parser says
+    text_.assign(start, p_);
+    return sax_.number_float(v, text_);
+  }
+
+  const char* p_;
+  const char* end_;
+  nlohmann::json_sax<json>& sax_;
+  std::string text_;  // the string, key or number just read
+};
+
+// The values of a message's objects up to two deep, each under its key and its parent's ("" at
+// the top), read without building a document: poses and signals are most of a recording, and a
+// document of each took half of a replay's time. A value that is not a number reads as NaN, as
+// Number() has it; what is inside arrays and deeper objects is passed over.
+class NumberFields final : public nlohmann::json_sax<json> {
+ public:
+  struct Field {
+    std::string parent, key;
+    double value;
+  };
+
+  /// Reads `data`; false when it is not a JSON object.
+  bool Read(std::string_view data) {
+    Clear();
+    if (QuickJson(data, *this).Read()) return top_is_object_;
+    Clear();
+    return json::sax_parse(data, this) && top_is_object_;
+  }
+  std::span<const Field> fields() const { return {fields_.data(), count_}; }
+  /// Whether the message has an object under `key`.
+  bool HasObject(std::string_view key) const {
+    return std::find(objects_.begin(), objects_.end(), key) != objects_.end();
+  }
+  /// The number under parent.key, or nullopt when there is none.
+  std::optional<double> Find(std::string_view parent, std::string_view key) const {
+    // the last, as a document keeps the last of a name given twice
+    for (auto f = fields().rbegin(); f != fields().rend(); ++f) {
+      if (f->key == key && f->parent == parent) return f->value;
+    }
+    return std::nullopt;
+  }
+
+  bool null() override { return Value(std::numeric_limits<double>::quiet_NaN()); }
+  bool boolean(bool) override { return null(); }
+  bool number_integer(number_integer_t v) override { return Value(static_cast<double>(v)); }
+  bool number_unsigned(number_unsigned_t v) override { return Value(static_cast<double>(v)); }
+  bool number_float(number_float_t v, const string_t&) override { return Value(v); }
+  bool string(string_t&) override { return null(); }
+  bool binary(binary_t&) override { return null(); }
+  bool start_object(std::size_t) override { return Open(kObject); }
+  bool key(string_t& k) override {
+    key_ = k;
+    return true;
+  }
+  bool end_object() override {
+    open_.pop_back();
+    return true;
+  }
+  bool start_array(std::size_t) override { return Open(kArray); }
+  bool end_array() override { return end_object(); }
+  bool parse_error(std::size_t, const std::string&, const nlohmann::detail::exception&) override {
+    return false;
+  }
+
+ private:
+  static constexpr char kObject = 'o', kArray = 'a';
+
+  void Clear() {
+    count_ = 0;
+    objects_.clear();
+    open_.clear();
+    top_is_object_ = false;
+  }
+
+  bool Open(char kind) {
+    Value(std::numeric_limits<double>::quiet_NaN());  // where a number could be, as Number() has it
+    if (open_.empty()) top_is_object_ = kind == kObject;
+    if (open_.size() == 1 && open_[0] == kObject) {
+      parent_ = key_;  // a field of the message: its key names the children
+      if (kind == kObject) objects_.push_back(key_);
+    }
+    open_.push_back(kind);
+    return true;
+  }
+  bool Value(double v) {
+    // a field of the message, or of an object in it: every container above is an object
+    if (open_.empty() || open_.size() > 2 ||
+        std::find(open_.begin(), open_.end(), kArray) != open_.end()) {
+      return true;
+    }
+    // the fields' strings are kept from message to message, their memory with them
+    if (count_ == fields_.size()) fields_.emplace_back();
+    Field& f = fields_[count_++];
+    f.parent.assign(open_.size() == 1 ? std::string_view() : std::string_view(parent_));
+    f.key.assign(key_);
+    f.value = v;
+    return true;
+  }
+
+  std::vector<Field> fields_;
+  size_t count_ = 0;                  // the fields of the message read last
+  std::vector<std::string> objects_;  // the message's fields that are objects
+  std::vector<char> open_;            // the containers around the value being read
+  std::string key_, parent_;
+  bool top_is_object_ = false;
+};
+
 class RecordingReader : public McapVisitor {
  public:
   explicit RecordingReader(Recording& out) : out_(out) {}
@@ -53,10 +301,18 @@ class RecordingReader : public McapVisitor {
     // what a replay does not show (the beams, which it draws from the signals, and the beliefs'
     // 3D scene, which it draws from /beliefs) is not parsed: it is most of a recording's JSON
     if (!ReplayReadsTopic(topic->second)) return;
+    if (const auto robot = robot_of_channel_.find(channel_id); robot != robot_of_channel_.end()) {
+      Pose(robot->second, t, data);
+      return;
+    }
+    if (topic->second == "/signals") {
+      Signals(t, data);
+      return;
+    }
     const json m = json::parse(data, nullptr, false);
     if (m.is_discarded() || !m.is_object()) return;  // a damaged message is skipped
     try {
-      Take(channel_id, topic->second, t, m);
+      Take(topic->second, t, m);
     } catch (const json::exception&) {
       // a message missing a field is skipped, like a damaged one
     } catch (const std::logic_error&) {
@@ -90,29 +346,41 @@ class RecordingReader : public McapVisitor {
   const std::map<std::string, std::string>& robot_files() const { return robot_files_; }
 
  private:
-  void Take(uint16_t channel_id, const std::string& topic, double t, const json& m) {
-    if (const auto robot = robot_of_channel_.find(channel_id); robot != robot_of_channel_.end()) {
-      const json& q = m.at("rotation");
-      const double yaw = 2 * std::atan2(Number(q.at("z")), Number(q.at("w")));
-      out_.robots[robot->second].poses.push_back(
-          {t,
-           {Number(m.at("translation").at("x")), Number(m.at("translation").at("y")),
-            std::remainder(yaw, 2 * M_PI)}});
-    } else if (topic == "/signals") {
-      const json& values = m.at("values");
-      if (out_.signal_names.empty()) {
-        for (const auto& [name, value] : values.items()) out_.signal_names.push_back(name);
+  // a damaged message, or one without a field read here, is skipped
+  void Pose(int robot, double t, std::string_view data) {
+    if (!fields_.Read(data)) return;
+    const auto x = fields_.Find("translation", "x"), y = fields_.Find("translation", "y");
+    const auto qz = fields_.Find("rotation", "z"), qw = fields_.Find("rotation", "w");
+    if (!x || !y || !qz || !qw) return;
+    const double yaw = 2 * std::atan2(*qz, *qw);
+    out_.robots[robot].poses.push_back({t, {*x, *y, std::remainder(yaw, 2 * M_PI)}});
+  }
+
+  void Signals(double t, std::string_view data) {
+    if (!fields_.Read(data) || !fields_.HasObject("values")) return;
+    if (out_.signal_names.empty()) {
+      // the first message's names, sorted
+      for (const auto& f : fields_.fields()) {
+        if (f.parent == "values") signal_index_.emplace(f.key, 0);
       }
-      std::vector<double> row;
-      row.reserve(out_.signal_names.size());
-      for (const std::string& name : out_.signal_names) {
-        const auto value = values.find(name);
-        row.push_back(value == values.end() ? std::numeric_limits<double>::quiet_NaN()
-                                            : Number(*value));
+      for (auto& [name, index] : signal_index_) {
+        index = static_cast<int>(out_.signal_names.size());
+        out_.signal_names.push_back(name);
       }
-      out_.signal_times_s.push_back(t);
-      out_.signal_rows.push_back(std::move(row));
-    } else if (topic == "/events") {
+    }
+    std::vector<double> row(out_.signal_names.size(), std::numeric_limits<double>::quiet_NaN());
+    for (const auto& f : fields_.fields()) {
+      if (f.parent != "values") continue;
+      if (const auto i = signal_index_.find(f.key); i != signal_index_.end()) {
+        row[static_cast<size_t>(i->second)] = f.value;
+      }
+    }
+    out_.signal_times_s.push_back(t);
+    out_.signal_rows.push_back(std::move(row));
+  }
+
+  void Take(const std::string& topic, double t, const json& m) {
+    if (topic == "/events") {
       out_.events.push_back({t, m.at("kind"), m.at("robot"), m.at("text")});
     } else if (topic == "/log") {
       out_.log.push_back({t, m.at("level"), m.at("name"), m.at("message")});
@@ -173,6 +441,8 @@ class RecordingReader : public McapVisitor {
   }
 
   Recording& out_;
+  NumberFields fields_;
+  std::map<std::string, int, std::less<>> signal_index_;  // a signal's column in signal_rows
   std::map<uint16_t, std::string> topics_;
   std::map<uint16_t, int> robot_of_channel_;
   std::map<std::string, std::string> robot_files_;

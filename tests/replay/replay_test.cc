@@ -7,8 +7,10 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <numbers>
@@ -423,6 +425,145 @@ namespace {
 // the fuzz target's seed (tests/data/short_run.mcap, 0.3 s of the contest) reads the same from
 // its bytes as from its file, and every prefix of it is a recording cut short, a whole one (cut
 // in its summary) or one sentence, never a crash
+// Poses and signals, most of a recording, are read by a quick reader of their own (recording.cc,
+// QuickJson) that leaves what it does not expect to the JSON parser: whatever the text, each
+// message reads as that parser's document of it says, or is skipped when the document has no
+// pose or no signals in it.
+TEST(ReplayRecordingTest, PosesAndSignalsReadAsAJsonParserReadsThem) {
+  const std::vector<std::string> numbers = {"0",
+                                            "-0",
+                                            "1",
+                                            "-1.5",
+                                            "0.1",
+                                            "1e-3",
+                                            "-2.5E+2",
+                                            "123456789012345678",
+                                            "-9223372036854775808",
+                                            "18446744073709551615",
+                                            "18446744073709551616",
+                                            "-9223372036854775809",
+                                            "1e308",
+                                            "1e999",
+                                            "5e-324",
+                                            "0.30000000000000004",
+                                            "01",
+                                            "1.",
+                                            ".5",
+                                            "-",
+                                            "+1",
+                                            "1e",
+                                            "true",
+                                            "null",
+                                            "\"1\"",
+                                            "[1]",
+                                            "{\"a\":1}",
+                                            "1 2"};
+  std::vector<std::string> poses, signals;
+  for (const std::string& n : numbers) {
+    poses.push_back(R"({"timestamp":{"sec":0,"nsec":0},"parent_frame_id":"world",)"
+                    R"("translation":{"x":)" +
+                    n +
+                    R"(,"y":0.25,"z":0},)"
+                    R"("rotation":{"x":0,"y":0,"z":)" +
+                    n + R"(,"w":1}})");
+    signals.push_back(R"({"timestamp":{"sec":0,"nsec":0},"values":{"b.x":)" + n +
+                      R"(,"a.y":2,"c":null}})");
+  }
+  // spaces, escapes, text beyond ASCII, keys in another order, a value twice, damage
+  poses.push_back(
+      " { \"rotation\" : {\"w\" : 0.5 , \"z\":-0.5} ,\n\t\"translation\":{\"y\":1,"
+      "\"x\":2} } ");
+  poses.push_back(
+      R"({"translation":{"x":1,"y":2},"rotation":{"z":0,"w":1},"note":"caf\u00e9 \"x\""})");
+  poses.push_back(
+      "{\"translation\":{\"x\":1,\"y\":2},\"rotation\":{\"z\":0,\"w\":1},\"t\":\"\xc3\xa9\"}");
+  poses.push_back(R"({"translation":{"x":1,"y":2,"x":3},"rotation":{"z":0,"w":1}})");
+  poses.push_back(R"({"translation":{"x":1},"rotation":{"z":0,"w":1}})");
+  poses.push_back(R"({"translation":[1,2],"rotation":{"z":0,"w":1}})");
+  poses.push_back(R"({"translation":{"x":1,"y":2},"rotation":{"z":0,"w":1})");
+  poses.push_back(R"({"translation":{"x":1,"y":2},"rotation":{"z":0,"w":1}}})");
+  poses.push_back(R"([{"translation":{"x":1,"y":2},"rotation":{"z":0,"w":1}}])");
+  poses.push_back(R"({"translation":{"x":{"x":5},"y":2},"rotation":{"z":0,"w":1}})");
+  poses.push_back(R"({"a":[[[[[[[[[[[[[[[[[[[[1]]]]]]]]]]]]]]]]]]],"translation":{"x":1,"y":2},)"
+                  R"("rotation":{"z":0,"w":1}})");
+  poses.push_back("");
+  signals.push_back(R"({"values":{"a.y":1,"b\u002ex":2,"a.y":3}})");
+  signals.push_back(R"({"values":[1,2]})");
+  signals.push_back(R"({"values":{"a.y":{"v":1},"b.x":[1],"c":"text"}})");
+  signals.push_back(R"({"values":{"z.new":1,"c":true}})");
+  signals.push_back(R"({"values":{"a.y":1,"b.x":2,"c":3)");
+
+  const std::string path = testing::FreshDirectory("quick_json") + "/run.mcap";
+  {
+    McapWriter writer(path, {});
+    writer.AddMetadata("unimouse.recording", {{"format", "1"}});
+    const uint16_t pose = writer.AddChannel(0, "/robot/pose", "json");
+    const uint16_t values = writer.AddChannel(0, "/signals", "json");
+    for (size_t i = 0; i < poses.size(); ++i) writer.Write(pose, i * 1'000'000, poses[i]);
+    for (size_t i = 0; i < signals.size(); ++i) writer.Write(values, i * 1'000'000, signals[i]);
+    writer.Close();
+  }
+  const Recording read = ReadRecording(path);
+
+  // the parser's documents: a pose needs its four numbers' places, the signals their object;
+  // anything else in a number's place is NaN
+  auto number = [](const json& v) {
+    return v.is_number() ? v.get<double>() : std::numeric_limits<double>::quiet_NaN();
+  };
+  auto same = [](double a, double b) {  // to the bit, NaN as NaN
+    return (std::isnan(a) && std::isnan(b)) || std::memcmp(&a, &b, sizeof a) == 0;
+  };
+  std::vector<Pose2D> expected_poses;
+  for (const std::string& text : poses) {
+    const json m = json::parse(text, nullptr, false);
+    try {
+      if (m.is_discarded() || !m.is_object()) continue;
+      const json& q = m.at("rotation");
+      const double yaw = 2 * std::atan2(number(q.at("z")), number(q.at("w")));
+      expected_poses.push_back({number(m.at("translation").at("x")),
+                                number(m.at("translation").at("y")),
+                                std::remainder(yaw, 2 * std::numbers::pi)});
+    } catch (const json::exception&) {
+    }
+  }
+  ASSERT_EQ(read.robots.size(), 1u);
+  ASSERT_EQ(read.robots[0].poses.size(), expected_poses.size());
+  for (size_t i = 0; i < expected_poses.size(); ++i) {
+    const Pose2D& got = read.robots[0].poses[i].value;
+    EXPECT_TRUE(same(got.x_m, expected_poses[i].x_m)) << i << ": " << got.x_m;
+    EXPECT_TRUE(same(got.y_m, expected_poses[i].y_m)) << i << ": " << got.y_m;
+    EXPECT_TRUE(same(got.yaw_rad, expected_poses[i].yaw_rad)) << i << ": " << got.yaw_rad;
+  }
+  EXPECT_GE(expected_poses.size(), 20u);
+
+  std::vector<std::string> names;
+  std::vector<std::vector<double>> rows;
+  for (const std::string& text : signals) {
+    const json m = json::parse(text, nullptr, false);
+    if (m.is_discarded() || !m.is_object() || !m.contains("values") || !m["values"].is_object()) {
+      continue;
+    }
+    const json& values = m["values"];
+    if (names.empty()) {
+      for (const auto& [name, value] : values.items()) names.push_back(name);
+    }
+    std::vector<double> row;
+    for (const std::string& name : names) {
+      row.push_back(values.contains(name) ? number(values[name])
+                                          : std::numeric_limits<double>::quiet_NaN());
+    }
+    rows.push_back(row);
+  }
+  EXPECT_EQ(read.signal_names, names);
+  ASSERT_EQ(read.signal_rows.size(), rows.size());
+  for (size_t i = 0; i < rows.size(); ++i) {
+    for (size_t k = 0; k < names.size(); ++k) {
+      EXPECT_TRUE(same(read.signal_rows[i][k], rows[i][k]))
+          << i << " " << names[k] << ": " << read.signal_rows[i][k] << " vs " << rows[i][k];
+    }
+  }
+}
+
 TEST(ReplayRecordingTest, ARecordingReadsTheSameFromItsBytesAndAnyPrefixIsReadOrRefused) {
   const std::string path = UNIMOUSE_SOURCE_DIR "/tests/data/short_run.mcap";
   const Recording file = ReadRecording(path);

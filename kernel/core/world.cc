@@ -468,6 +468,7 @@ std::unique_ptr<World> World::Build(const std::vector<WorldRobot>& robots, const
   w->model_.reset(CompileMjcf(w->mjcf_, robot.file));
   // the same model again with room for its collidable pairs, which then take the broadphase's
   // place (CollidableGeomPairs); the compiler sorts <pair> elements, so they are written after
+  UNIMOUSE_DEMAND(w->model_->nexclude == 0);  // the broadphase would skip excluded bodies
   const std::vector<std::array<int, 2>> pairs = CollidableGeomPairs(*w->model_);
   if (!pairs.empty()) {
     std::string with_pairs = w->mjcf_;

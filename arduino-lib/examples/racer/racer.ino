@@ -14,6 +14,8 @@
 //    has short straights before and after, inside the cell, so that the side sensors look
 //    straight ahead before the next decision; in the speed run it fills the cell, except in a
 //    staircase of turns, where the explorer's curve leaves a little straight for corrections.
+//    Two turns the same way in neighbouring cells, between straights, are one half turn into
+//    the next corridor.
 //  - Exploring never stops except to turn round or to finish: it decides what to do in a cell
 //    1.5 cm before entering it, on the walls its sensors saw while approaching. Cells ahead that
 //    are known on every side and that the plan crosses straight on, it crosses as one faster
@@ -88,6 +90,7 @@ const float kCountsPerTurn = 358.32f;
 float kAccel = 1.6f;            // m/s^2, along the path (traction, above), exploring
 float kAccelRun = 1.8f;         // m/s^2, the same in the speed run
 float kLateral = 1.8f;          // m/s^2, v^2 kappa in a curve
+float kLateralHalfTurn = 1.4f;  // m/s^2, the same in the speed run's half turns
 float kTop = 1.0f;              // m/s, on long straights
 const float kYawAccel = 35;     // rad/s^2, entering and leaving a curve, exploring
 const float kSlip = 0.03f;      // s^2/m, the tyres' slip per m/s^2 (below)
@@ -107,6 +110,11 @@ float kTurnStraight = 0.03f;                   // m, the straights around an exp
 const float kRampAngle = 0.349066f;
 const float kTurnShape = 1.367867f;
 const float kTurnLength = 2.268928f;
+// the same for the half turn (20-degree ramps, 140 degrees held): its length, its displacement
+// across and how far it reaches ahead of where it begins
+const float kHalfTurnShape = 2.040439f;
+const float kHalfTurnLength = 3.839724f;
+const float kHalfTurnReach = 1.347653f;
 // How sure the estimate is across the path and of its heading: a Kalman filter's covariance (m^2,
 // m rad, rad^2) in the frame of the path. The wheels lose heading as they roll and, more, as they
 // turn; a fast curve's side slip more again (at 1.8 m/s^2 across the heading comes out of a
@@ -131,9 +139,9 @@ float trackSide = kTrackSide;  // 1/m^2, scaled with the cell
 enum class Kind : uint8_t { Straight, Curve, Pivot, Pause };
 struct Segment {
   Kind kind;
-  int8_t turn;   // curve and pivot: +1 left, -1 right (pivot: quarter turns, signed)
+  int8_t turn;   // curve and pivot: quarter turns, signed (+ left); a curve of 2: a half turn
   bool sense;    // a straight that ends at the edge of the cell decided on at its end
-  float length;  // m; a curve: its displacement; a pause: s
+  float length;  // m; a curve: its displacement across; a pause: s
   float vMax, vExit;
 };
 #ifdef UNIMOUSE_PC_CORE
@@ -246,10 +254,11 @@ bool queueEmpty() { return head == tail; }
 // the current curve: its peak curvature, its ramps' length and its whole length
 float curvePeak, curveRamp, curveLength;
 
-void startCurve(float d) {
-  curvePeak = kTurnShape / d;
+void startCurve(const Segment& g) {
+  const bool half = g.turn == 2 || g.turn == -2;
+  curvePeak = (half ? kHalfTurnShape : kTurnShape) / g.length;
   curveRamp = 2 * kRampAngle / curvePeak;
-  curveLength = kTurnLength / curvePeak;
+  curveLength = (half ? kHalfTurnLength : kTurnLength) / curvePeak;
 }
 
 // the current curve's curvature at s along it (positive: the magnitude)
@@ -259,13 +268,12 @@ float curvature(float s) {
   return curvePeak;
 }
 
-// the speed at which a quarter turn of displacement d keeps to kLateral, and its ramps' yaw
-// acceleration (v^2 / (2 * ramp angle * r^2)) to kYawAccel: 35 rad/s^2 takes 0.12 N of a
-// wheel's 0.25 N of grip, for the robot's 3.3e-4 kg m^2 about the axle's middle (plate, wheels,
-// caster). In the speed run 40 rad/s^2 takes 0.14 N, and with the 0.14 N of 1.8 m/s^2 across a
-// wheel needs 0.2 N at the ramp's end; the speed run's curve is then held by kLateral alone
-float curveSpeed(float d, float yawAccel) {
-  const float r = d / kTurnShape;
+// the speed at which a curve of peak radius r keeps to kLateral, and its ramps' yaw acceleration
+// (v^2 / (2 * ramp angle * r^2)) to kYawAccel: 35 rad/s^2 takes 0.12 N of a wheel's 0.25 N of
+// grip, for the robot's 3.3e-4 kg m^2 about the axle's middle (plate, wheels, caster). In the
+// speed run 40 rad/s^2 takes 0.14 N, and with the 0.14 N of 1.8 m/s^2 across a wheel needs 0.2 N
+// at the ramp's end; the speed run's curve is then held by kLateral alone
+float curveSpeed(float r, float yawAccel) {
   return sqrtf(fminf(kLateral, yawAccel * 2 * kRampAngle * r) * r);
 }
 
@@ -279,8 +287,10 @@ void segmentEnd(const Segment& g) {
     endY += g.length * refSin;
   } else if (g.kind == Kind::Curve) {
     const float c = refCos, s = refSin;
-    endX += g.length * c - g.turn * g.length * s;
-    endY += g.length * s + g.turn * g.length * c;
+    const float along = g.turn == 2 || g.turn == -2 ? 0 : g.length;
+    const float across = g.turn > 0 ? g.length : -g.length;
+    endX += along * c - across * s;
+    endY += along * s + across * c;
     endTheta = wrap(refTheta + g.turn * PI / 2);
   } else if (g.kind == Kind::Pivot) {
     endTheta = wrap(refTheta + g.turn * PI / 2);
@@ -304,7 +314,7 @@ void advanceSegments(float dt) {
     startX = refX - carried * refCos;
     startY = refY - carried * refSin;
     segmentEnd(g);
-    if (g.kind == Kind::Curve) startCurve(g.length);
+    if (g.kind == Kind::Curve) startCurve(g);
     segmentStarted = true;
     refS = carried;
     carried = 0;
@@ -326,7 +336,9 @@ void advanceSegments(float dt) {
   bool finished = false;
   float carry = 0;
   if (g.kind == Kind::Straight || g.kind == Kind::Curve) {
-    const float length = g.kind == Kind::Straight ? g.length : kTurnLength * g.length / kTurnShape;
+    const float length = g.kind == Kind::Straight      ? g.length
+                         : g.turn == 2 || g.turn == -2 ? kHalfTurnLength * g.length / kHalfTurnShape
+                                                       : kTurnLength * g.length / kTurnShape;
     const float left = length - refS;
     const float accel = racing ? kAccelRun : kAccel;
     float v = g.kind == Kind::Curve ? refV : fminf(refV + accel * dt, g.vMax);
@@ -337,7 +349,7 @@ void advanceSegments(float dt) {
     }
     refV = v;
     const float ds = v * dt;
-    const float k = g.kind == Kind::Curve ? g.turn * curvature(refS + ds / 2) : 0;
+    const float k = g.kind == Kind::Curve ? (g.turn > 0 ? 1 : -1) * curvature(refS + ds / 2) : 0;
     refW = v * k;
     if (k == 0) {
       refX += ds * refCos;
@@ -650,7 +662,14 @@ uint16_t planFastPath(uint8_t x, uint8_t y, Direction d, bool fromCentre, bool t
   pathFrame[0] = 0;
   addPathCell(x, y);
   const float d90 = kCell / 2;
-  const float vTurn = curveSpeed(d90, kYawAccelRun);
+  const float vTurn = curveSpeed(d90 / kTurnShape, kYawAccelRun);
+  // a half turn from one corridor to the next reaches kHalfTurnReach / kHalfTurnShape of a cell
+  // ahead of where it begins; at its far side the robot's wheels (half its width ahead) should
+  // keep 2 cm from the wall's face, so it begins that much before the first cell's edge. It
+  // turns twice as far as a quarter turn, so it keeps to kLateralHalfTurn
+  const float vHalfTurn = sqrtf(kLateralHalfTurn * kCell / kHalfTurnShape);
+  const float halfTurnEarly = kCell * kHalfTurnReach / kHalfTurnShape - kCell / 2 + kWheelBase / 2 +
+                              kWheelRadius + 0.02f * kScale - kWallFace;
   float straight = 0;
   bool first = fromCentre;
   for (;;) {
@@ -664,12 +683,37 @@ uint16_t planFastPath(uint8_t x, uint8_t y, Direction d, bool fromCentre, bool t
       const bool turnBefore = straight == 0;
       d = turned(d, a);
       if (solver.bestAction(x, y, d) != Action::Forward) break;  // never on a best path
-      const Action after = solver.bestAction(static_cast<uint8_t>(x + stepX(d)),
-                                             static_cast<uint8_t>(y + stepY(d)), d);
+      const uint8_t x1 = static_cast<uint8_t>(x + stepX(d)),
+                    y1 = static_cast<uint8_t>(y + stepY(d));
+      const Action after = solver.bestAction(x1, y1, d);
+      if (toGoal && straight >= kCell && after == a &&
+          solver.bestAction(x1, y1, turned(d, a)) == Action::Forward) {
+        const Direction d2 = turned(d, a);
+        const Action then2 = solver.bestAction(static_cast<uint8_t>(x1 + stepX(d2)),
+                                               static_cast<uint8_t>(y1 + stepY(d2)), d2);
+        if (then2 == Action::Forward || then2 == Action::None) {
+          // two turns the same way in neighbouring cells, a cell or more of straight before them
+          // and a straight after: one half turn, begun early enough that the robot's side stays
+          // clear of the wall ahead. After a shorter straight it would run at the speed of the
+          // curve before; on the way home it is not used (tried there, the main job's race after
+          // it touched a wall)
+          push(Kind::Straight, straight - halfTurnEarly, kTop, vHalfTurn);
+          push(Kind::Curve, kCell, vHalfTurn, vHalfTurn, static_cast<int8_t>(2 * side));
+          straight = -halfTurnEarly;
+          x = x1;
+          y = y1;
+          addPathCell(x, y);
+          d = d2;
+          x = static_cast<uint8_t>(x + stepX(d));
+          y = static_cast<uint8_t>(y + stepY(d));
+          addPathCell(x, y);
+          continue;
+        }
+      }
       if (turnBefore || after == Action::TurnLeft || after == Action::TurnRight) {
         // a staircase of turns has no straight in which to correct a curve's error, so its
         // curves are the explorer's, with their short straights, at its speed
-        const float v = curveSpeed(kCell / 2 - kTurnStraight, kYawAccel);
+        const float v = curveSpeed((kCell / 2 - kTurnStraight) / kTurnShape, kYawAccel);
         push(Kind::Straight, straight + kTurnStraight, kTop, v);
         push(Kind::Curve, kCell / 2 - kTurnStraight, v, v, side);
         straight = kTurnStraight;
@@ -799,7 +843,7 @@ void decide() {
     const Direction h1 = turned(heading, a);
     const Action b = solver.bestAction(x, y, h1);
     if (b == Action::Forward) {
-      const float vTurn = curveSpeed(kCell / 2 - kTurnStraight, kYawAccel);
+      const float vTurn = curveSpeed((kCell / 2 - kTurnStraight) / kTurnShape, kYawAccel);
       push(Kind::Straight, kTurnStraight, kSearch, vTurn);
       push(Kind::Curve, kCell / 2 - kTurnStraight, vTurn, vTurn, a == Action::TurnLeft ? 1 : -1);
       push(Kind::Straight, kTurnStraight, kSearch, kSearch, 0, true);
@@ -837,10 +881,10 @@ void setupMaze() {
     robot.log("no maze from the simulator: a classic 16 x 16 maze, centre goal");
   }
   robot.reportMazeSize(maze.width(), maze.height());
-  float* lengths[] = {&kCell,        &kWallFace,    &kSensorAhead, &kSensorSide, &kWheelBase,
-                      &kWheelRadius, &kAccel,       &kAccelRun,    &kLateral,    &kTop,
-                      &kSearch,      &kKnown,       &kSideWall,    &kFrontWall,  &kSenseFrom,
-                      &kDecideAt,    &kTurnStraight};
+  float* lengths[] = {&kCell,        &kWallFace, &kSensorAhead, &kSensorSide, &kWheelBase,
+                      &kWheelRadius, &kAccel,    &kAccelRun,    &kLateral,    &kLateralHalfTurn,
+                      &kTop,         &kSearch,   &kKnown,       &kSideWall,   &kFrontWall,
+                      &kSenseFrom,   &kDecideAt, &kTurnStraight};
   for (float* l : lengths) *l *= kScale;
   // the half-size robot's short-range sensors read 0.1 m when they see nothing
   // (robots/unimouse-half.yaml): nearer than that a reading is a wall

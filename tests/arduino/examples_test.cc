@@ -4,6 +4,7 @@
 // example learns the maze from the simulator, so the same program runs a half-size contest.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -153,6 +154,52 @@ TEST(ArduinoExamplesTest, RacerSpeedRunsJapan2018InUnder25SecondsWithoutTouching
                                       "unimouse_example_racer2", Host::kModule);
   EXPECT_EQ(scenario, again.result["scenario"]);
   EXPECT_EQ(r.result["robot_pose"], again.result["robot_pose"]);
+}
+
+// the racer's curve shapes, the numbers its sketch states against the curve integrated here: the
+// curvature ramps up linearly over 20 degrees, holds, and ramps down over 20; at peak curvature 1
+// a quarter turn moves the robot kTurnShape along and across over kTurnLength, and a half turn
+// kHalfTurnShape across over kHalfTurnLength, reaching kHalfTurnReach ahead (docs/firmware.md)
+double RacerConstant(const std::string& sketch, const std::string& name) {
+  const std::string key = "const float " + name + " = ";
+  const std::size_t at = sketch.find(key);
+  if (at == std::string::npos) return NAN;
+  return std::stod(sketch.substr(at + key.size()));
+}
+
+struct CurveEnd {
+  double length, along, across, reach;
+};
+
+CurveEnd IntegrateCurve(double turn_rad) {
+  const double ramp = 2 * (20 * M_PI / 180);  // the ramp's length at peak curvature 1
+  const double length = turn_rad + ramp;      // the ramps turn half as much as their length
+  const int steps = 200000;
+  const double ds = length / steps;
+  double x = 0, y = 0, heading = 0, reach = 0;
+  for (int i = 0; i < steps; ++i) {
+    const double s = (i + 0.5) * ds;
+    const double k = s < ramp ? s / ramp : s > length - ramp ? (length - s) / ramp : 1;
+    x += ds * std::cos(heading + k * ds / 2);
+    y += ds * std::sin(heading + k * ds / 2);
+    heading += k * ds;
+    reach = std::max(reach, x);
+  }
+  return {length, x, y, reach};
+}
+
+TEST(ArduinoExamplesTest, RacerCurveShapesAreTheIntegratedCurves) {
+  const std::string sketch =
+      ReadTextFile(UNIMOUSE_SOURCE_DIR "/arduino-lib/examples/racer/racer.ino");
+  const CurveEnd quarter = IntegrateCurve(M_PI / 2);
+  EXPECT_NEAR(RacerConstant(sketch, "kTurnLength"), quarter.length, 1e-6);
+  EXPECT_NEAR(RacerConstant(sketch, "kTurnShape"), quarter.along, 1e-5);
+  EXPECT_NEAR(RacerConstant(sketch, "kTurnShape"), quarter.across, 1e-5);
+  const CurveEnd half = IntegrateCurve(M_PI);
+  EXPECT_NEAR(RacerConstant(sketch, "kHalfTurnLength"), half.length, 1e-6);
+  EXPECT_NEAR(half.along, 0, 1e-6);  // it ends where it began, along the path
+  EXPECT_NEAR(RacerConstant(sketch, "kHalfTurnShape"), half.across, 1e-5);
+  EXPECT_NEAR(RacerConstant(sketch, "kHalfTurnReach"), half.reach, 1e-5);
 }
 
 // the racer on classic mazes beyond the one it was designed on: three seeded draws from the

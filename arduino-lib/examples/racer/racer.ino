@@ -336,6 +336,8 @@ void advanceSegments(float dt) {
   bool finished = false;
   float carry = 0;
   if (g.kind == Kind::Straight || g.kind == Kind::Curve) {
+    // a curve's length as curveLength, a rounding apart (kept as first written, which the racer's
+    // figures in the docs and tests come from)
     const float length = g.kind == Kind::Straight      ? g.length
                          : g.turn == 2 || g.turn == -2 ? kHalfTurnLength * g.length / kHalfTurnShape
                                                        : kTurnLength * g.length / kTurnShape;

@@ -184,7 +184,7 @@ class QuickJson {
 // The values of a message's objects up to two deep, each under its key and its parent's ("" at
 // the top), read without building a document: poses and signals are most of a recording, and a
 // document of each took half of a replay's time. A value that is not a number reads as NaN, as
-// Number() has it; what is inside arrays and deeper objects is passed over.
+// Number(const json&) has it; what is inside arrays and deeper objects is passed over.
 class NumberFields final : public nlohmann::json_sax<json> {
  public:
   struct Field {
@@ -246,7 +246,8 @@ class NumberFields final : public nlohmann::json_sax<json> {
   }
 
   bool Open(char kind) {
-    Value(std::numeric_limits<double>::quiet_NaN());  // where a number could be, as Number() has it
+    Value(std::numeric_limits<double>::quiet_NaN());  // where a number could be, as Number(const
+                                                      // json&) has it
     if (open_.empty()) top_is_object_ = kind == kObject;
     if (open_.size() == 1 && open_[0] == kObject) {
       parent_ = key_;  // a field of the message: its key names the children

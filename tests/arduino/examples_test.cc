@@ -256,6 +256,45 @@ TEST(ArduinoExamplesTest, RacerWinsClassicContestsWithoutTouchingAWallInItsBestR
   }
 }
 
+// the one contest of the collection's 50 classic and 42 half-size mazes, and of the twenty above,
+// in which the racer loses its position (exploring at seed 1, it clips a post turning into the
+// goal and wedges itself there while its wheels spin on): the simulator sees it lost at 192.565
+// s; the racer notices from the walls it sees at its next two decisions, says so and ends the
+// contest, before it touches more walls (it touched ten in the 48 s it drove on before)
+TEST(ArduinoExamplesTest, RacerSaysWhenItIsLostAndEndsTheContest) {
+  const std::string shared = testing::SharedMazesDir();
+  if (shared.empty()) {
+    GTEST_SKIP() << "the maze collection (../shared/mazes) is not beside the project";
+  }
+  const std::string out =
+      (std::filesystem::temp_directory_path() / "unimouse_example_racer_lost").string();
+  const ExampleRun r = RunExample("racer",
+                                  "micromouse --set end_on_log=done --seed 1 --maze " + shared +
+                                      "/classic/japan2016-ef.txt " + kResultsOnly,
+                                  "unimouse_example_racer_lost", Host::kModule);
+  ASSERT_EQ(r.outcome.exit_code, 0) << r.outcome.output;
+  const nlohmann::json& scenario = r.result["scenario"];
+  // its two runs to the goal were before: the contest passes on them
+  EXPECT_EQ(scenario["status"], "passed") << scenario["reason"];
+  EXPECT_EQ(scenario["records"]["runs"].size(), 2u) << scenario.dump();
+  const std::string log = ReadTextFile(out + "/log.txt");
+  // the time at the start of the first log line holding `text`
+  const auto time_of = [&log](const std::string& text) -> double {
+    const std::size_t at = log.find(text);
+    if (at == std::string::npos) return NAN;
+    const std::size_t line = log.rfind('\n', at) + 1;  // npos + 1: the first line
+    return std::stod(log.substr(line));
+  };
+  const double lost_s = time_of("it has lost its position");
+  const double said_s = time_of("\tlink\tlost: the walls seen at cell");
+  ASSERT_FALSE(std::isnan(lost_s)) << log;
+  ASSERT_FALSE(std::isnan(said_s)) << log;
+  EXPECT_GT(said_s, lost_s);
+  EXPECT_LT(said_s, lost_s + 1.5);
+  EXPECT_NEAR(r.result["sim_time_s"].get<double>(), said_s, 0.01);
+  EXPECT_EQ(scenario["scores"]["wall_contacts"], 4);  // all before the simulator saw it lost
+}
+
 // the same racer image on the two other robots: the half-size one in a half-size maze (every
 // length and speed scaled with the cell the simulator tells it), and the gyro one with the gyro's
 // frame in the link's table (its heading then integrates the gyro); neither touches a wall

@@ -6,15 +6,19 @@
 # 3 ms) and once in-process (every millisecond), graded by `unimouse batch run -j 2`. Prints a
 # line per maze and submission (status, best run, contest time, wall contacts) and how many
 # contests of each touched no wall (docs/firmware.md, "On the emulated board"). The board's
-# twenty take about 15 minutes on two cores.
+# twenty take about 15 minutes on two cores. MAZES names others of the collection's classic mazes
+# (the tests run it on one).
 #
-#   bench/racer_board_sweep.sh [UNIMOUSE] [IMAGE] [SEED]   (default build/bin/unimouse
-#                                                           build/avr/racer.elf 1)
+#   bench/racer_board_sweep.sh [UNIMOUSE] [IMAGE] [SEED] [MAZES]   (default build/bin/unimouse
+#                                                  build/avr/racer.elf 1, the twenty)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 unimouse=$(realpath "${1:-build/bin/unimouse}")
 image=$(realpath "${2:-build/avr/racer.elf}")
 seed=${3:-1}
+mazes=${4:-"minos19 alljapan-008-1987-pre japan9p map-t1 alljapan-016-1995-exp-fin taiwan2023cef
+  AAMC22Maze uknov2010f c00d3f taiwan2015p empty alljapan-014-1993-exp-pre ijcp02 kwu1 minos01w
+  uknov2017 japan1999p wmmc-y1 other-world85fin-1985 ukoct2019"}
 collection=$(realpath ../shared/mazes/classic)
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
@@ -24,9 +28,7 @@ trap 'rm -rf "$work"' EXIT
   echo "submissions: [{name: board, link: 'avr:$image'}, {name: pc, link: 'inproc:racer'}]"
   echo "scenarios: [{scenario: micromouse, set: {end_on_log: done}}]"
   echo "mazes:"
-  for maze in minos19 alljapan-008-1987-pre japan9p map-t1 alljapan-016-1995-exp-fin \
-    taiwan2023cef AAMC22Maze uknov2010f c00d3f taiwan2015p empty alljapan-014-1993-exp-pre \
-    ijcp02 kwu1 minos01w uknov2017 japan1999p wmmc-y1 other-world85fin-1985 ukoct2019; do
+  for maze in $mazes; do
     echo "  - $collection/$maze.txt"
   done
   echo "seeds: [$seed]"

@@ -295,6 +295,30 @@ TEST(ArduinoExamplesTest, RacerSaysWhenItIsLostAndEndsTheContest) {
   EXPECT_EQ(scenario["scores"]["wall_contacts"], 4);  // all before the simulator saw it lost
 }
 
+// a race of more segments than the racer's queue holds: torture's best path (cost 350, 141 turns
+// by the simulator's own solver) takes some 280, the PC's queue 128 (a board's 64, which
+// apec1998's way home already passes). The racer queues the rest as the queue empties, so its race
+// reaches the goal on that path; when it queued only what fitted, the race ended short of the
+// goal and the contest's best run was its first exploring one (137.3 s)
+TEST(ArduinoExamplesTest, RacerRacesAPathOfMoreSegmentsThanItsQueueHolds) {
+  const std::string shared = testing::SharedMazesDir();
+  if (shared.empty()) {
+    GTEST_SKIP() << "the maze collection (../shared/mazes) is not beside the project";
+  }
+  const ExampleRun r = RunExample("racer",
+                                  "micromouse --set end_on_log=done --seed 1 --maze " + shared +
+                                      "/classic/torture.txt " + kResultsOnly,
+                                  "unimouse_example_racer_torture", Host::kModule);
+  ASSERT_EQ(r.outcome.exit_code, 0) << r.outcome.output;
+  const nlohmann::json& scenario = r.result["scenario"];
+  EXPECT_EQ(scenario["status"], "passed") << scenario["reason"];
+  const nlohmann::json& runs = scenario["records"]["runs"];
+  ASSERT_EQ(runs.size(), 2u) << scenario.dump();
+  EXPECT_EQ(runs[1]["path_cost"], 350) << scenario.dump();
+  EXPECT_LT(runs[1]["time_s"].get<double>(), runs[0]["time_s"].get<double>());
+  EXPECT_EQ(scenario["scores"]["wall_contacts"], 0);
+}
+
 // the same racer image on the two other robots: the half-size one in a half-size maze (every
 // length and speed scaled with the cell the simulator tells it), and the gyro one with the gyro's
 // frame in the link's table (its heading then integrates the gyro); neither touches a wall

@@ -247,12 +247,24 @@ void turnReferenceBy(float dtheta) {
 }
 
 void push(Kind kind, float length, float vMax, float vExit, int8_t turn = 0, bool sense = false) {
-  if (static_cast<uint8_t>(tail + 1) % kQueue == head) return;  // full: never with these plans
+  if (static_cast<uint8_t>(tail + 1) % kQueue == head) return;  // full: planMore waits for room
   queue[tail] = Segment{kind, turn, sense, length, vMax, vExit};
   tail = static_cast<uint8_t>((tail + 1) % kQueue);
 }
 
 bool queueEmpty() { return head == tail; }
+uint8_t queueRoom() { return static_cast<uint8_t>(kQueue - 1 - (tail + kQueue - head) % kQueue); }
+
+// the fast path being queued (planFastPath, planMore): whether some is still to queue, and where
+// its planning has got to
+struct FastPlan {
+  bool active, toGoal, first;
+  uint8_t x, y;
+  Direction d;
+  float straight;
+};
+FastPlan plan = {false, false, false, 0, 0, Direction::North, 0};
+void planMore();
 
 // the current curve: its peak curvature, its ramps' length and its whole length
 float curvePeak, curveRamp, curveLength;
@@ -666,6 +678,20 @@ uint16_t planFastPath(uint8_t x, uint8_t y, Direction d, bool fromCentre, bool t
   }
   pathFrame[0] = 0;
   addPathCell(x, y);
+  plan = FastPlan{true, toGoal, fromCentre, x, y, d, 0};
+  planMore();
+  racing = true;
+  return cost;
+}
+
+// queues more of the fast path planFastPath began, as much as the queue has room for: a path of
+// many turns takes more segments than a board's queue holds (apec1998's way home 77, torture's
+// more than the PC's 128). Cut short, its last segments are slowed as if a staircase's curve came
+// next (the slowest way on), until the rest is queued
+void planMore() {
+  uint8_t x = plan.x, y = plan.y;
+  Direction d = plan.d;
+  const bool toGoal = plan.toGoal;
   const float d90 = kCell / 2;
   const float vTurn = curveSpeed(d90 / kTurnShape, kYawAccelRun);
   // a half turn from one corridor to the next reaches kHalfTurnReach / kHalfTurnShape of a cell
@@ -675,9 +701,15 @@ uint16_t planFastPath(uint8_t x, uint8_t y, Direction d, bool fromCentre, bool t
   const float vHalfTurn = sqrtf(kLateralHalfTurn * kCell / kHalfTurnShape);
   const float halfTurnEarly = kCell * kHalfTurnReach / kHalfTurnShape - kCell / 2 + kWheelBase / 2 +
                               kWheelRadius + 0.02f * kScale - kWallFace;
-  float straight = 0;
-  bool first = fromCentre;
+  float straight = plan.straight;
+  bool first = plan.first;
+  bool cut = false;
   for (;;) {
+    if (queueRoom() < 4) {
+      // the queue is full: the rest when it has room
+      cut = true;
+      break;
+    }
     const Action a = solver.bestAction(x, y, d);
     if (a == Action::None) break;
     if (a == Action::Forward) {
@@ -732,23 +764,27 @@ uint16_t planFastPath(uint8_t x, uint8_t y, Direction d, bool fromCentre, bool t
     y = static_cast<uint8_t>(y + stepY(d));
     addPathCell(x, y);
   }
-  if (toGoal) {
-    // into the goal, then on through the open cells straight ahead (up to two) to a stop
-    float room = kCell / 2;
-    for (uint8_t i = 0; i < 2 && !maze.hasWall(x, y, d); ++i) {
-      if (!maze.isKnown(x, y, d)) break;
-      x = static_cast<uint8_t>(x + stepX(d));
-      y = static_cast<uint8_t>(y + stepY(d));
-      room += kCell;
-      addPathCell(x, y);
-    }
-    push(Kind::Straight, straight + room, kTop, 0);
+  if (cut) {
+    plan = FastPlan{true, toGoal, first, x, y, d, straight};
   } else {
-    push(Kind::Straight, straight + kCell / 2, kTop, 0);
+    if (toGoal) {
+      // into the goal, then on through the open cells straight ahead (up to two) to a stop
+      float room = kCell / 2;
+      for (uint8_t i = 0; i < 2 && !maze.hasWall(x, y, d); ++i) {
+        if (!maze.isKnown(x, y, d)) break;
+        x = static_cast<uint8_t>(x + stepX(d));
+        y = static_cast<uint8_t>(y + stepY(d));
+        room += kCell;
+        addPathCell(x, y);
+      }
+      push(Kind::Straight, straight + room, kTop, 0);
+    } else {
+      push(Kind::Straight, straight + kCell / 2, kTop, 0);
+    }
   }
   // backwards: a curve runs at the speed it is entered at, so each one is slowed to what the
   // straight after it can brake from for the next
-  float next = 0;
+  float next = cut ? curveSpeed((kCell / 2 - kTurnStraight) / kTurnShape, kYawAccel) : 0;
   for (uint8_t i = tail; i != head;) {
     i = static_cast<uint8_t>((i + kQueue - 1) % kQueue);
     Segment& g = queue[i];
@@ -760,13 +796,14 @@ uint16_t planFastPath(uint8_t x, uint8_t y, Direction d, bool fromCentre, bool t
       next = g.vMax;
     }
   }
+  if (cut) return;
   if (!toGoal) {
     const int quarter = (static_cast<int>(d) - static_cast<int>(Direction::North) + 4) % 4;
     if (quarter != 0) push(Kind::Pivot, 0, 0, 0, static_cast<int8_t>(quarter == 3 ? -1 : quarter));
+    push(Kind::Pause, 0.3f, 0, 0);  // home: a pause, then the race
   }
   robot.debug(UNIMOUSE_ID_DEBUG_PATH, pathFrame, static_cast<uint16_t>(1 + 2 * pathFrame[0]));
-  racing = true;
-  return cost;
+  plan.active = false;
 }
 
 // the speed run from the start cell's centre, facing north, along the best path over the walls
@@ -819,7 +856,6 @@ void decide() {
       planFastPath(x, y, heading, false, false) != FFSolver<kMaxSide, kMaxSide>::UNREACHABLE) {
     // exploring is over: the way home runs over cells seen, so it is driven as a speed run, to
     // the start cell's centre facing north; then a pause and the race
-    push(Kind::Pause, 0.3f, 0, 0);
     heading = Direction::North;
     decided = true;
     then = Then::Race;
@@ -989,6 +1025,7 @@ void loop() {
       decide();
     }
   }
+  if (plan.active && queueRoom() >= 16) planMore();
   if (queueEmpty() && then == Then::Race) {
     then = Then::Finish;
     planSpeedRun();

@@ -256,6 +256,15 @@ TEST(ArduinoExamplesTest, RacerWinsClassicContestsWithoutTouchingAWallInItsBestR
   }
 }
 
+// the racer in-process in the contest on one of the collection's classic mazes, at seed 1
+ExampleRun RunRacerAtSeed1(const std::string& shared, const std::string& maze,
+                           const std::string& out_name) {
+  return RunExample("racer",
+                    "micromouse --set end_on_log=done --seed 1 --maze " + shared + "/classic/" +
+                        maze + ".txt " + kResultsOnly,
+                    out_name, Host::kModule);
+}
+
 // the one contest of the collection's 50 classic and 42 half-size mazes, and of the twenty above,
 // in which the racer loses its position (exploring at seed 1, it clips a post turning into the
 // goal and wedges itself there while its wheels spin on): the simulator sees it lost at 192.565
@@ -268,10 +277,7 @@ TEST(ArduinoExamplesTest, RacerSaysWhenItIsLostAndEndsTheContest) {
   }
   const std::string out =
       (std::filesystem::temp_directory_path() / "unimouse_example_racer_lost").string();
-  const ExampleRun r = RunExample("racer",
-                                  "micromouse --set end_on_log=done --seed 1 --maze " + shared +
-                                      "/classic/japan2016-ef.txt " + kResultsOnly,
-                                  "unimouse_example_racer_lost", Host::kModule);
+  const ExampleRun r = RunRacerAtSeed1(shared, "japan2016-ef", "unimouse_example_racer_lost");
   ASSERT_EQ(r.outcome.exit_code, 0) << r.outcome.output;
   const nlohmann::json& scenario = r.result["scenario"];
   // its two runs to the goal were before: the contest passes on them
@@ -305,10 +311,7 @@ TEST(ArduinoExamplesTest, RacerRacesAPathOfMoreSegmentsThanItsQueueHolds) {
   if (shared.empty()) {
     GTEST_SKIP() << "the maze collection (../shared/mazes) is not beside the project";
   }
-  const ExampleRun r = RunExample("racer",
-                                  "micromouse --set end_on_log=done --seed 1 --maze " + shared +
-                                      "/classic/torture.txt " + kResultsOnly,
-                                  "unimouse_example_racer_torture", Host::kModule);
+  const ExampleRun r = RunRacerAtSeed1(shared, "torture", "unimouse_example_racer_torture");
   ASSERT_EQ(r.outcome.exit_code, 0) << r.outcome.output;
   const nlohmann::json& scenario = r.result["scenario"];
   EXPECT_EQ(scenario["status"], "passed") << scenario["reason"];

@@ -149,7 +149,7 @@ struct Segment {
 #ifdef UNIMOUSE_PC_CORE
 const uint8_t kQueue = 128;
 #else
-const uint8_t kQueue = 64;  // a 16 x 16 speed run needs two a turn
+const uint8_t kQueue = 64;  // a speed run needs two a turn: planMore queues it as it empties
 #endif
 Segment queue[kQueue];
 uint8_t head = 0, tail = 0;
@@ -685,8 +685,8 @@ uint16_t planFastPath(uint8_t x, uint8_t y, Direction d, bool fromCentre, bool t
 }
 
 // queues more of the fast path planFastPath began, as much as the queue has room for: a path of
-// many turns takes more segments than a board's queue holds (apec1998's way home 77, torture's
-// more than the PC's 128). Cut short, its last segments are slowed as if a staircase's curve came
+// many turns takes more segments than a board's queue holds (apec1998's paths up to 77, torture's
+// race some 280, the PC's 128). Cut short, its last segments are slowed as if a staircase's curve came
 // next (the slowest way on), until the rest is queued
 void planMore() {
   uint8_t x = plan.x, y = plan.y;

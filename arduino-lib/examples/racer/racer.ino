@@ -686,8 +686,8 @@ uint16_t planFastPath(uint8_t x, uint8_t y, Direction d, bool fromCentre, bool t
 
 // queues more of the fast path planFastPath began, as much as the queue has room for: a path of
 // many turns takes more segments than a board's queue holds (apec1998's paths up to 77, torture's
-// race some 280, the PC's 128). Cut short, its last segments are slowed as if a staircase's curve came
-// next (the slowest way on), until the rest is queued
+// race some 280, the PC's 128). Cut short, its last segments are slowed as if a staircase's curve
+// came next (the slowest way on), until the rest is queued
 void planMore() {
   uint8_t x = plan.x, y = plan.y;
   Direction d = plan.d;

@@ -77,6 +77,13 @@ class Maze {
   void placeWall(uint8_t x, uint8_t y, Direction d) { set(x, y, d, true); }
   /// Takes the wall away (it is then known to be open), on both cells that share it.
   void removeWall(uint8_t x, uint8_t y, Direction d) { set(x, y, d, false); }
+  /// Forgets side d of cell (x, y), and the matching side of the neighbour: unseen again.
+  void forget(uint8_t x, uint8_t y, Direction d) {
+    const int nx = x + stepX(d), ny = y + stepY(d);
+    if (!contains(nx, ny)) return;  // the outer walls stay
+    cells_[x][y] &= static_cast<uint8_t>(~(sideBit(d) | sideBit(d) << 4));
+    cells_[nx][ny] &= static_cast<uint8_t>(~(sideBit(turnAround(d)) | sideBit(turnAround(d)) << 4));
+  }
   /// Whether side d of cell (x, y) has a wall; an unseen side has none until placed.
   bool hasWall(uint8_t x, uint8_t y, Direction d) const { return (cells_[x][y] & sideBit(d)) != 0; }
   /// Whether the wall on side d of (x, y) has been placed or removed, that is, seen.

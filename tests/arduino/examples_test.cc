@@ -268,8 +268,9 @@ ExampleRun RunRacerAtSeed1(const std::string& shared, const std::string& maze,
 // the one contest of the collection's 50 classic and 42 half-size mazes, and of the twenty above,
 // in which the racer loses its position (exploring at seed 1, it clips a post turning into the
 // goal and wedges itself there while its wheels spin on): the simulator sees it lost at 192.565
-// s; the racer notices from the walls it sees at its next two decisions, says so and ends the
-// contest, before it touches more walls (it touched ten in the 48 s it drove on before)
+// s; the racer notices from the walls it sees at its next two decisions and looks for its place,
+// but wedged as it is, what it sees fits nowhere in the map: it says so and ends the contest,
+// before it touches more walls (it touched ten in the 48 s it drove on before it noticed)
 TEST(ArduinoExamplesTest, RacerSaysWhenItIsLostAndEndsTheContest) {
   const std::string shared = testing::SharedMazesDir();
   if (shared.empty()) {
@@ -292,13 +293,57 @@ TEST(ArduinoExamplesTest, RacerSaysWhenItIsLostAndEndsTheContest) {
     return std::stod(log.substr(line));
   };
   const double lost_s = time_of("it has lost its position");
-  const double said_s = time_of("\tlink\tlost: the walls seen at cell");
+  const double noticed_s = time_of("\tlink\tlost: the walls seen are not the map's");
+  const double ended_s = time_of("\tlink\tlost: the walls seen are nowhere in the map");
   ASSERT_FALSE(std::isnan(lost_s)) << log;
-  ASSERT_FALSE(std::isnan(said_s)) << log;
-  EXPECT_GT(said_s, lost_s);
-  EXPECT_LT(said_s, lost_s + 1.5);
-  EXPECT_NEAR(r.result["sim_time_s"].get<double>(), said_s, 0.01);
+  ASSERT_FALSE(std::isnan(noticed_s)) << log;
+  ASSERT_FALSE(std::isnan(ended_s)) << log;
+  EXPECT_GT(noticed_s, lost_s);
+  EXPECT_LT(noticed_s, lost_s + 1.5);
+  EXPECT_LT(ended_s, noticed_s + 5);
+  EXPECT_NEAR(r.result["sim_time_s"].get<double>(), ended_s, 0.01);
   EXPECT_EQ(scenario["scores"]["wall_contacts"], 4);  // all before the simulator saw it lost
+}
+
+// a kidnapped mouse (tests/scenarios/kidnapped.lua): exploring, it is picked up and put down a
+// cell or two from where it was, just as it was there. It notices from the walls, follows them
+// until only one place within three cells of where it believed it was fits what it saw and the
+// map, and goes on from there to the goal. The scenario checks the cell it names against the
+// robot's; the simulator's own check, which warns when the cell the firmware reports is not next
+// to the robot's, warns only between the put-down and the find
+TEST(ArduinoExamplesTest, RacerFindsItsPlaceAgainWhenItIsPutDownElsewhere) {
+  const std::string shared = testing::SharedMazesDir();
+  if (shared.empty()) {
+    GTEST_SKIP() << "the maze collection (../shared/mazes) is not beside the project";
+  }
+  struct Case {
+    const char* maze;
+    const char* at_s;
+    const char* away;
+  };
+  for (const Case& c : {Case{"japan2018", "120", "1"}, Case{"apec2013", "80", "2"}}) {
+    const std::string name = std::string("unimouse_example_racer_kidnapped_") + c.maze;
+    const std::string out = (std::filesystem::temp_directory_path() / name).string();
+    const ExampleRun r =
+        RunExample("racer",
+                   std::string(UNIMOUSE_SOURCE_DIR "/tests/scenarios/kidnapped.lua --maze ") +
+                       shared + "/classic/" + c.maze + ".txt --set at_s=" + c.at_s +
+                       " --set away=" + c.away + " --no-pictures --record off",
+                   name, Host::kModule);
+    ASSERT_EQ(r.outcome.exit_code, 0) << c.maze << ": " << r.outcome.output;
+    EXPECT_EQ(r.result["scenario"]["status"], "passed")
+        << c.maze << ": " << r.result["scenario"]["reason"];
+    const std::string log = ReadTextFile(out + "/log.txt");
+    const std::size_t put = log.find("the mouse is put down");
+    const std::size_t noticed = log.find("lost: the walls seen are not the map's");
+    const std::size_t found = log.find("\tlink\tfound: about to enter cell");
+    ASSERT_NE(put, std::string::npos) << log;
+    ASSERT_NE(noticed, std::string::npos) << log;
+    ASSERT_NE(found, std::string::npos) << log;
+    EXPECT_LT(put, noticed);
+    EXPECT_LT(noticed, found);
+    EXPECT_EQ(log.find("it has lost its position", found), std::string::npos) << c.maze;
+  }
 }
 
 // a race of more segments than the racer's queue holds: torture's best path (cost 350, 141 turns

@@ -48,6 +48,21 @@ TEST(FirmwareMazeTest, WallsAreSharedWithTheNeighbourAndTheOuterWallsStay) {
   static_assert(sizeof(FirmwareMaze) == 256 + 2, "one byte a cell, and the size in use");
 }
 
+// a side forgotten is unseen again from both cells; an outer wall is never forgotten
+TEST(FirmwareMazeTest, AForgottenSideIsUnseenFromBothCellsAndTheOuterWallsStay) {
+  FirmwareMaze maze;
+  maze.placeWall(3, 3, Direction::East);
+  maze.removeWall(3, 3, Direction::North);
+  maze.forget(4, 3, Direction::West);
+  EXPECT_FALSE(maze.isKnown(3, 3, Direction::East));
+  EXPECT_FALSE(maze.hasWall(3, 3, Direction::East));
+  EXPECT_EQ(maze.cell(4, 3), 0);
+  EXPECT_EQ(maze.cell(3, 3), UNIMOUSE_SIDE_NORTH << 4);  // the other side stays known open
+  maze.forget(0, 5, Direction::West);
+  EXPECT_TRUE(maze.hasWall(0, 5, Direction::West));
+  EXPECT_TRUE(maze.isKnown(0, 5, Direction::West));
+}
+
 TEST(FirmwareSolverTest, CostsEqualTheSimulatorsModifiedFloodFillOnRandomMazes) {
   for (uint64_t seed = 1; seed <= 20; ++seed) {
     const unimouse::Maze truth = GenerateMaze({16, 16, seed, seed % 2 ? 0.0 : 0.3});

@@ -187,6 +187,7 @@ Then then = Then::Explore;
 bool racing = false;
 uint16_t speedRunCost = 0;
 uint8_t contradicted = 0;  // decisions in a row at which the walls seen contradict the map
+bool searching = false;    // lost, and looking for where it is (search)
 const bool kTraceDecisions = false;
 
 float headingAngle(Direction d) { return (1 - static_cast<int>(d)) * PI / 2; }  // north: pi/2
@@ -522,6 +523,26 @@ void sideReading(float miss, float d, float* shiftAcross, float* shiftTheta) {
   pHH -= kH * hH;
 }
 
+// exploring (not on a board), a wall seen ahead, `seen` along the path, nearer than the end of a
+// straight that the plan drives on from: the mouse is not where it believes, or misread. The
+// straight ends instead at the edge of the cell walled ahead, where the decision sees that wall;
+// if the map holds that side open, that decision begins the search for the mouse's place. On
+// the PC, driving on, a kidnapped mouse hit that wall before it noticed, and leaning on it, its
+// sensors over the walls, it saw nothing
+void wallAhead(float seen, float c, float s) {
+  Segment& g = queue[head];
+  const float end = startX * c + startY * s + g.length;
+  const float edge = seen + (kCell / 2 - kWallFace) - kCell;  // of the cell walled ahead
+  const int8_t cut = static_cast<int8_t>(roundf((end - edge) / kCell));
+  // too near to end there, sensing that cell's walls on the way: the robot is past that edge
+  if (cut < 1 || g.length - cut * kCell < refS + kSenseFrom) return;
+  g.length -= cut * kCell;
+  segmentEnd(g);
+  nextX = static_cast<uint8_t>(nextX - cut * stepX(heading));
+  nextY = static_cast<uint8_t>(nextY - cut * stepY(heading));
+  contradicted = 1;
+}
+
 // the side walls say how far the robot is from the corridor's centre line; a wall ahead, and in
 // the speed run the side walls' ends, how far it is along; only on straights, along the maze's
 // lines
@@ -563,6 +584,10 @@ void correctEstimate() {
   }
   if (frontNew) {
     const float f = robot.frontDistance();
+    if (!kBoard && !racing && g.kind == Kind::Straight && g.sense &&
+        f < fminf(0.5f * kScale, kRange)) {
+      wallAhead(along + (f + kSensorAhead) * ce, c, s);
+    }
     if (f > 0.035f * kScale && f < fminf(0.25f * kScale, kRange)) {
       const float seen = along + (f + kSensorAhead) * ce;
       const float face = roundf(seen / kCell) * kCell - (kCell / 2 - kWallFace);
@@ -813,17 +838,261 @@ void planSpeedRun() {
   if (speedRunCost == FFSolver<kMaxSide, kMaxSide>::UNREACHABLE) finish("no way to the goal");
 }
 
+// Finding its place again once lost (not on a board, whose RAM has no room left for it). The
+// mouse goes on in the frame it believed in, which is the maze's moved by whole cells and turned
+// by quarter turns, and keeps the walls of each cell it sees there. A candidate is such a move:
+// the cell where the search began put within kNear cells of where it was believed to be, facing
+// any of four ways. One drops out when a cell seen would lie outside the maze under it, or a side
+// seen disagrees with a side the map knows. The mouse moves on to cells it has not seen while
+// lost, straight on first, and by the walls on its left when all around are seen. When a single
+// candidate is left and at least kSureAgree known sides agreed with it, the estimate, the plan
+// and what it saw move there and exploring goes on. Candidates in cells not yet explored agree
+// with anything and may never drop out: then, after kSearchDecisions, it says so and ends; so it
+// does when none is left, when it sees nothing at all (it leans on a wall), and when it is lost a
+// fourth time
+const uint8_t kSearchDecisions = 60, kSearches = 3, kSureAgree = 8, kNear = 3;
+struct SeenCell {
+  int8_t x, y;    // in the frame believed in
+  uint8_t walls;  // by direction's bit (sideBit), the way in open
+};
+
+// the cells the last kRecent decisions recorded, as seen: what a mouse saw between getting lost
+// and noticing went into the map in the wrong cells. They are forgotten when the search begins;
+// once the place is found, the newest go back in where they fit the place found, and the older,
+// from before it got lost, where they were
+const uint8_t kRecent = kBoard ? 1 : 12;
+SeenCell recent[kRecent];
+uint8_t recentNext = 0, recentCount = 0;
+
+SeenCell seenCell(int8_t x, int8_t y, Direction d, const bool seen[3]) {
+  uint8_t walls = 0;
+  if (seen[0]) walls |= sideBit(turnLeft(d));
+  if (seen[1]) walls |= sideBit(turnRight(d));
+  if (seen[2]) walls |= sideBit(d);
+  return SeenCell{x, y, walls};
+}
+
+void rememberRecorded(const SeenCell& cell) {
+  recent[recentNext] = cell;
+  recentNext = static_cast<uint8_t>((recentNext + 1) % kRecent);
+  if (recentCount < kRecent) ++recentCount;
+}
+SeenCell seenLost[kBoard ? 1 : kSearchDecisions + 1];
+uint8_t seenCount = 0, searchDecisions = 0, searches = 0;
+int8_t searchX, searchY;  // the cell about to be entered where the search began
+
+// the cell seen while lost at (x, y) in the frame believed in, if any
+int8_t seenAt(int x, int y) {
+  for (uint8_t i = 0; i < seenCount; ++i) {
+    if (seenLost[i].x == x && seenLost[i].y == y) return static_cast<int8_t>(i);
+  }
+  return -1;
+}
+
+// a candidate: the search's first cell at (cx, cy), the frame turned k quarter turns (left);
+// (x, y) in the frame believed in, there
+void placeUnder(uint8_t cx, uint8_t cy, uint8_t k, int x, int y, int* px, int* py) {
+  const int dx = x - searchX, dy = y - searchY;
+  const int c = k == 0 ? 1 : k == 2 ? -1 : 0, s = k == 1 ? 1 : k == 3 ? -1 : 0;
+  *px = cx + c * dx - s * dy;
+  *py = cy + s * dx + c * dy;
+}
+Direction turnedBy(Direction d, uint8_t k) {
+  return static_cast<Direction>((static_cast<uint8_t>(d) + 4 - k) % 4);
+}
+
+// the known sides of a cell seen that agree under a candidate; -1 if it falls outside the maze or
+// a side disagrees
+int16_t agreeing(const SeenCell& cell, uint8_t cx, uint8_t cy, uint8_t k) {
+  int px, py;
+  placeUnder(cx, cy, k, cell.x, cell.y, &px, &py);
+  if (!maze.contains(px, py)) return -1;
+  int16_t known = 0;
+  for (uint8_t a = 0; a < 4; ++a) {
+    const Direction d = turnedBy(static_cast<Direction>(a), k);
+    const uint8_t x = static_cast<uint8_t>(px), y = static_cast<uint8_t>(py);
+    if (!maze.isKnown(x, y, d)) continue;
+    if (maze.hasWall(x, y, d) != ((cell.walls & sideBit(static_cast<Direction>(a))) != 0)) {
+      return -1;
+    }
+    ++known;
+  }
+  return known;
+}
+
+// the same for every cell seen while lost
+int16_t agreeing(uint8_t cx, uint8_t cy, uint8_t k) {
+  int16_t known = 0;
+  for (uint8_t i = 0; i < seenCount; ++i) {
+    const int16_t sides = agreeing(seenLost[i], cx, cy, k);
+    if (sides < 0) return -1;
+    known = static_cast<int16_t>(known + sides);
+  }
+  return known;
+}
+
+// puts a cell seen into the map, under a candidate
+void recordCell(const SeenCell& cell, uint8_t cx, uint8_t cy, uint8_t k) {
+  int px, py;
+  placeUnder(cx, cy, k, cell.x, cell.y, &px, &py);
+  if (!maze.contains(px, py)) return;
+  for (uint8_t a = 0; a < 4; ++a) {
+    const Direction d = static_cast<Direction>(a);
+    recordWall(static_cast<uint8_t>(px), static_cast<uint8_t>(py), turnedBy(d, k),
+               (cell.walls & sideBit(d)) != 0);
+  }
+}
+
+void forgetRecent() {
+  for (uint8_t i = 0; i < recentCount; ++i) {
+    if (!maze.contains(recent[i].x, recent[i].y)) continue;
+    for (uint8_t a = 0; a < 4; ++a) {
+      maze.forget(static_cast<uint8_t>(recent[i].x), static_cast<uint8_t>(recent[i].y),
+                  static_cast<Direction>(a));
+    }
+  }
+}
+
+// once found under (cx, cy, k): the cells forgotten go back in, the newest under the place found
+// while they fit it, the rest where they were believed to be while they fit there
+void restoreRecent(uint8_t cx, uint8_t cy, uint8_t k) {
+  bool found = true;
+  for (uint8_t n = 1; n <= recentCount; ++n) {
+    const SeenCell& cell = recent[(recentNext + kRecent - n) % kRecent];
+    if (found && agreeing(cell, cx, cy, k) < 0) found = false;
+    if (found) {
+      recordCell(cell, cx, cy, k);
+    } else if (agreeing(cell, static_cast<uint8_t>(searchX), static_cast<uint8_t>(searchY), 0) >=
+               0) {
+      recordCell(cell, static_cast<uint8_t>(searchX), static_cast<uint8_t>(searchY), 0);
+    }
+  }
+  recentCount = 0;
+}
+
+// the mouse, about to enter (nextX, nextY) facing `heading`, is about to enter (x, y) facing d:
+// the estimate, the reference and the segment under way turn and move with it, by k quarter
+// turns about the cells' centres
+void moveTo(uint8_t x, uint8_t y, Direction d, uint8_t k) {
+  const float c = k == 0 ? 1 : k == 2 ? -1 : 0, s = k == 1 ? 1 : k == 3 ? -1 : 0;
+  const float fromX = (nextX + 0.5f) * kCell, fromY = (nextY + 0.5f) * kCell;
+  const float toX = (x + 0.5f) * kCell, toY = (y + 0.5f) * kCell;
+  float* points[][2] = {{&estX, &estY}, {&refX, &refY}, {&startX, &startY}, {&endX, &endY}};
+  for (auto& p : points) {
+    const float dx = *p[0] - fromX, dy = *p[1] - fromY;
+    *p[0] = toX + c * dx - s * dy;
+    *p[1] = toY + s * dx + c * dy;
+  }
+  const float turn = k * PI / 2;
+  estTheta = wrap(estTheta + turn);
+  endTheta = wrap(endTheta + turn);
+  turnReference(wrap(refTheta + turn));
+  sawWall[0] = sawWall[1] = false;
+  nextX = x;
+  nextY = y;
+  heading = d;
+}
+
+// one decision while lost, about to enter (nextX, nextY) facing `heading` in the frame believed
+// in: true when the mouse has found its place (nextX, nextY and heading are then where it is
+// about to enter, in the maze), false when it has queued its next move or ended
+bool search(const bool seen[3], bool blind, bool begin) {
+  // where it believes it is: outside the maze, when that is wrong enough
+  const int8_t atX = static_cast<int8_t>(nextX), atY = static_cast<int8_t>(nextY);
+  if (begin) {
+    if (++searches > kSearches) {
+      finish("lost: again, a fourth time");
+      return false;
+    }
+    seenCount = searchDecisions = 0;
+    searchX = atX;
+    searchY = atY;
+    robot.log("lost: the walls seen are not the map's; looking for where they are");
+    forgetRecent();
+  }
+  if (blind) {
+    finish("lost: it sees no wall at all (stuck on one?)");
+    return false;
+  }
+  if (seenAt(atX, atY) < 0) seenLost[seenCount++] = seenCell(atX, atY, heading, seen);
+  // the candidates left, and the known sides that agreed with the last of them
+  uint16_t count = 0;
+  int16_t agreed = 0;
+  uint8_t foundX = 0, foundY = 0, foundK = 0;
+  for (int cy = searchY - kNear; cy <= searchY + kNear; ++cy) {
+    for (int cx = searchX - kNear; cx <= searchX + kNear; ++cx) {
+      if (!maze.contains(cx, cy)) continue;
+      for (uint8_t k = 0; k < 4; ++k) {
+        const int16_t known = agreeing(static_cast<uint8_t>(cx), static_cast<uint8_t>(cy), k);
+        if (known < 0) continue;
+        ++count;
+        agreed = known;
+        foundX = static_cast<uint8_t>(cx);
+        foundY = static_cast<uint8_t>(cy);
+        foundK = k;
+      }
+    }
+  }
+  if (count == 1 && agreed >= kSureAgree) {
+    // what it saw goes into the map: before the search where it fits, and while lost where it was
+    restoreRecent(foundX, foundY, foundK);
+    for (uint8_t i = 0; i < seenCount; ++i) recordCell(seenLost[i], foundX, foundY, foundK);
+    int x, y;
+    placeUnder(foundX, foundY, foundK, atX, atY, &x, &y);
+    moveTo(static_cast<uint8_t>(x), static_cast<uint8_t>(y), turnedBy(heading, foundK), foundK);
+    char line[72];
+    snprintf(line, sizeof(line), "found: about to enter cell (%d, %d) after %u cells", x, y,
+             seenCount);
+    robot.log(line);
+    return true;
+  }
+  if (count == 0 || ++searchDecisions > kSearchDecisions) {
+    finish(count == 0 ? "lost: the walls seen are nowhere in the map"
+                      : "lost: the walls seen fit more than one place in the map");
+    return false;
+  }
+  // on to a cell not seen while lost, straight on first; else by the walls on the left
+  const int8_t order[3] = {0, 1, -1};
+  int8_t quarters = 2;
+  for (int8_t q : order) {
+    const bool open = !seen[q == 0 ? 2 : q == 1 ? 0 : 1];
+    const Direction d = static_cast<Direction>((static_cast<uint8_t>(heading) + 4 - q) % 4);
+    if (open && seenAt(atX + stepX(d), atY + stepY(d)) < 0) {
+      quarters = q;
+      break;
+    }
+  }
+  if (quarters == 2) quarters = !seen[0] ? 1 : !seen[2] ? 0 : !seen[1] ? -1 : 2;
+  if (quarters == 0) {
+    push(Kind::Straight, kCell, kSearch, kSearch, 0, true);
+  } else if (quarters == 2) {
+    push(Kind::Straight, kCell / 2, kSearch, 0);
+    push(Kind::Pivot, 0, 0, 0, 2);
+    push(Kind::Pause, 0.05f, 0, 0);
+    push(Kind::Straight, kCell / 2, kSearch, kSearch, 0, true);
+  } else {
+    const float vTurn = curveSpeed((kCell / 2 - kTurnStraight) / kTurnShape, kYawAccel);
+    push(Kind::Straight, kTurnStraight, kSearch, vTurn);
+    push(Kind::Curve, kCell / 2 - kTurnStraight, vTurn, vTurn, quarters);
+    push(Kind::Straight, kTurnStraight, kSearch, kSearch, 0, true);
+  }
+  heading = static_cast<Direction>((static_cast<uint8_t>(heading) + 4 - quarters) % 4);
+  nextX = static_cast<uint8_t>(nextX + stepX(heading));
+  nextY = static_cast<uint8_t>(nextY + stepY(heading));
+  return false;
+}
+
 // the robot is about to enter (nextX, nextY) facing `heading`: record its walls and queue what
 // it does in it, through to the next cell's edge
 void decide() {
-  const uint8_t x = nextX, y = nextY;
+  uint8_t x = nextX, y = nextY;
   if (minLeft > 8) minLeft = robot.leftDistance();
   if (minRight > 8) minRight = robot.rightDistance();
   if (minFront > 8) minFront = robot.frontDistance();
   // lost: a side of this cell the map already holds seen otherwise, at two decisions in a row (a
   // single misreading happens: once each in 5 of the 42 half-size contests; twice in a row in
-  // none of 152 contests but the one lost, japan2016-ef, 1.1 s after it was). It says so and
-  // ends, rather than drive on where it is not
+  // none of 152 contests but the one lost, japan2016-ef, 1.1 s after it was). It looks for its
+  // place (search); on a board it says so and ends, rather than drive on where it is not
   const bool seen[3] = {minLeft < kSideWall, minRight < kSideWall, minFront < kFrontWall};
   const Direction sides[3] = {turnLeft(heading), turnRight(heading), heading};
   bool contradiction = false;
@@ -833,7 +1102,18 @@ void decide() {
     }
   }
   contradicted = contradiction ? contradicted + 1 : 0;
-  if (contradicted == 2) {
+  if (!kBoard && (searching || contradicted == 2)) {
+    // no reading at all, on every side: the robot leans on a wall, its sensors over the walls
+    const bool blind = minLeft >= kRange && minRight >= kRange && minFront >= kRange;
+    searching = !search(seen, blind, !searching);
+    if (searching) {
+      minLeft = minRight = minFront = 9;
+      return;
+    }
+    contradicted = 0;
+    x = nextX;
+    y = nextY;
+  } else if (contradicted == 2) {
     char line[72];
     snprintf(line, sizeof(line), "lost: the walls seen at cell (%u, %u) are not the map's", x, y);
     finish(line);
@@ -842,6 +1122,9 @@ void decide() {
   recordWall(x, y, turnLeft(heading), minLeft < kSideWall);
   recordWall(x, y, turnRight(heading), minRight < kSideWall);
   recordWall(x, y, heading, minFront < kFrontWall);
+  if (!kBoard) {
+    rememberRecorded(seenCell(static_cast<int8_t>(x), static_cast<int8_t>(y), heading, seen));
+  }
   sendWalls(x, y);
   sendPosition(x, y);
   minLeft = minRight = minFront = 9;

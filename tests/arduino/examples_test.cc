@@ -306,29 +306,34 @@ TEST(ArduinoExamplesTest, RacerSaysWhenItIsLostAndEndsTheContest) {
 }
 
 // a kidnapped mouse (tests/scenarios/kidnapped.lua): exploring, it is picked up and put down a
-// cell or two from where it was, just as it was there. It notices from the walls, follows them
-// until only one place within three cells of where it believed it was fits what it saw and the
-// map, and goes on from there to the goal. The scenario checks the cell it names against the
-// robot's; the simulator's own check, which warns when the cell the firmware reports is not next
-// to the robot's, warns only between the put-down and the find
+// cell or two from where it was, just as it was there, in two classic mazes and a half-size one. It
+// notices from the walls, follows them until only one place within three cells of where it believed
+// it was fits what it saw and the map, and goes on from there to the goal. The scenario checks the
+// cell it names against the robot's; the simulator's own check, which warns when the cell the
+// firmware reports is not next to the robot's, warns only between the put-down and the find
 TEST(ArduinoExamplesTest, RacerFindsItsPlaceAgainWhenItIsPutDownElsewhere) {
   const std::string shared = testing::SharedMazesDir();
   if (shared.empty()) {
     GTEST_SKIP() << "the maze collection (../shared/mazes) is not beside the project";
   }
   struct Case {
-    const char* maze;
+    const char* maze;  // in the collection
     const char* at_s;
     const char* away;
+    const char* robot;
   };
-  for (const Case& c : {Case{"japan2018", "120", "1"}, Case{"apec2013", "80", "2"}}) {
-    const std::string name = std::string("unimouse_example_racer_kidnapped_") + c.maze;
+  for (const Case& c :
+       {Case{"classic/japan2018", "120", "1", ""}, Case{"classic/apec2013", "80", "2", ""},
+        Case{"halfsize/japan2019hef", "80", "1",
+             " --robot unimouse-half --set maze_class=half --set time_limit_s=600"}}) {
+    const std::string name = std::string("unimouse_example_racer_kidnapped_") +
+                             std::filesystem::path(c.maze).filename().string();
     const std::string out = (std::filesystem::temp_directory_path() / name).string();
     const ExampleRun r =
         RunExample("racer",
                    std::string(UNIMOUSE_SOURCE_DIR "/tests/scenarios/kidnapped.lua --maze ") +
-                       shared + "/classic/" + c.maze + ".txt --set at_s=" + c.at_s +
-                       " --set away=" + c.away + " --no-pictures --record off",
+                       shared + "/" + c.maze + ".txt --set at_s=" + c.at_s +
+                       " --set away=" + c.away + c.robot + " --no-pictures --record off",
                    name, Host::kModule);
     ASSERT_EQ(r.outcome.exit_code, 0) << c.maze << ": " << r.outcome.output;
     EXPECT_EQ(r.result["scenario"]["status"], "passed")

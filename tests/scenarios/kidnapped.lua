@@ -6,10 +6,10 @@
 -- cell it is really about to enter (next to the robot's), and then reaches a goal cell.
 return sim.scenario {
   name = "kidnapped",
-  params = { maze = "japan2018", at_s = 30, away = 1, time_limit_s = 300 },
+  params = { maze = "japan2018", maze_class = "auto", at_s = 30, away = 1, time_limit_s = 300 },
 
   world = function(p)
-    sim.maze_load(p.maze, { class = "classic" })
+    sim.maze_load(p.maze, { class = p.maze_class })
   end,
 
   run = function(p)

@@ -1104,7 +1104,8 @@ void decide() {
   contradicted = contradiction ? contradicted + 1 : 0;
   if (!kBoard && (searching || contradicted == 2)) {
     // no reading at all, on every side: the robot leans on a wall, its sensors over the walls
-    const bool blind = minLeft >= kRange && minRight >= kRange && minFront >= kRange;
+    // (the half-size robot's short-range sensors see nothing in an open cell)
+    const bool blind = kScale == 1 && minLeft >= kRange && minRight >= kRange && minFront >= kRange;
     searching = !search(seen, blind, !searching);
     if (searching) {
       minLeft = minRight = minFront = 9;

@@ -877,6 +877,8 @@ void rememberRecorded(const SeenCell& cell) {
   recentNext = static_cast<uint8_t>((recentNext + 1) % kRecent);
   if (recentCount < kRecent) ++recentCount;
 }
+
+// the cells seen while lost, in the frame believed in
 SeenCell seenLost[kBoard ? 1 : kSearchDecisions + 1];
 uint8_t seenCount = 0, searchDecisions = 0, searches = 0;
 int8_t searchX, searchY;  // the cell about to be entered where the search began
@@ -956,15 +958,16 @@ void forgetRecent() {
 // once found under (cx, cy, k): the cells forgotten go back in, the newest under the place found
 // while they fit it, the rest where they were believed to be while they fit there
 void restoreRecent(uint8_t cx, uint8_t cy, uint8_t k) {
+  const uint8_t believedX = static_cast<uint8_t>(searchX),
+                believedY = static_cast<uint8_t>(searchY);
   bool found = true;
   for (uint8_t n = 1; n <= recentCount; ++n) {
     const SeenCell& cell = recent[(recentNext + kRecent - n) % kRecent];
     if (found && agreeing(cell, cx, cy, k) < 0) found = false;
     if (found) {
       recordCell(cell, cx, cy, k);
-    } else if (agreeing(cell, static_cast<uint8_t>(searchX), static_cast<uint8_t>(searchY), 0) >=
-               0) {
-      recordCell(cell, static_cast<uint8_t>(searchX), static_cast<uint8_t>(searchY), 0);
+    } else if (agreeing(cell, believedX, believedY, 0) >= 0) {
+      recordCell(cell, believedX, believedY, 0);
     }
   }
   recentCount = 0;
@@ -1063,6 +1066,8 @@ bool search(const bool seen[3], bool blind, bool begin) {
     }
   }
   if (quarters == 2) quarters = !seen[0] ? 1 : !seen[2] ? 0 : !seen[1] ? -1 : 2;
+  // the moves decide() queues, written out again: a change to the code of decide(), which the
+  // board runs, re-rolls the board's contests (docs/firmware.md, "On the emulated board")
   if (quarters == 0) {
     push(Kind::Straight, kCell, kSearch, kSearch, 0, true);
   } else if (quarters == 2) {

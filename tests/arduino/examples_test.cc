@@ -306,11 +306,12 @@ TEST(ArduinoExamplesTest, RacerSaysWhenItIsLostAndEndsTheContest) {
 }
 
 // a kidnapped mouse (tests/scenarios/kidnapped.lua): exploring, it is picked up and put down a
-// cell or two from where it was, just as it was there, in two classic mazes and a half-size one. It
-// notices from the walls, follows them until only one place within three cells of where it believed
-// it was fits what it saw and the map, and goes on from there to the goal. The scenario checks the
-// cell it names against the robot's; the simulator's own check, which warns when the cell the
-// firmware reports is not next to the robot's, warns only between the put-down and the find
+// cell or two from where it was, just as it was there, in two classic mazes and a half-size one.
+// It notices from the walls, follows them until only one place within three cells of where it
+// believed it was fits what it saw and the map, and goes on from there to the goal. The scenario
+// checks the cell it names against the robot's; the simulator's own check, which warns when the
+// cell the firmware reports is not next to the robot's, warns only between the put-down and the
+// find
 TEST(ArduinoExamplesTest, RacerFindsItsPlaceAgainWhenItIsPutDownElsewhere) {
   const std::string shared = testing::SharedMazesDir();
   if (shared.empty()) {

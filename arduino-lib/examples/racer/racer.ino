@@ -1101,7 +1101,8 @@ void decide() {
   const bool seen[3] = {minLeft < kSideWall, minRight < kSideWall, minFront < kFrontWall};
   const Direction sides[3] = {turnLeft(heading), turnRight(heading), heading};
   bool contradiction = false;
-  for (uint8_t i = 0; i < 3; ++i) {
+  // (searching, the cell believed in may lie outside the maze; the search checks the walls)
+  for (uint8_t i = 0; i < 3 && (kBoard || !searching); ++i) {
     if (maze.isKnown(x, y, sides[i]) && maze.hasWall(x, y, sides[i]) != seen[i]) {
       contradiction = true;
     }

@@ -839,18 +839,18 @@ void planSpeedRun() {
   if (speedRunCost == FFSolver<kMaxSide, kMaxSide>::UNREACHABLE) finish("no way to the goal");
 }
 
-// Finding its place again once lost (not on a board, whose RAM has no room left for it). The
-// mouse goes on in the frame it believed in, which is the maze's moved by whole cells and turned
-// by quarter turns, and keeps the walls of each cell it sees there. A candidate is such a move:
-// the cell where the search began put within kNear cells of where it was believed to be, facing
-// any of four ways. One drops out when a cell seen would lie outside the maze under it, or a side
-// seen disagrees with a side the map knows. The mouse moves on to cells it has not seen while
-// lost, straight on first, and by the walls on its left when all around are seen. When a single
-// candidate is left and at least kSureAgree known sides agreed with it, the estimate, the plan
-// and what it saw move there and exploring goes on. Candidates in cells not yet explored agree
-// with anything and may never drop out: then, after kSearchDecisions, it says so and ends; so it
-// does when none is left, when it sees nothing at all (it leans on a wall), and when it is lost a
-// fourth time
+// Finding its place again once lost (not on a board, where a decision late in a search would stop
+// the loops for a few tenths of a second: docs/firmware.md). The mouse goes on in the frame it
+// believed in, which is the maze's moved by whole cells and turned by quarter turns, and keeps the
+// walls of each cell it sees there. A candidate is such a move: the cell where the search began put
+// within kNear cells of where it was believed to be, facing any of four ways. One drops out when a
+// cell seen would lie outside the maze under it, or a side seen disagrees with a side the map
+// knows. The mouse moves on to cells it has not seen while lost, straight on first, and by the
+// walls on its left when all around are seen. When a single candidate is left and at least
+// kSureAgree known sides agreed with it, the estimate, the plan and what it saw move there and
+// exploring goes on. Candidates in cells not yet explored agree with anything and may never drop
+// out: then, after kSearchDecisions, it says so and ends; so it does when none is left, when it
+// sees nothing at all (it leans on a wall), and when it is lost a fourth time
 const uint8_t kSearchDecisions = 60, kSearches = 3, kSureAgree = 8, kNear = 3;
 struct SeenCell {
   int8_t x, y;    // in the frame believed in

@@ -5,7 +5,7 @@
 # and two cells from where it was, graded by `unimouse batch run -j 2`. Prints a line per contest
 # and a tally: found its place and went on to the goal; found a wrong place; ended saying it was
 # lost (and why); or never noticed (the contest ended first). The default six mazes (72 contests)
-# take about a minute on two cores; MAZES names others (the tests run it on one, at two moments).
+# take about a minute on two cores (the tests run them); MAZES and MOMENTS name others.
 #
 #   bench/racer_kidnap_sweep.sh [UNIMOUSE] [MAZES] [MOMENTS]   (default build/bin/unimouse, six
 #                                                     mazes, 20 40 60 80 100 120 s)

@@ -5,16 +5,14 @@
 # half-size maze with the half-size robot, graded by `unimouse batch run -j 2` with the firmware
 # in-process. Prints a line per maze (status, best run, contest time, wall contacts in the best
 # run and in all, whether the mouse lost its position) and, per class, the share of contests
-# passed and the mean best run (docs/mazes.md). HALF draws a sample of the half-size mazes too
-# (the tests run two of each).
+# passed and the mean best run (docs/mazes.md).
 #
-#   bench/racer_sweep.sh [UNIMOUSE] [SAMPLE] [SEED] [HALF]   (default build/bin/unimouse 50 1 all)
+#   bench/racer_sweep.sh [UNIMOUSE] [SAMPLE] [SEED]     (default build/bin/unimouse 50 1)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 unimouse=$(realpath "${1:-build/bin/unimouse}")
 sample=${2:-50}
 seed=${3:-1}
-half=${4:-all}
 collection=$(realpath ../shared/mazes)
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
@@ -25,16 +23,10 @@ solvable() {
   done
 }
 # shuf draws the same sample for the same seed: its random source is the seed's bytes
-draw() { # COUNT
-  shuf -n "$1" --random-source=<(openssl enc -aes-256-ctr -pass "pass:$seed" -nosalt \
-    < /dev/zero 2> /dev/null)
-}
-solvable "$collection"/classic/*.txt | draw "$sample" | sort > "$work/classic.txt"
-if [ "$half" = all ]; then
-  solvable "$collection"/halfsize/*.txt | sort > "$work/half.txt"
-else
-  solvable "$collection"/halfsize/*.txt | draw "$half" | sort > "$work/half.txt"
-fi
+solvable "$collection"/classic/*.txt |
+  shuf -n "$sample" --random-source=<(openssl enc -aes-256-ctr -pass "pass:$seed" -nosalt \
+    < /dev/zero 2> /dev/null) | sort > "$work/classic.txt"
+solvable "$collection"/halfsize/*.txt | sort > "$work/half.txt"
 
 manifest() { # CLASS ROBOT LIST
   echo "robot: $2"

@@ -134,14 +134,13 @@ int RunBatch(const BatchOptions& o) {
   for (;;) {
     while (stop_signal == 0 && next < queue.size() && static_cast<int>(running.size()) < workers) {
       const Job& job = *queue[next++];
-      const std::vector<std::string> argv = {o.program, "batch", "job", m.file,
-                                             job.id,    "--out", out};
+      const ExecArgs args({o.program, "batch", "job", m.file, job.id, "--out", out});
       const pid_t pid = ::fork();
       UNIMOUSE_THROW_UNLESS(pid >= 0, "cannot start a process for job " + job.id);
       if (pid == 0) {
         // its own process group: a terminal's Ctrl-C reaches this process only, which stops
         // the jobs in order
-        ExecInOwnGroup(argv, -1,
+        ExecInOwnGroup(args, -1,
                        ::open(log.c_str(), O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0644));
       }
       ::setpgid(pid, pid);

@@ -55,7 +55,7 @@ std::string FindProgram(const std::string& name) {
 }
 
 // the run's environment is this one; only the limits and the file system differ
-[[noreturn]] void LimitAndExec(const std::vector<std::string>& argv, const JobLimits& limits,
+[[noreturn]] void LimitAndExec(const ExecArgs& args, const JobLimits& limits,
                                const std::string& log_file) {
   const auto limit = [](int resource, rlim_t soft, rlim_t hard) {
     const rlimit r{soft, hard};
@@ -72,12 +72,17 @@ std::string FindProgram(const std::string& name) {
   limit(RLIMIT_CORE, 0, 0);
   const int log = ::open(log_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
   if (log < 0) ::_exit(kExitRuntimeFault);
-  ExecInOwnGroup(argv, log, log);
+  ExecInOwnGroup(args, log, log);
 }
 
 }  // namespace
 
-void ExecInOwnGroup(const std::vector<std::string>& argv, int out_fd, int err_fd) {
+ExecArgs::ExecArgs(const std::vector<std::string>& argv) : strings(argv) {
+  for (auto& s : strings) pointers.push_back(s.data());
+  pointers.push_back(nullptr);
+}
+
+void ExecInOwnGroup(const ExecArgs& args, int out_fd, int err_fd) {
   ::setpgid(0, 0);
   const int null = ::open("/dev/null", O_RDWR | O_CLOEXEC);
   if (null >= 0) ::dup2(null, 0);
@@ -89,10 +94,7 @@ void ExecInOwnGroup(const std::vector<std::string>& argv, int out_fd, int err_fd
   ::sigprocmask(SIG_SETMASK, &none, nullptr);
   std::signal(SIGINT, SIG_DFL);
   std::signal(SIGTERM, SIG_DFL);
-  std::vector<char*> args;
-  for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
-  args.push_back(nullptr);
-  ::execv(args[0], args.data());
+  ::execv(args.pointers[0], args.pointers.data());
   ::_exit(127);
 }
 
@@ -344,9 +346,10 @@ std::vector<std::string> SandboxArgv(const std::string& bwrap, const fs::path& d
 Waited RunLimited(const std::vector<std::string>& argv, const JobLimits& limits, double wall_time_s,
                   const std::string& log_file, bool sandboxed, const std::string& job_id) {
   const auto start = std::chrono::steady_clock::now();
+  const ExecArgs args(argv);
   const pid_t child = ::fork();
   UNIMOUSE_THROW_UNLESS(child >= 0, "cannot start a process for job " + job_id);
-  if (child == 0) LimitAndExec(argv, limits, log_file);
+  if (child == 0) LimitAndExec(args, limits, log_file);
   ::setpgid(child, child);
 
   Waited waited;

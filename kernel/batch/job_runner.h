@@ -59,10 +59,20 @@ nlohmann::json JobCommand(const Manifest& manifest, const Job& job, const std::s
 /// Whether the job's directory holds a job.json for exactly this job command.
 bool JobIsDone(const Manifest& manifest, const Job& job, const std::string& batch_out);
 
+/// A program's argv as execv() takes it, made before fork(): the child allocates nothing (under
+/// a memory limit, a sanitizer's allocator could fail there and end it with its own exit code).
+struct ExecArgs {
+  explicit ExecArgs(const std::vector<std::string>& argv);
+  ExecArgs(const ExecArgs&) = delete;  // the pointers point into this one's strings
+  ExecArgs& operator=(const ExecArgs&) = delete;
+  std::vector<std::string> strings;
+  std::vector<char*> pointers;  ///< into strings, ended by nullptr
+};
+
 /// In a child process after fork(): makes it a process group of its own, reading /dev/null,
 /// writing to out_fd and err_fd (/dev/null where -1), with SIGINT and SIGTERM as a program
-/// expects them, and executes argv (argv[0] a path). Never returns.
-[[noreturn]] void ExecInOwnGroup(const std::vector<std::string>& argv, int out_fd, int err_fd);
+/// expects them, and executes args (the first a path). Never returns.
+[[noreturn]] void ExecInOwnGroup(const ExecArgs& args, int out_fd, int err_fd);
 
 /// Runs one job and writes its job.json; returns 0 when it passed, 1 otherwise, 3 when it was
 /// interrupted (SIGINT, SIGTERM: the run is stopped and no job.json is written). `program` is

@@ -78,6 +78,10 @@ class Child final : public Channel {
     if (pipe(to_child) != 0 || pipe(from_child) != 0 || pipe2(exec_error, O_CLOEXEC) != 0) {
       throw RuntimeFault(std::string("cannot make pipes: ") + std::strerror(errno));
     }
+    // made before fork(): the child allocates nothing
+    std::vector<char*> argv;
+    for (const std::string& arg : program) argv.push_back(const_cast<char*>(arg.c_str()));
+    argv.push_back(nullptr);
     pid_ = fork();
     if (pid_ < 0) throw RuntimeFault(std::string("cannot fork: ") + std::strerror(errno));
     if (pid_ == 0) {
@@ -93,9 +97,6 @@ class Child final : public Channel {
         (void)!write(exec_error[1], &error, sizeof(error));
         _exit(127);
       }
-      std::vector<char*> argv;
-      for (const std::string& arg : program) argv.push_back(const_cast<char*>(arg.c_str()));
-      argv.push_back(nullptr);
       execvp(argv[0], argv.data());
       const int error = errno;
       (void)!write(exec_error[1], &error, sizeof(error));

@@ -49,6 +49,28 @@ TEST(DocumentedCommandsTest, TheGyroExampleRunsOnTheGyroRobotAsFirmwareMdShows) 
   EXPECT_EQ(o.exit_code, 0) << commands[0] << "\n" << o.output;
 }
 
+// the bundled wall_distance example by its name, from anywhere, as a program and on the board
+TEST(DocumentedCommandsTest, TheBundledExampleRunsByItsNameTheWaysFirmwareMdShows) {
+  std::vector<std::string> commands =
+      DocumentedCommands("docs/firmware.md", "**Compiled for the PC**");
+#ifdef UNIMOUSE_AVR_TEST_FIRMWARE_DIR
+  for (const std::string& command :
+       DocumentedCommands("docs/firmware.md", "**On an emulated board**")) {
+    commands.push_back(command);
+  }
+  ASSERT_EQ(commands.size(), 2u);
+  EXPECT_NE(commands[1].find("--link avr:wall_distance"), std::string::npos) << commands[1];
+#else
+  ASSERT_EQ(commands.size(), 1u);  // no AVR toolchain: no board image
+#endif
+  EXPECT_NE(commands[0].find("--link native:wall_distance"), std::string::npos) << commands[0];
+  for (const std::string& command : commands) {
+    const testing::Outcome o = RunDocumented(command, FreshDirectory("documented_three_ways"));
+    EXPECT_EQ(o.exit_code, 0) << command << "\n" << o.output;
+    EXPECT_NE(o.output.find("scenario wall_distance: passed"), std::string::npos) << o.output;
+  }
+}
+
 TEST(DocumentedCommandsTest, AnImuDriverOnTheEmulatedBoardRunsAsFirmwareMdShows) {
 #ifndef UNIMOUSE_AVR_TEST_FIRMWARE_DIR
   GTEST_SKIP() << "no AVR toolchain (gcc-avr, avr-libc, arduino-core-avr): no image to run";

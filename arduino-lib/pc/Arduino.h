@@ -1,22 +1,125 @@
 // SPDX-License-Identifier: MIT
-// The part of the Arduino core that the UnimouseSim library and its examples use, for building
-// them as programs on the PC: Stream, and (with the simulator's clock) millis, micros and delay.
-// Only what the library needs; a sketch that needs more is built for a board.
+// The Arduino core for building sketches as programs on the PC: Serial, print, the clock
+// (millis, micros and delay on the simulator's clock), and the everyday language of a sketch
+// (types, constants, math and bit helpers, random, PROGMEM). The PC has no pins wired to the
+// robot: the robot's motors and sensors are the library's, over the link; pinMode and
+// digitalWrite keep what was written, analogRead reads 0, interrupts never fire.
 #ifndef UNIMOUSE_PC_ARDUINO_H_
 #define UNIMOUSE_PC_ARDUINO_H_
 
 #include <math.h>
 #include <stddef.h>
 #include <stdint.h>
-#include <stdio.h>  // printf, as the board's Arduino.h brings it
+#include <stdio.h>   // printf, as the board's Arduino.h brings it
+#include <stdlib.h>  // abs, malloc, as on the board
+#include <string.h>  // memcpy, strlen, as on the board
+
+#include <type_traits>
 
 #define PI 3.1415926535897932384626433832795
+#define HALF_PI 1.5707963267948966192313216916398
+#define TWO_PI 6.283185307179586476925286766559
+#define DEG_TO_RAD 0.017453292519943295769236907684886
+#define RAD_TO_DEG 57.295779513082320876798154814105
+#define EULER 2.718281828459045235360287471352
 #define DEC 10
 #define HEX 16
 #define OCT 8
 #define BIN 2
 /// Text kept in flash on a board; on the PC the text itself.
 #define F(text) (text)
+
+// the types and constants of a sketch, with the values of the board's core
+typedef uint8_t byte;
+typedef bool boolean;
+typedef unsigned int word;
+#define HIGH 0x1
+#define LOW 0x0
+#define INPUT 0x0
+#define OUTPUT 0x1
+#define INPUT_PULLUP 0x2
+#define CHANGE 1
+#define FALLING 2
+#define RISING 3
+#define LED_BUILTIN 13
+/// The analog inputs' pin numbers, as on a Mega 2560.
+enum : uint8_t { A0 = 54, A1, A2, A3, A4, A5, A6, A7, A8, A9, A10, A11, A12, A13, A14, A15 };
+
+// the core's helpers; functions rather than the board's macros, so that std::min and friends
+// still compile, with the macros' result type
+template <typename A, typename B>
+constexpr typename std::common_type<A, B>::type min(A a, B b) {
+  return a < b ? a : b;
+}
+template <typename A, typename B>
+constexpr typename std::common_type<A, B>::type max(A a, B b) {
+  return a > b ? a : b;
+}
+template <typename T, typename L, typename H>
+constexpr typename std::common_type<T, L, H>::type constrain(T x, L low, H high) {
+  return x < low ? low : (x > high ? high : x);
+}
+template <typename T>
+constexpr T sq(T x) {
+  return x * x;
+}
+#define radians(deg) ((deg)*DEG_TO_RAD)
+#define degrees(rad) ((rad)*RAD_TO_DEG)
+/// Arduino's map(): integer arithmetic on long, as on the board.
+long map(long x, long in_min, long in_max, long out_min, long out_max);
+
+/// word(x) and word(high, low), as the board's core has them beside the type word.
+inline unsigned int makeWord(unsigned int w) { return w; }
+inline unsigned int makeWord(uint8_t high, uint8_t low) {
+  return static_cast<unsigned int>(high << 8 | low);
+}
+#define word(...) makeWord(__VA_ARGS__)
+#define lowByte(w) ((uint8_t)((w)&0xff))
+#define highByte(w) ((uint8_t)((w) >> 8))
+#define bit(b) (1UL << (b))
+#define bitRead(value, b) (((value) >> (b)) & 0x01)
+#define bitSet(value, b) ((value) |= (1UL << (b)))
+#define bitClear(value, b) ((value) &= ~(1UL << (b)))
+#define bitWrite(value, b, bitvalue) ((bitvalue) ? bitSet(value, b) : bitClear(value, b))
+
+/// Pins: the PC's are wired to nothing. A pin reads back what was written to it (HIGH for
+/// INPUT_PULLUP), an analog input reads 0.
+void pinMode(uint8_t pin, uint8_t mode);
+void digitalWrite(uint8_t pin, uint8_t value);
+int digitalRead(uint8_t pin);
+int analogRead(uint8_t pin);
+void analogWrite(uint8_t pin, int value);
+void tone(uint8_t pin, unsigned int frequency, unsigned long duration = 0);
+void noTone(uint8_t pin);
+/// Interrupts: no pin changes on the PC, so a handler is kept and never called.
+#define digitalPinToInterrupt(p) \
+  ((p) == 2 ? 0 : ((p) == 3 ? 1 : ((p) >= 18 && (p) <= 21 ? 23 - (p) : -1)))
+void attachInterrupt(uint8_t interrupt, void (*handler)(), int mode);
+void detachInterrupt(uint8_t interrupt);
+inline void interrupts() {}
+inline void noInterrupts() {}
+inline void yield() {}
+
+/// Arduino's random numbers: a sequence fixed by randomSeed(), the same in every run.
+void randomSeed(unsigned long seed);
+long random(long howbig);
+long random(long howsmall, long howbig);
+
+/// Arduino's dtostrf(): x in at least `width` characters with `precision` decimals.
+char* dtostrf(double x, signed char width, unsigned char precision, char* text);
+
+// flash on a board, plain memory on the PC
+#define PROGMEM
+#define PSTR(text) (text)
+#define pgm_read_byte(address) (*(const uint8_t*)(address))
+#define pgm_read_word(address) (*(const uint16_t*)(address))
+#define pgm_read_dword(address) (*(const uint32_t*)(address))
+#define pgm_read_float(address) (*(const float*)(address))
+#define pgm_read_ptr(address) (*(void* const*)(address))
+#define memcpy_P memcpy
+#define strcpy_P strcpy
+#define strlen_P strlen
+#define strcmp_P strcmp
 
 /// A byte stream, as Arduino's: a board's Serial is one.
 class Stream {
@@ -75,15 +178,24 @@ class PcPrint {
 class HardwareSerial : public Stream, public PcPrint {
  public:
   void begin(unsigned long) {}
+  /// Whether the port is open: always, as a Mega 2560's (`while (!Serial) {}` goes on).
+  explicit operator bool() const { return true; }
   int available() override;
   int read() override;
   size_t write(uint8_t byte) override;
+  using Stream::write;
+  size_t write(const char* text) {
+    return write(reinterpret_cast<const uint8_t*>(text), strlen(text));
+  }
   void flush() override;
 };
 extern HardwareSerial Serial;
 
-/// Milliseconds and microseconds since the start: on the PC, sim time from the simulator's clock
-/// frames once they come (lock-step), wall time before.
+/// Milliseconds and microseconds since the start. On the PC: the wall clock until the library's
+/// robot begins; then the delays asked for before the simulator's first clock frame, held until
+/// it comes; then the sim time of its frames counted on from there. It never goes back, and a
+/// loop that only reads it lets the simulation run on (a step per 1000 reads), as a board's
+/// clock runs on while it spins.
 unsigned long millis();
 unsigned long micros();
 /// Waits so many milliseconds (microseconds) of sim time once the simulator's clock frames come:

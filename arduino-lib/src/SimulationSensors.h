@@ -50,21 +50,21 @@ class StreamSimulationSensorManager : public ISimulationSensorManager {
 
   void updateSensors() override {
     while (stream_.available() > 0) {
-      const int byte = stream_.read();
-      if (byte < 0) return;
+      const int next = stream_.read();
+      if (next < 0) return;
       if (have_ == 0) {
         // a frame's id: sim -> MCU frames have a fixed size, the protocol's or the one the
         // simulator declared; anything else is not a frame
-        const int size = payloadSize(static_cast<uint8_t>(byte));
+        const int size = payloadSize(static_cast<uint8_t>(next));
         if (size < 0 || size > static_cast<int>(sizeof(payload_))) {
           ++skippedBytes_;
           continue;
         }
-        id_ = static_cast<uint8_t>(byte);
+        id_ = static_cast<uint8_t>(next);
         need_ = static_cast<uint8_t>(size);
         have_ = 1;
       } else {
-        payload_[have_++ - 1] = static_cast<uint8_t>(byte);
+        payload_[have_++ - 1] = static_cast<uint8_t>(next);
       }
       if (have_ == need_ + 1) {
         have_ = 0;

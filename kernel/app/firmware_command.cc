@@ -164,7 +164,7 @@ void AddFirmwareCommands(CommandLine& cli) {
   CLI::App* firmware_build_cmd = firmware_cmd->add_subcommand(
       "build",
       "build a sketch for the PC (a program and a module, each run in lock-step by --link) or "
-      "for the emulated board (an image for --link), docs/firmware->md");
+      "for the emulated board (an image for --link), docs/firmware.md");
   firmware_build_cmd->add_option("sketch", firmware->sketch, "sketch folder or .ino file")
       ->required();
   firmware_build_cmd->add_option(

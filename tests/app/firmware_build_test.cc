@@ -163,6 +163,69 @@ TEST(FirmwareBuildTest, TheDocumentedCommandsBuildAndRunASketchFolderOnTheEmulat
   EXPECT_TRUE(fs::is_regular_file(work + "/my_follower/my_follower.elf"));
 }
 
+// The lines tests/arduino/habits prints with the word "habit", in order, from a run's log.
+std::vector<std::string> HabitLines(const std::string& log) {
+  std::vector<std::string> lines;
+  for (size_t at = log.find("\thabit "); at != std::string::npos;
+       at = log.find("\thabit ", at + 1)) {
+    lines.push_back(log.substr(at + 1, log.find('\n', at) - at - 1));
+  }
+  return lines;
+}
+
+// A student's habits (tests/arduino/habits): the core's helpers, PROGMEM, EEPROM, random(),
+// pins, printed numbers, a tab and a .cpp, a delay() before the robot begins and a wait on
+// millis() alone. Built for the PC and for the board, each prints what the board's own Arduino
+// core computes: hand-computed values (random() is the minimal standard generator, 16807 x mod
+// 2^31 - 1, from the seed 42), the same on both.
+TEST(FirmwareBuildTest, AStudentsArduinoHabitsGiveTheBoardsAnswersOnThePcAndOnTheBoard) {
+  const std::vector<std::string> expected = {
+      "habit map 127",  // 512 * 255 / 1023, in integers
+      "habit constrain 300",
+      "habit min max -2 7",
+      "habit bits 1 9 8",
+      "habit word 513",
+      "habit progmem 20",
+      "habit eeprom 255 1234",  // an erased cell, then what was put
+      "habit random 94 23 9 13",
+      "habit pin 1",
+      "habit hex FFFFFFFF",                         // a 32-bit long
+      "habit numbers 3 ovf inf 3.1416 -123456 13",  // 2.5 rounded half up; past 32 bits; -inf
+      "habit parts 42 7",
+      "habit clock on yes",  // millis() never went back once the robot began
+      "habit spun 50 ms",
+  };
+  const std::string work = FreshDirectory("fw_habits");
+  const std::string sketch = UNIMOUSE_SOURCE_DIR "/tests/arduino/habits";
+  std::vector<std::string> links;
+  auto build = Unimouse("firmware build " + sketch + " --out " + work + "/pc");
+  ASSERT_EQ(build.exit_code, 0) << build.output;
+  links.push_back("native:" + work + "/pc/habits");
+  links.push_back("inproc:" + work + "/pc/habits.so");
+  if (std::system("command -v avr-g++ >/dev/null") == 0) {
+    build = Unimouse("firmware build " + sketch + " --board mega2560 --out " + work + "/board");
+    ASSERT_EQ(build.exit_code, 0) << build.output;
+    links.push_back("avr:" + work + "/board/habits.elf");
+  }
+  for (const std::string& link : links) {
+    const auto run = UnimouseRun(
+        "--scenario speed_control --duration 0.5 --no-pictures --record off --link " + link,
+        "fw_habits_run");
+    if (run.outcome.output.find("this build has no emulated board") != std::string::npos) {
+      continue;
+    }
+    std::vector<std::string> lines = HabitLines(
+        ReadTextFile((fs::temp_directory_path() / "fw_habits_run" / "log.txt").string()));
+    ASSERT_FALSE(lines.empty()) << link << ": " << run.outcome.output;
+    // after delay(200): the PC counts the delay asked for, the board's timer a tick behind
+    EXPECT_TRUE(lines[0] == "habit start 200" ||
+                (link.rfind("avr:", 0) == 0 && lines[0] == "habit start 199"))
+        << link << ": " << lines[0];
+    lines.erase(lines.begin());
+    EXPECT_EQ(lines, expected) << link;
+  }
+}
+
 // The README's words for a sketch of one's own: the folder my_sketch/my_sketch.ino, built by
 // `unimouse firmware build my_sketch`, run with `--link native:my_sketch/my_sketch`.
 TEST(FirmwareBuildTest, TheReadmesCommandsBuildAndRunASketchOfOnesOwn) {

@@ -1,0 +1,4 @@
+#ifndef THREE_H_
+#define THREE_H_
+int addThree(int x);
+#endif

@@ -136,7 +136,8 @@ bool MmsWorld::Blocked(int px, int py) const {
 bool MmsWorld::WallWithin(int direction, long half_steps) const {
   int px = px_;
   int py = py_;
-  for (long k = 0; k < half_steps; ++k) {
+  // mms looks at least at the wall right ahead: a count of 0 or less is 1
+  for (long k = 0; k < std::max(half_steps, 1L); ++k) {
     px += kDx[direction];
     py += kDy[direction];
     if (Blocked(px, py)) return true;
@@ -155,11 +156,22 @@ MmsResponse MmsWorld::Move(long half_steps) {
     ++crashes_;
     return response;
   }
-  if (!stats_.in_run && cell() == Cell{0, 0}) {
+  // a wall right ahead: mms answers crash at once, charging nothing and starting no run
+  if (Blocked(px_ + kDx[direction_], py_ + kDy[direction_])) {
+    response.reply = "crash";
+    response.crash = true;
+    ++crashes_;
+    return response;
+  }
+  // every move from the start cell begins a run afresh, with the penalty of a reset before it
+  // in the run's and the total effective distance
+  if (Location() == Cell{0, 0}) {
+    const double penalty = stats_.reset_penalty_pending ? 15 : 0;
     stats_.in_run = true;
     stats_.current_run_distance = 0;
     stats_.current_run_turns = 0;
-    stats_.current_run_effective_distance = stats_.reset_penalty_pending ? 15 : 0;
+    stats_.current_run_effective_distance = penalty;
+    stats_.total_effective_distance += penalty;
     stats_.reset_penalty_pending = false;
   }
 
@@ -192,8 +204,12 @@ MmsResponse MmsWorld::Move(long half_steps) {
   return response;
 }
 
+Cell MmsWorld::Location() const { return {px_ / 2, py_ / 2}; }
+
 void MmsWorld::Stopped() {
-  const Cell here = cell();
+  // as mms places the mouse: the edge between two cells counts as the one east or north of it,
+  // so a stop on the edge between two goal cells finishes a run
+  const Cell here = Location();
   const auto& goals = maze_.goals();
   const bool in_goal = std::find(goals.begin(), goals.end(), here) != goals.end();
   goal_reached_ = goal_reached_ || in_goal;
@@ -374,9 +390,15 @@ MmsResponse MmsWorld::Show(const std::vector<std::string>& tokens, const std::st
       if (space == std::string::npos) break;
     }
     if (nargs < 3 || space == std::string::npos) return Invalid("takes X Y TEXT");
-    std::string text = line.substr(space + 1, 10);
-    for (char& c : text) {
-      if (c < 32 || c > 126) c = '?';
+    // up to 10 characters, as mms reads the line (UTF-8); what the pictures cannot draw, a
+    // control character or one beyond ASCII, is a '?' each
+    std::string text;
+    for (size_t i = space + 1; i < line.size() && text.size() < 10; ++i) {
+      const auto byte = static_cast<unsigned char>(line[i]);
+      text += byte >= 32 && byte <= 126 ? static_cast<char>(byte) : '?';
+      if (byte >= 0x80) {
+        while (i + 1 < line.size() && (static_cast<unsigned char>(line[i + 1]) & 0xC0) == 0x80) ++i;
+      }
     }
     if (inside) texts_[at] = text;
     return done;

@@ -269,9 +269,13 @@ class Exchange {
       const auto left =
           std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now());
       if (left.count() < 0) {
+        const std::string quiet =
+            "the program sent no command line for " + MmsNumber(options_.reply_timeout_s) + " s";
+        // an invalid command gets no reply: a program that waits for one waits for ever
         return {"program_hang",
-                "the program sent no command line for " + MmsNumber(options_.reply_timeout_s) +
-                    " s (does it flush stdout after each command?)",
+                last_dropped_.empty() ? quiet + " (does it flush stdout after each command?)"
+                                      : quiet + " after its invalid command " + last_dropped_ +
+                                            ", which gets no reply (does it wait for one?)",
                 kExitRuntimeFault};
       }
       channel_.Write(pending_);
@@ -337,8 +341,10 @@ class Exchange {
     if (session_ != nullptr) session_->ShowDisplay(world_.Beliefs(), Hud());
     if (response.kind == MmsResponse::Kind::kInvalid) {
       LogInvalid(line, response.problem, commands_);
+      last_dropped_ = "'" + Printable(line) + "' (line " + std::to_string(commands_) + ")";
       return std::nullopt;
     }
+    last_dropped_.clear();
     if (!response.note.empty()) {
       std::fprintf(stderr, "mms: line %ld: %s\n", commands_, response.note.c_str());
     }
@@ -394,6 +400,7 @@ class Exchange {
   std::string pending_;
   long commands_ = 0;
   long invalid_ = 0;
+  std::string last_dropped_;  // the last line, when it was an invalid command
   double paced_s_ = 0;
 };
 
@@ -414,7 +421,10 @@ void WarnIfTheRobotDoesNotFit(Session& session) {
 }
 
 void CheckOptions(const MmsRunOptions& o) {
-  UNIMOUSE_THROW_UNLESS(o.program.empty() != o.port.empty(),
+  UNIMOUSE_THROW_UNLESS(!o.program.empty() || !o.port.empty(),
+                        "unimouse mms: name the program after -- (unimouse mms --maze MAZE -- "
+                        "./solver), or a board's --port");
+  UNIMOUSE_THROW_UNLESS(o.program.empty() || o.port.empty(),
                         "unimouse mms: name the program after --, or a --port, not both");
   UNIMOUSE_THROW_UNLESS(o.physical || !o.true_walls, "--true-walls goes with --physical");
   UNIMOUSE_THROW_UNLESS(o.physical || !o.strict_contacts, "--strict-contacts goes with --physical");

@@ -70,12 +70,14 @@ TEST_F(MmsWorldTest, ScriptedMovesGiveTheStatsAndScoreWorkedOutByHand) {
   EXPECT_EQ(Ask("moveForward 2"), "ack");
   EXPECT_EQ(Ask("turnLeft90"), "ack");
   EXPECT_EQ(Ask("moveForward"), "ack");
-  // run 2 cost 2 turns + 22 > 7: the best run stays; totals 3 turns, 22 half-steps, 17 effective
+  // run 2 cost 2 turns + 22 > 7: the best run stays; totals 3 turns, 22 half-steps, and
+  // 10 + 15 + 2 + 3 + 2 = 32 effective (mms adds the penalty to the total too)
   EXPECT_EQ(Ask("getStat best-run-effective-distance"), "6");
   EXPECT_EQ(Ask("getStat total-turns"), "3");
   EXPECT_EQ(Ask("getStat total-distance"), "22");
-  EXPECT_EQ(Ask("getStat total-effective-distance"), "17");
-  EXPECT_EQ(Ask("getStat score"), "9");
+  EXPECT_EQ(Ask("getStat total-effective-distance"), "32");
+  // 1 + 6 + (3 + 32) / 10
+  EXPECT_EQ(Ask("getStat score"), "10.5");
   EXPECT_EQ(world_.moves(), 9);
   EXPECT_EQ(world_.crashes(), 1);
 }
@@ -87,14 +89,64 @@ TEST_F(MmsWorldTest, ScoreIs2000AndRunStatsAreMinusOneBeforeAnyRun) {
   EXPECT_EQ(Ask("getStat total-turns"), "0");
 }
 
-TEST_F(MmsWorldTest, AMoveIntoAWallCrashesWithoutMotionButIsCharged) {
+// as mms: a move with a wall right ahead is refused before it starts, charging nothing and
+// starting no run (a move a wall stops later is charged whole, above)
+TEST_F(MmsWorldTest, AMoveIntoAWallRightAheadCrashesUnchargedAndStartsNoRun) {
   EXPECT_EQ(Ask("turnRight"), "ack");
   EXPECT_EQ(Ask("moveForward"), "crash");
   EXPECT_EQ(world_.cell(), (Cell{0, 0}));
-  EXPECT_EQ(Ask("getStat total-distance"), "2");
+  EXPECT_EQ(Ask("getStat total-distance"), "0");
+  EXPECT_EQ(Ask("getStat current-run-distance"), "-1");
   EXPECT_EQ(Ask("moveForward 0"), "crash");
-  EXPECT_EQ(Ask("getStat total-distance"), "2");
+  EXPECT_EQ(Ask("getStat total-distance"), "0");
   EXPECT_EQ(world_.crashes(), 2);
+
+  // after a reset, a bump at the start keeps the penalty for the run that follows
+  EXPECT_EQ(Ask("turnLeft"), "ack");
+  EXPECT_EQ(Ask("moveForward"), "ack");
+  EXPECT_EQ(Ask("ackReset"), "ack");
+  EXPECT_EQ(Ask("turnRight"), "ack");
+  EXPECT_EQ(Ask("moveForward"), "crash");
+  EXPECT_EQ(Ask("turnLeft"), "ack");
+  EXPECT_EQ(Ask("moveForward"), "ack");
+  EXPECT_EQ(Ask("getStat current-run-effective-distance"), "17");
+  // the first run's 2, the penalty's 15, the second's 2
+  EXPECT_EQ(Ask("getStat total-effective-distance"), "19");
+}
+
+// as mms: a count of 0 or less asks about the wall right ahead, as 1 does
+TEST_F(MmsWorldTest, AWallQueryWithACountOfZeroOrLessLooksRightAhead) {
+  for (const char* query : {"wallRight 0", "wallRight -2", "wallBack 0", "wallLeft -1"}) {
+    EXPECT_EQ(Ask(query), "true") << query;
+  }
+  EXPECT_EQ(Ask("wallFront 0"), "false");
+}
+
+// as mms: a stop on the edge between two goal cells counts in the one east (or north) of it,
+// and finishes the run
+TEST_F(MmsWorldTest, AStopOnTheEdgeBetweenTwoGoalCellsFinishesTheRun) {
+  const Maze maze = ParseMazeText(
+      "o---o---o---o---o---o\n"
+      "|                   |\n"
+      "o   o   o   o   o   o\n"
+      "|                   |\n"
+      "o   o   o   o   o   o\n"
+      "|         G   G     |\n"
+      "o   o   o   o   o   o\n"
+      "|                   |\n"
+      "o   o   o   o   o   o\n"
+      "| S |               |\n"
+      "o---o---o---o---o---o\n",
+      "two_goals.txt");
+  MmsWorld world(maze, MmsTiming{});
+  for (const char* line : {"moveForward 2", "turnRight", "moveForwardHalf 5"}) {
+    EXPECT_EQ(world.Handle(line).reply, "ack") << line;
+  }
+  EXPECT_EQ(world.cell(), (Cell{-1, -1}));  // between (2, 2) and (3, 2)
+  EXPECT_TRUE(world.goal_reached());
+  // 4 + 5 half-steps, effective 3 + 3.5, and one turn: 1 + 6.5 + (1 + 6.5) / 10
+  EXPECT_EQ(world.Handle("getStat best-run-distance").reply, "9");
+  EXPECT_EQ(world.Handle("getStat score").reply, "8.25");
 }
 
 // a body that carries out every move and turn, grazing a wall each time
@@ -161,7 +213,7 @@ TEST_F(MmsWorldTest, KeepsTheDisplayCommandsWithoutReplying) {
   for (const char* line :
        {"setWall 0 0 n", "setWall 4 4 e", "clearWall 1 1 w", "setColor 1 1 V", "setColor 2 2 r",
         "clearColor 2 2", "setColor 9 9 g", "setText 1 0 hello big world", "setText 2 0 \x01",
-        "setText 3 0 x", "clearText 3 0"}) {
+        "setText 3 0 x", "clearText 3 0", "setText 3 3 h\xc3\xa9llo w\xc3\xb6rld"}) {
     EXPECT_EQ(KindOf(line), MmsResponse::Kind::kNoReply) << line;
   }
   const nlohmann::json expected = nlohmann::json::parse(R"({
@@ -169,7 +221,8 @@ TEST_F(MmsWorldTest, KeepsTheDisplayCommandsWithoutReplying) {
               {"x": 0, "y": 1, "side": "s", "set": true}, {"x": 1, "y": 1, "side": "w", "set": false},
               {"x": 4, "y": 4, "side": "e", "set": true}],
     "colors": [{"x": 1, "y": 1, "color": "V"}],
-    "texts": [{"x": 1, "y": 0, "text": "hello big "}, {"x": 2, "y": 0, "text": "?"}]})");
+    "texts": [{"x": 1, "y": 0, "text": "hello big "}, {"x": 2, "y": 0, "text": "?"},
+              {"x": 3, "y": 3, "text": "h?llo w?rl"}]})");
   EXPECT_EQ(world_.Display(), expected);
   EXPECT_EQ(KindOf("clearAllColor"), MmsResponse::Kind::kNoReply);
   EXPECT_EQ(world_.Display()["colors"].size(), 0u);

@@ -251,6 +251,16 @@ TEST_F(MmsRunTest, AProgramThatStopsSendingIsStoppedAfterTheReplyTimeout) {
   EXPECT_LT(took_s, 10);
 }
 
+// a misspelt command gets no reply, as in mms; a program that waits for one is told why it hung
+TEST_F(MmsRunTest, AProgramWaitingForAReplyToAnInvalidCommandIsToldSo) {
+  const MmsOutcome run = Mms("--reply-timeout-s 0.3 --maze " + open_maze_ + " -- " +
+                             ShellClient("ask mazeWidth\nask movForward\n"));
+  EXPECT_EQ(run.result["status"], "program_hang");
+  EXPECT_EQ(run.result["reason"],
+            "the program sent no command line for 0.3 s after its invalid command 'movForward' "
+            "(line 2), which gets no reply (does it wait for one?)");
+}
+
 TEST_F(MmsRunTest, AProgramThatIsKilledIsAProgramError) {
   const MmsOutcome run = Mms("--maze " + open_maze_ + " -- " + ShellClient("kill -SEGV $$\n"));
   EXPECT_EQ(run.outcome.exit_code, 3);
@@ -520,6 +530,15 @@ TEST_F(MmsRunTest, AProgramAndAPortTogetherAreBadInput) {
   const MmsOutcome run = Mms("--maze japan2018 --port tcp::0 -- " + kFloodFillClient);
   EXPECT_EQ(run.outcome.exit_code, 2) << run.outcome.output;
   EXPECT_NE(run.outcome.output.find("not both"), std::string::npos) << run.outcome.output;
+}
+
+TEST_F(MmsRunTest, NeitherAProgramNorAPortIsBadInputSayingHowToNameOne) {
+  const MmsOutcome run = Mms("--maze japan2018");
+  EXPECT_EQ(run.outcome.exit_code, 2) << run.outcome.output;
+  EXPECT_NE(run.outcome.output.find("name the program after -- (unimouse mms --maze MAZE -- "
+                                    "./solver), or a board's --port"),
+            std::string::npos)
+      << run.outcome.output;
 }
 
 }  // namespace

@@ -107,7 +107,8 @@ class MmsWorld {
   MmsResponse Handle(const std::string& line);
 
   const MmsStats& stats() const { return stats_; }
-  /// Returns whether the mouse has stopped at the centre of a goal cell.
+  /// Returns whether the mouse has stopped in a goal cell (its centre, or an edge mms counts in
+  /// it).
   bool goal_reached() const { return goal_reached_; }
   /// Returns the contest time the moves took so far.
   double contest_time_s() const { return contest_time_s_; }
@@ -147,6 +148,8 @@ class MmsWorld {
   MmsResponse WallQuery(int relative, long half_steps);
   MmsResponse Show(const std::vector<std::string>& tokens, const std::string& line);
   void Stopped();
+  /// The cell mms counts the mouse in: between two cells, the one east or north of the edge.
+  Cell Location() const;
 
   const Maze& maze_;
   MmsTiming timing_;

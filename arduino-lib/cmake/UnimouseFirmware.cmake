@@ -19,7 +19,7 @@ set_property(GLOBAL PROPERTY UNIMOUSE_ARDUINO_LIB_DIR "${root}")
 # bound inside the module)
 function(unimouse_add_pc_cores)
   get_property(root GLOBAL PROPERTY UNIMOUSE_ARDUINO_LIB_DIR)
-  set(common ${root}/pc/clock.cc ${root}/pc/print.cc ${root}/pc/wiring.cc)
+  set(common ${root}/pc/clock.cc ${root}/pc/print.cc ${root}/pc/wiring.cc ${root}/pc/WString.cc)
   add_library(unimouse_arduino_pc_core STATIC ${root}/pc/core.cc ${common})
   add_library(unimouse_arduino_inproc_core STATIC ${root}/pc/inproc_core.cc ${common}
     ${root}/pc/inproc_stdio.c ${root}/pc/inproc_exit.c)

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
 // The Arduino core for building sketches as programs on the PC: Serial, print, the clock
 // (millis, micros and delay on the simulator's clock), and the everyday language of a sketch
-// (types, constants, math and bit helpers, random, PROGMEM). The PC has no pins wired to the
-// robot: the robot's motors and sensors are the library's, over the link; pinMode and
+// (types, constants, math and bit helpers, random, PROGMEM, String). The PC has no pins wired to
+// the robot: its motors and sensors are the library's, over the link; pinMode and
 // digitalWrite keep what was written, analogRead reads 0, interrupts never fire.
 #ifndef UNIMOUSE_PC_ARDUINO_H_
 #define UNIMOUSE_PC_ARDUINO_H_
@@ -108,6 +108,8 @@ long random(long howsmall, long howbig);
 /// Arduino's dtostrf(): x in at least `width` characters with `precision` decimals.
 char* dtostrf(double x, signed char width, unsigned char precision, char* text);
 
+#include "WString.h"  // String, as the board's Arduino.h brings it
+
 // flash on a board, plain memory on the PC
 #define PROGMEM
 #define PSTR(text) (text)
@@ -143,6 +145,7 @@ class Stream {
 class PcPrint {
  public:
   size_t print(const char* text);
+  size_t print(const String& text) { return print(text.c_str(), text.length()); }
   size_t print(char c) { return print(&c, 1); }
   size_t print(unsigned char n, int base = DEC) {
     return print(static_cast<unsigned long>(n), base);

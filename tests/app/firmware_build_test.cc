@@ -174,7 +174,7 @@ std::vector<std::string> HabitLines(const std::string& log) {
 }
 
 // A student's habits (tests/arduino/habits): the core's helpers, PROGMEM, EEPROM, random(),
-// pins, printed numbers, a tab and a .cpp, a delay() before the robot begins and a wait on
+// pins, String, printed numbers, a tab and a .cpp, a delay() before the robot begins and a wait on
 // millis() alone. Built for the PC and for the board, each prints what the board's own Arduino
 // core computes: hand-computed values (random() is the minimal standard generator, 16807 x mod
 // 2^31 - 1, from the seed 42), the same on both.
@@ -191,6 +191,7 @@ TEST(FirmwareBuildTest, AStudentsArduinoHabitsGiveTheBoardsAnswersOnThePcAndOnTh
       "habit pin 1",
       "habit hex FFFFFFFF",                         // a 32-bit long
       "habit numbers 3 ovf inf 3.1416 -123456 13",  // 2.5 rounded half up; past 32 bits; -inf
+      "habit string V42 FF 3.1427 13 4 13",         // a String's numbers in lower case, then upper
       "habit parts 42 7",
       "habit clock on yes",  // millis() never went back once the robot began
       "habit spun 50 ms",
@@ -291,6 +292,11 @@ TEST(FirmwareBuildTest, ASketchThatDoesNotCompileIsBadInputNamingTheSketch) {
   const auto outcome = Unimouse("firmware build " + sketch + " --out " + sketch + "/bin");
   EXPECT_EQ(outcome.exit_code, 2);
   EXPECT_NE(outcome.output.find("oops"), std::string::npos) << "the compiler's message is shown";
+  // once: not again for the module built of the same source
+  const std::string error = "my_follower.ino:1:16: error:";
+  const size_t first = outcome.output.find(error);
+  EXPECT_NE(first, std::string::npos) << outcome.output;
+  EXPECT_EQ(outcome.output.find(error, first + 1), std::string::npos) << outcome.output;
   EXPECT_NE(outcome.output.find(sketch + ": the sketch did not build"), std::string::npos)
       << outcome.output;
 }

@@ -1,5 +1,5 @@
 // A student's habits, as the Arduino IDE builds them: the core's types, constants and helpers,
-// PROGMEM, EEPROM, random(), pins, Serial's printing, a tab (helpers.ino) and a .cpp beside the
+// PROGMEM, EEPROM, random(), pins, String, Serial's printing, a tab (helpers.ino) and a .cpp beside the
 // sketch, a delay() before the robot begins and a loop that waits on millis(). Each line it
 // prints is the same on the PC and on the board (tests/app/firmware_build_test.cc).
 #include <EEPROM.h>
@@ -77,6 +77,17 @@ void setup() {
   Serial.print(-123456L);
   Serial.print(' ');
   Serial.println(sq(3) + abs(-4));
+  String text = "v" + String(42) + String(' ') + String(255, HEX) + " " + String(3.14159, 3);
+  text += 7;
+  text.toUpperCase();
+  Serial.print("habit string ");
+  Serial.print(text);
+  Serial.print(' ');
+  Serial.print(text.length());
+  Serial.print(' ');
+  Serial.print(text.indexOf('F'));
+  Serial.print(' ');
+  Serial.println(String("  12ab ").toInt() + 1);
   Serial.print("habit parts ");
   Serial.print(twice(21));
   Serial.print(' ');

@@ -96,6 +96,9 @@ class AvrBoard {
   void Reset(ResetCause cause);
   /// Returns what reset the MCU since the last call, oldest first ("the watchdog").
   std::vector<std::string> TakeResets();
+  /// Returns, once each, what a user should know since the last call: that bytes for the MCU
+  /// are being lost, and why.
+  std::vector<std::string> TakeNotices() { return std::exchange(notices_, {}); }
   /// Queues bytes for the MCU's receiver; they go at the line's pace once it is enabled. Bytes
   /// sent before are lost (counted), as are writes that would overfill the queue.
   void Write(std::span<const uint8_t> bytes);
@@ -159,8 +162,11 @@ class AvrBoard {
   uint16_t min_sp_ = 0xFFFF;
   // into the MCU: bytes waiting for the line, and which of them end a write
   avr_irq_t* uart_in_ = nullptr;
-  uint64_t target_ = 0;              // the cycle the current RunUntil runs to
-  std::vector<std::string> resets_;  // not yet taken
+  uint64_t target_ = 0;               // the cycle the current RunUntil runs to
+  std::vector<std::string> resets_;   // not yet taken
+  std::vector<std::string> notices_;  // not yet taken
+  bool told_line_full_ = false;
+  bool told_overrun_ = false;
   std::deque<uint8_t> to_mcu_;
   std::deque<bool> ends_write_;
   bool line_busy_ = false;

@@ -84,6 +84,9 @@ class AvrTransport final : public Transport {
   std::vector<std::string> TakeResets() override {
     return board_ ? board_->TakeResets() : std::vector<std::string>{};
   }
+  std::vector<std::string> TakeNotices() override {
+    return board_ ? board_->TakeNotices() : std::vector<std::string>{};
+  }
   std::string Summary() const override {
     if (!board_) return "";
     std::string text = board_->stats().Describe();

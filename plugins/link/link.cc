@@ -615,6 +615,7 @@ void Link::RunBoard(const SenseContext& ctx, Heard& heard, bool lockstep) const 
             Seconds(ctx.time_s() + period_s_) + " s: the firmware boots again, motors stopped");
     if (!WithinRestarts(ctx, board_resets_, "the emulated board was reset")) return;
   }
+  for (const std::string& notice : transport_->TakeNotices()) ctx.Warn(notice);
   Receive(ctx, heard);
   if (!lockstep) return;
   // a step not finished within its cycles is late, as on a real board; its commands count when

@@ -93,6 +93,19 @@ TEST(AvrBoardTest, AReceiverNobodyReadsOverflowsAndCountsTheOverruns) {
   EXPECT_EQ(s.bytes_to_mcu, 63u);
   EXPECT_EQ(s.rx_overruns, 137u);
   EXPECT_EQ(s.dropped_to_mcu, 137u);
+  // the user is told once, and why
+  EXPECT_EQ(board.TakeNotices(),
+            std::vector<std::string>{"bytes for the board are being lost: its UART received a byte "
+                                     "before the firmware had read the one before (interrupts "
+                                     "off for too long?)"});
+  // more than the line's queue holds (1024 bytes) in one write, twice: said once
+  board.Write(std::vector<uint8_t>(2000, 0xA5));
+  board.Write(std::vector<uint8_t>(2000, 0xA5));
+  ASSERT_EQ(board.RunUntil(21 * kCyclesPerMs), "");
+  EXPECT_EQ(board.stats().dropped_to_mcu, 137u + 4000u);  // each write lost whole
+  EXPECT_EQ(board.TakeNotices(),
+            std::vector<std::string>{"bytes for the board are being lost: its serial line at "
+                                     "1000000 baud carries fewer than the simulator sends"});
 }
 
 TEST(AvrBoardTest, AStackIntoTheDataStopsTheBoardWithItsHighWaterMark) {

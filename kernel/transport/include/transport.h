@@ -66,6 +66,9 @@ class Transport {
   /// at reset_at_s"), oldest first: only an emulated board sees its resets; others show them
   /// by the firmware's start-up frames (docs/protocol.md, "Restarts").
   virtual std::vector<std::string> TakeResets() { return {}; }
+  /// Returns, once each, what the user should know of the line since the last call (an
+  /// emulated board losing bytes).
+  virtual std::vector<std::string> TakeNotices() { return {}; }
   /// Hands an IMU on the board's bus (TransportSettings::spi_imu_part) what it measures now:
   /// gyro x, y, z in rad/s, then accelerometer x, y, z in m/s^2. Other transports ignore it.
   virtual void SetImuReading(std::span<const double, 6> /*gyro_then_accel*/) {}

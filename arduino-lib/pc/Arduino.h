@@ -60,7 +60,7 @@ constexpr typename std::common_type<T, L, H>::type constrain(T x, L low, H high)
   return x < low ? low : (x > high ? high : x);
 }
 template <typename T>
-constexpr T sq(T x) {
+constexpr auto sq(T x) -> decltype(x * x) {
   return x * x;
 }
 #define radians(deg) ((deg)*DEG_TO_RAD)
@@ -81,6 +81,7 @@ inline unsigned int makeWord(uint8_t high, uint8_t low) {
 #define bitSet(value, b) ((value) |= (1UL << (b)))
 #define bitClear(value, b) ((value) &= ~(1UL << (b)))
 #define bitWrite(value, b, bitvalue) ((bitvalue) ? bitSet(value, b) : bitClear(value, b))
+#define bitToggle(value, b) ((value) ^= (1UL << (b)))
 
 /// Pins: the PC's are wired to nothing. A pin reads back what was written to it (HIGH for
 /// INPUT_PULLUP), an analog input reads 0.
@@ -194,11 +195,9 @@ class HardwareSerial : public Stream, public PcPrint {
 };
 extern HardwareSerial Serial;
 
-/// Milliseconds and microseconds since the start. On the PC: the wall clock until the library's
-/// robot begins; then the delays asked for before the simulator's first clock frame, held until
-/// it comes; then the sim time of its frames counted on from there. It never goes back, and a
-/// loop that only reads it lets the simulation run on (a step per 1000 reads), as a board's
-/// clock runs on while it spins.
+/// Milliseconds and microseconds since the start, as clock.cc counts them on the PC: never
+/// back, the same in every run; a loop that only reads them lets time go by (a step per 1000
+/// reads), as a board's clock runs on while it spins.
 unsigned long millis();
 unsigned long micros();
 /// Waits so many milliseconds (microseconds) of sim time once the simulator's clock frames come:
@@ -226,6 +225,8 @@ void unimousePcAwaitInput();
 void unimousePcSetIdle(void (*idle)(void* context), void* context);
 /// Waits on the wall clock: each core's own way, for delay() before sim time runs.
 void unimousePcWallWait(unsigned long us);
+/// millis() for the library's own reads: the same clock, never taken for a sketch's spin.
+unsigned long unimousePcLibraryMillis();
 /// Hands text to the firmware's log: each core's own way.
 void unimousePcText(const char* text, size_t size);
 

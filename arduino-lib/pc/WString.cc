@@ -21,9 +21,11 @@ std::string String::Signed(int32_t n, unsigned char base) {
 }
 
 String::String(double x, unsigned char decimals) {
-  char text[64];
-  dtostrf(x, static_cast<signed char>(decimals + 2), decimals, text);
-  text_ = text;
+  // as the board's dtostrf with a width of decimals + 2, into a string as long as it takes
+  const int width = decimals + 2;
+  const int size = snprintf(nullptr, 0, "%*.*f", width, decimals, x);
+  text_.resize(static_cast<size_t>(size > 0 ? size : 0));
+  snprintf(text_.data(), text_.size() + 1, "%*.*f", width, decimals, x);
 }
 
 bool String::equalsIgnoreCase(const String& s) const {

@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: MIT
-// The PC cores' clock: millis() and micros() follow the simulator's clock frames once they come
-// (lock-step), counted on from the delays asked for before them; the wall clock before the
-// library's robot begins. delay() and delayMicroseconds() wait in the same time.
-#include <chrono>
+// The PC cores' clock. Before the library's robot begins, millis() and micros() count the delays
+// asked for (each also waited on the wall clock, which the simulator keeps pace with); from
+// begin() they hold until the simulator's first clock frame, then count its sim time on from
+// there (lock-step). So they never go back, and read the same in every run. delay() and
+// delayMicroseconds() wait in the same time.
 #include <cstdint>
 
 #include "Arduino.h"
@@ -10,30 +11,32 @@
 namespace {
 
 bool clock_seen = false;
-uint64_t sim_us = 0;  // unwrapped from the frames' 32 bits
-// the waits asked for before the simulator's clock came (setup's delay(1000)): its time counts
-// on from there, so that millis() never goes back, and the same in every run
-uint64_t before_us = 0;
-const auto started = std::chrono::steady_clock::now();
+uint64_t sim_us = 0;     // unwrapped from the frames' 32 bits
+uint64_t before_us = 0;  // the delays asked for before the robot began (setup's delay(200))
 void (*idle_step)(void*) = nullptr;
 void* idle_context = nullptr;
 // reads of the clock since it last moved: a sketch that waits on millis() in a loop of its own
-// (`while (millis() - t < 500) {}`) would never let the simulation run on; past this many, a
-// read lets one step go by, as time goes by on a board while it spins
+// (`while (millis() - t < 500) {}`) would never let time go by; past this many, a read lets
+// one step (before the robot begins, 1 ms) go by, as time goes by on a board while it spins
 constexpr int kReadsPerStep = 1000;
 int reads_unmoved = 0;
 
 // in lock-step the simulator waits for the firmware, so a wait on the wall clock would stop
 // the simulation: wait in sim time, stepping it
 void Wait(uint64_t us) {
+  if (idle_step == nullptr) {
+    before_us += us;
+    reads_unmoved = 0;
+  }
   if (!clock_seen || idle_step == nullptr) {
-    if (!clock_seen) before_us += us;
     unimousePcWallWait(static_cast<unsigned long>(us));
     return;
   }
   const uint64_t start = sim_us;
   while (sim_us - start < us) idle_step(idle_context);
 }
+
+uint64_t Now() { return clock_seen ? before_us + sim_us : before_us; }
 
 }  // namespace
 
@@ -59,16 +62,17 @@ void unimousePcClock(uint32_t us) {
 }
 
 unsigned long micros() {
-  if (idle_step != nullptr && ++reads_unmoved >= kReadsPerStep) {
+  if (++reads_unmoved >= kReadsPerStep) {
     reads_unmoved = 0;
-    idle_step(idle_context);
+    if (idle_step != nullptr) {
+      idle_step(idle_context);
+    } else {
+      Wait(1000);
+    }
   }
-  if (clock_seen) return static_cast<unsigned long>(before_us + sim_us);
-  // the library's robot has begun: the clock holds until the simulator's first frame
-  if (idle_step != nullptr) return static_cast<unsigned long>(before_us);
-  return static_cast<unsigned long>(std::chrono::duration_cast<std::chrono::microseconds>(
-                                        std::chrono::steady_clock::now() - started)
-                                        .count());
+  return static_cast<unsigned long>(Now());
 }
 
 unsigned long millis() { return micros() / 1000; }
+
+unsigned long unimousePcLibraryMillis() { return static_cast<unsigned long>(Now() / 1000); }

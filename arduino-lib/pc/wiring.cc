@@ -30,16 +30,20 @@ long NextRandom() {
 }  // namespace
 
 long map(long x, long in_min, long in_max, long out_min, long out_max) {
-  // in 32 bits, as a board computes it
-  const int32_t d = static_cast<int32_t>(in_max - in_min);
-  if (d == 0) return out_min;  // a board divides by zero here; the PC would stop
-  return static_cast<int32_t>(static_cast<int32_t>(x - in_min) *
-                                  static_cast<int32_t>(out_max - out_min) / d +
-                              static_cast<int32_t>(out_min));
+  // in 32 bits, wrapping as a board's long does
+  const auto wrap = [](uint32_t v) { return static_cast<int32_t>(v); };
+  const int32_t d = wrap(static_cast<uint32_t>(in_max) - static_cast<uint32_t>(in_min));
+  const int32_t product = wrap((static_cast<uint32_t>(x) - static_cast<uint32_t>(in_min)) *
+                               (static_cast<uint32_t>(out_max) - static_cast<uint32_t>(out_min)));
+  // a board divides by zero here, and the PC would stop; -1 would overflow the quotient
+  if (d == 0) return out_min;
+  const int32_t quotient = d == -1 ? wrap(0U - static_cast<uint32_t>(product)) : product / d;
+  return wrap(static_cast<uint32_t>(quotient) + static_cast<uint32_t>(out_min));
 }
 
 void pinMode(uint8_t pin, uint8_t mode) {
-  if (Valid(pin)) level[pin] = mode == INPUT_PULLUP ? HIGH : LOW;
+  // as the board's port bit: an output keeps the level written before
+  if (Valid(pin) && mode != OUTPUT) level[pin] = mode == INPUT_PULLUP ? HIGH : LOW;
 }
 
 void digitalWrite(uint8_t pin, uint8_t value) {

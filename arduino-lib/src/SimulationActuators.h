@@ -61,7 +61,11 @@ class MotorActuator : public IMotor {
   }
   /// Sets the command at the board's millis().
   void setCommand(int32_t command) override {
+#ifdef UNIMOUSE_PC_CORE
+    setCommand(command, static_cast<uint32_t>(unimousePcLibraryMillis()));  // not a spin
+#else
     setCommand(command, static_cast<uint32_t>(millis()));
+#endif
   }
   int16_t getCommand() const { return command_; }
   /// Sends the command again if it has not been sent for kResendMs.

@@ -293,6 +293,7 @@ class Exchange {
           partial += buffer[i];
           if (partial.size() > kMaxLineBytes) {
             LogInvalid(partial, "longer than 4096 bytes", ++commands_);
+            last_dropped_ = "of more than 4096 bytes (line " + std::to_string(commands_) + ")";
             partial.clear();
             discarding = true;
           }

@@ -180,7 +180,7 @@ std::vector<std::string> HabitLines(const std::string& log) {
 // 2^31 - 1, from the seed 42), the same on both.
 TEST(FirmwareBuildTest, AStudentsArduinoHabitsGiveTheBoardsAnswersOnThePcAndOnTheBoard) {
   const std::vector<std::string> expected = {
-      "habit map 127",  // 512 * 255 / 1023, in integers
+      "habit map 127 7050",  // 512 * 255 / 1023; 5e9 wraps to 705032704 in 32 bits
       "habit constrain 300",
       "habit min max -2 7",
       "habit bits 1 9 8",
@@ -188,10 +188,10 @@ TEST(FirmwareBuildTest, AStudentsArduinoHabitsGiveTheBoardsAnswersOnThePcAndOnTh
       "habit progmem 20",
       "habit eeprom 255 1234",  // an erased cell, then what was put
       "habit random 94 23 9 13",
-      "habit pin 1",
-      "habit hex FFFFFFFF",                         // a 32-bit long
-      "habit numbers 3 ovf inf 3.1416 -123456 13",  // 2.5 rounded half up; past 32 bits; -inf
-      "habit string V42 FF 3.1427 13 4 13",         // a String's numbers in lower case, then upper
+      "habit pin 1 1",
+      "habit hex FFFFFFFF",                             // a 32-bit long
+      "habit numbers 3 ovf inf 3.1416 -123456 13 400",  // 2.5 half up; past 32 bits; -inf
+      "habit string V42 FF 3.1427 13 4 13",  // a String's numbers in lower case, then upper
       "habit parts 42 7",
       "habit clock on yes",  // millis() never went back once the robot began
       "habit spun 50 ms",
@@ -218,12 +218,40 @@ TEST(FirmwareBuildTest, AStudentsArduinoHabitsGiveTheBoardsAnswersOnThePcAndOnTh
     std::vector<std::string> lines = HabitLines(
         ReadTextFile((fs::temp_directory_path() / "fw_habits_run" / "log.txt").string()));
     ASSERT_FALSE(lines.empty()) << link << ": " << run.outcome.output;
-    // after delay(200): the PC counts the delay asked for, the board's timer a tick behind
-    EXPECT_TRUE(lines[0] == "habit start 200" ||
-                (link.rfind("avr:", 0) == 0 && lines[0] == "habit start 199"))
+    // 0 at the start; after delay(200) the PC counts the delay asked for, the board's timer a
+    // tick behind
+    EXPECT_TRUE(lines[0] == "habit start 0 200" ||
+                (link.rfind("avr:", 0) == 0 && lines[0] == "habit start 0 199"))
         << link << ": " << lines[0];
     lines.erase(lines.begin());
     EXPECT_EQ(lines, expected) << link;
+  }
+}
+
+// A String of a number longer than any fixed buffer: the whole text, as printf writes it (the
+// lengths are Python's: len(f"{1e100:.2f}"), len(f"{1.0:.80f}"))
+TEST(FirmwareBuildTest, AStringOfALongNumberHoldsAllOfIt) {
+  const std::string sketch =
+      WriteSketch(FreshDirectory("fw_long_string"), R"(#include <UnimouseSim.h>
+SimulationRobot robot(Serial);
+void setup() {
+  robot.begin();
+  printf("long %u %u\n", String(1e100).length(), String(1.0, 80).length());
+}
+void loop() { robot.update(); }
+)");
+  const auto build = Unimouse("firmware build " + sketch + " --out " + sketch + "/bin");
+  ASSERT_EQ(build.exit_code, 0) << build.output;
+  for (const std::string& link :
+       {"native:" + sketch + "/bin/my_follower", "inproc:" + sketch + "/bin/my_follower.so"}) {
+    const auto run = UnimouseRun(
+        "--scenario speed_control --duration 0.01 --no-pictures "
+        "--record off --link " +
+            link,
+        "fw_long_string_run");
+    const std::string log =
+        ReadTextFile((fs::temp_directory_path() / "fw_long_string_run" / "log.txt").string());
+    EXPECT_NE(log.find("\tlong 104 82\n"), std::string::npos) << link << ": " << log;
   }
 }
 

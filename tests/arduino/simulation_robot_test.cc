@@ -15,6 +15,7 @@ unsigned long now_ms = 0;
 
 unsigned long millis() { return now_ms; }
 unsigned long micros() { return now_ms * 1000; }
+unsigned long unimousePcLibraryMillis() { return now_ms; }
 void unimousePcClock(uint32_t) {}
 void unimousePcAwaitInput() {}
 void unimousePcSetIdle(void (*)(void*), void*) {}

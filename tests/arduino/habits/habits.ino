@@ -18,13 +18,18 @@ void setup() {
   Serial.begin(UNIMOUSE_BAUD);
   while (!Serial) {
   }
+  const unsigned long early = millis();
   delay(200);  // "give the serial monitor a moment", before the robot begins
   robot.begin();
   startMs = millis();
   Serial.print("habit start ");
+  Serial.print(early);
+  Serial.print(' ');
   Serial.println(startMs);
   Serial.print("habit map ");
-  Serial.println(map(512, 0, 1023, 0, 255));
+  Serial.print(map(512, 0, 1023, 0, 255));
+  Serial.print(' ');
+  Serial.println(map(50000, 0, 100000, 0, 100000));  // past 32 bits on the way
   Serial.print("habit constrain ");
   Serial.println(constrain(500, 0, 300));
   Serial.print("habit min max ");
@@ -62,7 +67,11 @@ void setup() {
   pinMode(LED_BUILTIN, OUTPUT);
   digitalWrite(LED_BUILTIN, HIGH);
   Serial.print("habit pin ");
-  Serial.println(digitalRead(LED_BUILTIN));
+  Serial.print(digitalRead(LED_BUILTIN));
+  digitalWrite(7, HIGH);  // a chip select high before it becomes an output
+  pinMode(7, OUTPUT);
+  Serial.print(' ');
+  Serial.println(digitalRead(7));
   Serial.print("habit hex ");
   Serial.println(-1L, HEX);
   Serial.print("habit numbers ");
@@ -76,7 +85,9 @@ void setup() {
   Serial.print(' ');
   Serial.print(-123456L);
   Serial.print(' ');
-  Serial.println(sq(3) + abs(-4));
+  Serial.print(sq(3) + abs(-4));
+  Serial.print(' ');
+  Serial.println(sq(byte(20)));
   String text = "v" + String(42) + String(' ') + String(255, HEX) + " " + String(3.14159, 3);
   text += 7;
   text.toUpperCase();

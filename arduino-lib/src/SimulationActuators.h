@@ -12,6 +12,16 @@
 #include <stdint.h>
 
 #include "Devices.h"
+
+/// millis() as the library reads it, counted in 32 bits as on boards; on the PC a read the
+/// core never takes for a sketch spinning on the clock (pc/clock.cc).
+inline uint32_t unimouseLibraryMillis() {
+#ifdef UNIMOUSE_PC_CORE
+  return static_cast<uint32_t>(unimousePcLibraryMillis());
+#else
+  return static_cast<uint32_t>(millis());
+#endif
+}
 #include "unimouse_protocol.h"
 
 class IActuatorManager {
@@ -60,13 +70,7 @@ class MotorActuator : public IMotor {
     }
   }
   /// Sets the command at the board's millis().
-  void setCommand(int32_t command) override {
-#ifdef UNIMOUSE_PC_CORE
-    setCommand(command, static_cast<uint32_t>(unimousePcLibraryMillis()));  // not a spin
-#else
-    setCommand(command, static_cast<uint32_t>(millis()));
-#endif
-  }
+  void setCommand(int32_t command) override { setCommand(command, unimouseLibraryMillis()); }
   int16_t getCommand() const { return command_; }
   /// Sends the command again if it has not been sent for kResendMs.
   void refresh(uint32_t nowMs) {

@@ -252,13 +252,7 @@ class SimulationRobot {
   char line_[64];
   uint8_t lineLength_ = 0;
 #endif
-  // millis() is an unsigned long, 64 bits on the PC: counted in 32 bits, it wraps as on boards
-#ifdef UNIMOUSE_PC_CORE
-  // the library's reads are not a sketch spinning on the clock (clock.cc)
-  static uint32_t nowMs() { return static_cast<uint32_t>(unimousePcLibraryMillis()); }
-#else
-  static uint32_t nowMs() { return static_cast<uint32_t>(millis()); }
-#endif
+  static uint32_t nowMs() { return unimouseLibraryMillis(); }
   void manager(uint8_t code) { actuators_.send(UNIMOUSE_ID_MANAGER, &code, 1); }
 
   StreamSimulationSensorManager<16> sensors_;

@@ -134,15 +134,13 @@ int FirmwareBuild(const FirmwareBuildOptions& options) {
   if (!project) throw InputError("cannot write " + (work / "CMakeLists.txt").string());
 
   const std::string jobs = std::to_string(std::max(1u, std::thread::hardware_concurrency()));
+  const std::string build = (work / "build").string();
   // for the PC the program first: a sketch that does not compile says so once, not also for
   // the module made of the same source
-  const std::vector<std::string> build = {"cmake", "--build", (work / "build").string(), "-j",
-                                          jobs};
-  std::vector<std::string> program_first = build;
-  program_first.insert(program_first.end(), {"--target", "firmware"});
-  if (Run({"cmake", "-S", work.string(), "-B", (work / "build").string(), "-Wno-dev",
+  if (Run({"cmake", "-S", work.string(), "-B", build, "-Wno-dev",
            "-DCMAKE_BUILD_TYPE=RelWithDebInfo"}) != 0 ||
-      (!avr && Run(program_first) != 0) || Run(build) != 0) {
+      (!avr && Run({"cmake", "--build", build, "-j", jobs, "--target", "firmware"}) != 0) ||
+      Run({"cmake", "--build", build, "-j", jobs}) != 0) {
     throw InputError(options.sketch + ": the sketch did not build (the messages are above)");
   }
   using link::FirmwareHost;

@@ -149,15 +149,10 @@ MmsResponse MmsWorld::Move(long half_steps) {
   MmsResponse response = Reply("ack");
   response.motion = true;
   ++moves_;
-  // a body moves whole cells only
-  if (half_steps < 1 || (body_ != nullptr && half_steps % 2 != 0)) {
-    response.reply = "crash";
-    response.crash = true;
-    ++crashes_;
-    return response;
-  }
-  // a wall right ahead: mms answers crash at once, charging nothing and starting no run
-  if (Blocked(px_ + kDx[direction_], py_ + kDy[direction_])) {
+  // not a move: no distance, a half-cell for a body (it moves whole cells only), or a wall right
+  // ahead; mms answers crash at once, charging nothing and starting no run
+  if (half_steps < 1 || (body_ != nullptr && half_steps % 2 != 0) ||
+      Blocked(px_ + kDx[direction_], py_ + kDy[direction_])) {
     response.reply = "crash";
     response.crash = true;
     ++crashes_;

@@ -396,13 +396,10 @@ void AvrBoard::Write(std::span<const uint8_t> bytes) {
   }
   if (to_mcu_.size() + bytes.size() > options_.queue_bytes) {
     stats_.dropped_to_mcu += bytes.size();
-    if (!told_line_full_) {
-      told_line_full_ = true;
-      notices_.push_back(
-          "bytes for the board are being lost: its serial line at " + std::to_string(Baud()) +
-          " baud carries fewer than the simulator sends" +
-          (Baud() < 1000000 ? " (the library opens Serial at UNIMOUSE_BAUD, 1000000)" : ""));
-    }
+    NoteOnce(told_line_full_,
+             "bytes for the board are being lost: its serial line at " + std::to_string(Baud()) +
+                 " baud carries fewer than the simulator sends" +
+                 (Baud() < 1000000 ? " (the library opens Serial at UNIMOUSE_BAUD, 1000000)" : ""));
     return;
   }
   to_mcu_.insert(to_mcu_.end(), bytes.begin(), bytes.end());
@@ -440,12 +437,9 @@ uint64_t AvrBoard::FeedByte(avr_t* avr, uint64_t when, void* param) {
       ++b->stats_.bytes_to_mcu;
     } else {
       ++b->stats_.dropped_to_mcu;
-      if (!b->told_overrun_) {
-        b->told_overrun_ = true;
-        b->notices_.push_back(
-            "bytes for the board are being lost: its UART received a byte before the firmware "
-            "had read the one before (interrupts off for too long?)");
-      }
+      b->NoteOnce(b->told_overrun_,
+                  "bytes for the board are being lost: its UART received a byte before the "
+                  "firmware had read the one before (interrupts off for too long?)");
     }
     if (ends) {
       b->mark_cycle_ = when + per_byte;

@@ -130,6 +130,11 @@ class AvrBoard {
   static uint64_t FeedByte(avr_t* avr, uint64_t when, void* param);
   static uint64_t StepEnd(avr_t* avr, uint64_t when, void* param);
   static void Logger(avr_t* avr, int level, const char* format, va_list ap);
+  // keeps `text` for TakeNotices unless `told` says it was kept before
+  void NoteOnce(bool& told, std::string text) {
+    if (!told) notices_.push_back(std::move(text));
+    told = true;
+  }
   // frees the MCU and forgets it
   void Release();
   // cycles one 8N1 byte takes on the line as the firmware configured it (simavr's word size)

@@ -98,6 +98,12 @@ TEST_F(MmsRunTest, FloodFillClientReachesTheGoalOfTheBundledMaze) {
   EXPECT_EQ(run.result["display"]["colors"][0],
             nlohmann::json::parse(R"({"x": 0, "y": 0, "color": "c"})"));
   EXPECT_NE(run.outcome.output.find("flood fill starting"), std::string::npos);
+  // the line docs/mms.md shows for this run, word for word
+  const std::string page = ReadTextFile(UNIMOUSE_SOURCE_DIR "/docs/mms.md");
+  const size_t shown = page.find("\nmms: goal_reached: ");
+  ASSERT_NE(shown, std::string::npos);
+  const std::string line = page.substr(shown + 1, page.find('\n', shown + 1) - shown - 1);
+  EXPECT_NE(run.outcome.output.find(line), std::string::npos) << line << "\n" << run.outcome.output;
 }
 
 TEST_F(MmsRunTest, LeftWallPythonClientFollowsTheWallIntoTheCentre) {
